@@ -1,0 +1,28 @@
+# Installs the library, its headers and a CMake package:
+#   find_package(osd_cull REQUIRED)
+#   target_link_libraries(app PRIVATE osd_cull::osd_cull osd_cull::adapters)
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+install(TARGETS osd_cull osd_cull_adapters EXPORT osd_cull-targets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/osd_cull ${PROJECT_SOURCE_DIR}/adapters
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/osd_cull
+  FILES_MATCHING PATTERN "*.h")
+# Shared C++/GLSL layout headers live in shaders/; they are included as <shared/...>.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/shared
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/osd_cull OPTIONAL
+  FILES_MATCHING PATTERN "*.h")
+
+set(_cfgdir ${CMAKE_INSTALL_LIBDIR}/cmake/osd_cull)
+install(EXPORT osd_cull-targets NAMESPACE osd_cull:: DESTINATION ${_cfgdir})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/osd_cull-config.cmake.in
+  ${PROJECT_BINARY_DIR}/osd_cull-config.cmake INSTALL_DESTINATION ${_cfgdir})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/osd_cull-config-version.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/osd_cull-config.cmake
+  ${PROJECT_BINARY_DIR}/osd_cull-config-version.cmake
+  ${PROJECT_SOURCE_DIR}/cmake/OsdCullDependencies.cmake
+  DESTINATION ${_cfgdir})

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Sets up (packages, configure, build) and runs the demo.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+"$root/scripts/setup.sh"
+build=${OSD_CULL_BUILD_DIR:-$root/build}
+exec "$build/samples/osd-cull" info "$@"

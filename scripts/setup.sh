@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian packages osd_cull needs when any is missing (idempotent; silent
+# when nothing is missing), then configures and builds into build/ (or $OSD_CULL_BUILD_DIR).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+mapfile -t wanted < <(grep -v '^\s*#' "$root/scripts/packages.txt" | sed '/^\s*$/d')
+missing=()
+for p in "${wanted[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "osd_cull setup: installing Debian packages: ${missing[*]}" >&2
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+build=${OSD_CULL_BUILD_DIR:-$root/build}
+werror=OFF
+[ "${CI:-}" = "true" ] && werror=ON
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  echo "osd_cull setup: configuring $build" >&2
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DOSD_CULL_WERROR=$werror >/dev/null
+fi
+echo "osd_cull setup: building (this takes a few minutes the first time)" >&2
+cmake --build "$build" -j"$(nproc)"
