@@ -1,0 +1,347 @@
+#include "osd_cull/vk/context.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/vk/check.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+
+namespace osd_cull::vk {
+
+namespace {
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string deviceList(std::span<const std::string> names) {
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i)
+    out += "\n  " + std::to_string(i) + ": " + names[i];
+  return names.empty() ? std::string("\n  (none)") : out;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                              void* user) {
+  if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return VK_FALSE;
+  auto* sink = static_cast<std::pair<ValidationLog*, bool>*>(user);
+  ValidationMessage m;
+  m.severity = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT
+                   ? ValidationMessage::Severity::Error
+                   : ValidationMessage::Severity::Warning;
+  m.id = data->pMessageIdName ? data->pMessageIdName : "";
+  m.text = data->pMessage ? data->pMessage : "";
+  if (sink->second) std::cerr << "[vulkan validation] " << m.text << "\n";
+  sink->first->record(std::move(m));
+  return VK_FALSE;
+}
+
+bool hasLayer(const char* name) {
+  uint32_t count = 0;
+  OSD_CULL_VK(vkEnumerateInstanceLayerProperties(&count, nullptr));
+  std::vector<VkLayerProperties> layers(count);
+  OSD_CULL_VK(vkEnumerateInstanceLayerProperties(&count, layers.data()));
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+VkInstance createBareInstance() {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "osd_cull";
+  app.apiVersion = VK_API_VERSION_1_2;
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+  VkInstance instance = VK_NULL_HANDLE;
+  OSD_CULL_VK(vkCreateInstance(&info, nullptr, &instance));
+  return instance;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+  uint32_t count = 0;
+  OSD_CULL_VK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+  std::vector<VkPhysicalDevice> devices(count);
+  OSD_CULL_VK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+  devices.resize(count);
+  return devices;
+}
+
+std::vector<std::string> deviceNames(VkInstance instance) {
+  std::vector<std::string> names;
+  for (VkPhysicalDevice d : physicalDevices(instance)) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(d, &p);
+    names.emplace_back(p.deviceName);
+  }
+  return names;
+}
+
+}  // namespace
+
+std::vector<std::string> listDevices() {
+  VkInstance instance = createBareInstance();
+  std::vector<std::string> names;
+  try {
+    names = deviceNames(instance);
+  } catch (...) {
+    vkDestroyInstance(instance, nullptr);
+    throw;
+  }
+  vkDestroyInstance(instance, nullptr);
+  return names;
+}
+
+uint32_t selectDevice(std::span<const std::string> names, std::string_view selector) {
+  if (names.empty()) throw Error("no Vulkan device found (is mesa-vulkan-drivers installed?)");
+  if (selector.empty()) {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (lower(names[i]).find("llvmpipe") != std::string::npos) return static_cast<uint32_t>(i);
+    return 0;
+  }
+  if (std::all_of(selector.begin(), selector.end(),
+                  [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) {
+    const unsigned long index = std::stoul(std::string(selector));
+    if (index >= names.size())
+      throw Error("Vulkan device index " + std::string(selector) + " is out of range; devices:" +
+                  deviceList(names));
+    return static_cast<uint32_t>(index);
+  }
+  const std::string needle = lower(selector);
+  for (size_t i = 0; i < names.size(); ++i)
+    if (lower(names[i]).find(needle) != std::string::npos) return static_cast<uint32_t>(i);
+  throw Error("no Vulkan device name contains '" + std::string(selector) + "'; devices:" +
+              deviceList(names));
+}
+
+Context::Context(const ContextOptions& options)
+    : printValidation_(options.printValidationMessages), blockSize_(options.memoryBlockSize) {
+  try {
+    createInstance(options);
+    pickDevice(options);
+    createDevice();
+  } catch (...) {
+    destroy();
+    throw;
+  }
+}
+
+Context::~Context() { destroy(); }
+
+void Context::destroy() {
+  commandPool_.reset();
+  allocator_.reset();
+  if (device_) vkDestroyDevice(device_, nullptr);
+  device_ = VK_NULL_HANDLE;
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+    messenger_ = VK_NULL_HANDLE;
+  }
+  if (instance_) vkDestroyInstance(instance_, nullptr);
+  instance_ = VK_NULL_HANDLE;
+}
+
+void Context::createInstance(const ContextOptions& options) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "osd_cull";
+  app.pEngineName = "osd_cull";
+  app.apiVersion = VK_API_VERSION_1_2;
+
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+
+  const char* layer = "VK_LAYER_KHRONOS_validation";
+  const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  VkValidationFeatureEnableEXT enables[] = {
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
+      VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+
+  if (options.validation) {
+    if (!hasLayer(layer))
+      throw Error(std::string("validation requested but ") + layer +
+                  " is not installed (Debian package vulkan-validationlayers)");
+    validationLog_ = options.validationLog ? options.validationLog
+                                           : std::make_shared<ValidationLog>();
+    sink_ = std::make_unique<std::pair<ValidationLog*, bool>>(validationLog_.get(),
+                                                              printValidation_);
+    messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messengerInfo.pfnUserCallback = onDebugMessage;
+    messengerInfo.pUserData = sink_.get();
+    // Chain: instance info -> validation features -> messenger (covers instance creation).
+    features.pNext = &messengerInfo;
+    info.pNext = &features;
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = &layer;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &extension;
+  }
+  OSD_CULL_VK(vkCreateInstance(&info, nullptr, &instance_));
+  if (options.validation) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+    if (!create) throw Error("vkCreateDebugUtilsMessengerEXT is not available");
+    OSD_CULL_VK(create(instance_, &messengerInfo, nullptr, &messenger_));
+  }
+}
+
+void Context::pickDevice(const ContextOptions& options) {
+  const std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
+  const std::vector<std::string> names = deviceNames(instance_);
+  std::string selector = options.device;
+  if (selector.empty())
+    if (const char* env = std::getenv("OSD_CULL_DEVICE")) selector = env;
+  info_.index = selectDevice(names, selector);
+  physicalDevice_ = devices[info_.index];
+
+  VkPhysicalDeviceVulkan12Properties props12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  VkPhysicalDeviceProperties base;
+  vkGetPhysicalDeviceProperties(physicalDevice_, &base);
+  const bool is12 = base.apiVersion >= VK_API_VERSION_1_2;
+  if (is12) props.pNext = &props12;
+  vkGetPhysicalDeviceProperties2(physicalDevice_, &props);
+  info_.name = props.properties.deviceName;
+  info_.type = props.properties.deviceType;
+  info_.apiVersion = props.properties.apiVersion;
+  info_.limits = props.properties.limits;
+  if (is12) info_.driver = std::string(props12.driverName) + " " + props12.driverInfo;
+
+  std::vector<std::string> missing;
+  if (!is12)
+    missing.push_back("Vulkan 1.2 (device reports " +
+                      std::to_string(VK_API_VERSION_MAJOR(info_.apiVersion)) + "." +
+                      std::to_string(VK_API_VERSION_MINOR(info_.apiVersion)) + ")");
+
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  if (is12) f.pNext = &f12;
+  vkGetPhysicalDeviceFeatures2(physicalDevice_, &f);
+  if (!f.features.tessellationShader) missing.push_back("tessellationShader");
+  if (!f.features.pipelineStatisticsQuery) missing.push_back("pipelineStatisticsQuery");
+  if (!f.features.multiDrawIndirect) missing.push_back("multiDrawIndirect");
+  if (is12 && !f12.drawIndirectCount) missing.push_back("drawIndirectCount");
+  if (info_.limits.maxTessellationPatchSize < 20)
+    missing.push_back("maxTessellationPatchSize >= 20 (has " +
+                      std::to_string(info_.limits.maxTessellationPatchSize) + ")");
+
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
+  bool found = false;
+  for (uint32_t i = 0; i < familyCount && !found; ++i) {
+    const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+    if ((families[i].queueFlags & need) == need) {
+      queueFamily_ = i;
+      info_.timestampValidBits = families[i].timestampValidBits;
+      found = true;
+    }
+  }
+  if (!found) missing.push_back("a queue family with graphics and compute");
+
+  if (!missing.empty()) {
+    std::string list;
+    for (const auto& m : missing) list += (list.empty() ? "" : ", ") + m;
+    throw Error("Vulkan device " + std::to_string(info_.index) + " '" + info_.name +
+                "' lacks required features: " + list +
+                " (choose another device with --device or OSD_CULL_DEVICE; devices:" +
+                deviceList(names) + ")");
+  }
+  info_.optional.shaderFloat64 = f.features.shaderFloat64;
+  info_.optional.samplerFilterMinmax = f12.samplerFilterMinmax;
+  info_.optional.bufferDeviceAddress = f12.bufferDeviceAddress;
+  info_.optional.hostQueryReset = f12.hostQueryReset;
+  info_.optional.vertexPipelineStoresAndAtomics = f.features.vertexPipelineStoresAndAtomics;
+  info_.optional.fragmentStoresAndAtomics = f.features.fragmentStoresAndAtomics;
+  info_.optional.fillModeNonSolid = f.features.fillModeNonSolid;
+}
+
+void Context::createDevice() {
+  const auto& opt = info_.optional;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  f12.drawIndirectCount = VK_TRUE;
+  f12.samplerFilterMinmax = opt.samplerFilterMinmax;
+  f12.bufferDeviceAddress = opt.bufferDeviceAddress;
+  f12.hostQueryReset = opt.hostQueryReset;
+  VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  f.pNext = &f12;
+  f.features.tessellationShader = VK_TRUE;
+  f.features.pipelineStatisticsQuery = VK_TRUE;
+  f.features.multiDrawIndirect = VK_TRUE;
+  f.features.shaderFloat64 = opt.shaderFloat64;
+  f.features.vertexPipelineStoresAndAtomics = opt.vertexPipelineStoresAndAtomics;
+  f.features.fragmentStoresAndAtomics = opt.fragmentStoresAndAtomics;
+  f.features.fillModeNonSolid = opt.fillModeNonSolid;
+
+  const float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queueInfo.queueFamilyIndex = queueFamily_;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+
+  VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  info.pNext = &f;
+  info.queueCreateInfoCount = 1;
+  info.pQueueCreateInfos = &queueInfo;
+  OSD_CULL_VK(vkCreateDevice(physicalDevice_, &info, nullptr, &device_));
+  vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+  allocator_ = std::make_unique<MemoryAllocator>(physicalDevice_, device_, blockSize_);
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  poolInfo.queueFamilyIndex = queueFamily_;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  OSD_CULL_VK(vkCreateCommandPool(device_, &poolInfo, nullptr, &pool));
+  commandPool_ = UniqueCommandPool(device_, pool);
+}
+
+void Context::submit(const std::function<void(VkCommandBuffer)>& record) {
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = commandPool_.get();
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  OSD_CULL_VK(vkAllocateCommandBuffers(device_, &alloc, &cmd));
+  struct Free {
+    VkDevice device;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    ~Free() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
+  } freeLater{device_, commandPool_.get(), cmd};
+
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  OSD_CULL_VK(vkBeginCommandBuffer(cmd, &begin));
+  record(cmd);
+  OSD_CULL_VK(vkEndCommandBuffer(cmd));
+
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence = VK_NULL_HANDLE;
+  OSD_CULL_VK(vkCreateFence(device_, &fenceInfo, nullptr, &fence));
+  UniqueFence fenceOwner(device_, fence);
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  OSD_CULL_VK(vkQueueSubmit(queue_, 1, &submit, fence));
+  OSD_CULL_VK(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
+}
+
+void Context::waitIdle() { OSD_CULL_VK(vkDeviceWaitIdle(device_)); }
+
+}  // namespace osd_cull::vk

@@ -1,0 +1,121 @@
+#pragma once
+/// \file context.h
+/// \brief Headless Vulkan 1.2 instance and device: device choice, feature checks,
+/// validation, memory and one-shot command submission.
+
+#include "osd_cull/vk/handle.h"
+#include "osd_cull/vk/memory.h"
+#include "osd_cull/vk/validation.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace osd_cull::vk {
+
+/// \brief How to create a Context.
+struct ContextOptions {
+  /// Device to use: an index into the list of devices, or a case-insensitive substring of
+  /// the device name ("llvmpipe", "NVIDIA"). Empty: $OSD_CULL_DEVICE, and if that is unset
+  /// too, the first lavapipe (llvmpipe) device, else device 0.
+  std::string device;
+  /// Enables VK_LAYER_KHRONOS_validation with synchronization validation; warnings and
+  /// errors go to `validationLog`.
+  bool validation = false;
+  /// Where validation messages are recorded (created when null and validation is on).
+  /// Kept outside the Context so messages emitted while it is destroyed are seen too.
+  std::shared_ptr<ValidationLog> validationLog;
+  /// Also print validation messages to stderr as they arrive.
+  bool printValidationMessages = true;
+  /// Size of the memory blocks resources are sub-allocated from.
+  VkDeviceSize memoryBlockSize = VkDeviceSize{64} << 20;
+};
+
+/// \brief Optional device features; enabled when the device has them.
+struct OptionalFeatures {
+  bool shaderFloat64 = false;
+  bool samplerFilterMinmax = false;
+  bool bufferDeviceAddress = false;
+  bool hostQueryReset = false;
+  bool vertexPipelineStoresAndAtomics = false;
+  bool fragmentStoresAndAtomics = false;
+  bool fillModeNonSolid = false;
+};
+
+/// \brief Facts about the chosen device.
+struct DeviceInfo {
+  uint32_t index = 0;  ///< index in vkEnumeratePhysicalDevices order
+  std::string name;
+  std::string driver;  ///< driver name and info, e.g. "llvmpipe Mesa 22.3.6"
+  VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+  uint32_t apiVersion = 0;
+  VkPhysicalDeviceLimits limits{};
+  uint32_t timestampValidBits = 0;  ///< of the queue used; 0: no timestamps
+  OptionalFeatures optional;
+};
+
+/// \brief Names of the Vulkan devices present, in enumeration order (for --device help).
+std::vector<std::string> listDevices();
+
+/// \brief Picks a device: `selector` is an index ("1") or a case-insensitive name substring;
+/// empty picks the first name containing "llvmpipe", else 0.
+/// \throws osd_cull::Error listing the devices when nothing matches.
+uint32_t selectDevice(std::span<const std::string> names, std::string_view selector);
+
+/// \brief The Vulkan instance, the chosen device and its queue, memory allocator and a
+/// command pool for one-shot submissions. Every other vk/ object borrows a Context and
+/// must be destroyed before it. Not thread-safe for submission.
+///
+/// Required features (checked at start, the error names every missing one):
+/// Vulkan 1.2, tessellationShader, pipelineStatisticsQuery, multiDrawIndirect,
+/// drawIndirectCount, a queue with graphics and compute.
+class Context {
+ public:
+  explicit Context(const ContextOptions& options = {});
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+  ~Context();
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const DeviceInfo& info() const { return info_; }
+  MemoryAllocator& memory() { return *allocator_; }
+  /// \brief The validation log, or nullptr when validation is off.
+  ValidationLog* validationLog() const { return validationLog_.get(); }
+
+  /// \brief Records commands into a fresh primary command buffer, submits it and waits
+  /// for it to finish.
+  void submit(const std::function<void(VkCommandBuffer)>& record);
+  /// \brief vkDeviceWaitIdle.
+  void waitIdle();
+
+ private:
+  void createInstance(const ContextOptions& options);
+  void pickDevice(const ContextOptions& options);
+  void createDevice();
+  void destroy();
+
+  std::shared_ptr<ValidationLog> validationLog_;
+  bool printValidation_ = true;
+  std::unique_ptr<std::pair<ValidationLog*, bool>> sink_;  // debug messenger user data
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  DeviceInfo info_;
+  std::unique_ptr<MemoryAllocator> allocator_;
+  UniqueCommandPool commandPool_;
+  VkDeviceSize blockSize_ = 0;
+};
+
+}  // namespace osd_cull::vk

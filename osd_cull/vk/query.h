@@ -1,0 +1,70 @@
+#pragma once
+/// \file query.h
+/// \brief Timestamp and pipeline-statistics queries.
+///
+/// On lavapipe (see shared/PLATFORM.md) pipeline statistics for vertex, tessellation and
+/// clipping stages are exact; the fragment-invocation count counts 4x4 blocks run, not
+/// fragments. Timestamps around compute work after graphics work are unreliable there:
+/// time compute with the wall clock.
+
+#include "osd_cull/vk/handle.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace osd_cull::vk {
+
+class Context;
+
+/// \brief The counters osd_cull reads from a pipeline-statistics query.
+struct PipelineStatistics {
+  uint64_t inputAssemblyVertices = 0;
+  uint64_t vertexShaderInvocations = 0;
+  uint64_t clippingInvocations = 0;
+  uint64_t clippingPrimitives = 0;
+  uint64_t fragmentShaderInvocations = 0;
+  uint64_t tessControlPatches = 0;
+  uint64_t tessEvaluationInvocations = 0;
+  uint64_t computeShaderInvocations = 0;
+
+  PipelineStatistics& operator+=(const PipelineStatistics& o);
+};
+
+/// \brief A pool of pipeline-statistics queries, each counting everything in PipelineStatistics.
+class PipelineStatisticsQuery {
+ public:
+  PipelineStatisticsQuery(Context& context, uint32_t count = 1);
+  /// \brief Resets all queries (record outside a render pass, before begin()).
+  void reset(VkCommandBuffer cmd);
+  void begin(VkCommandBuffer cmd, uint32_t index = 0);
+  void end(VkCommandBuffer cmd, uint32_t index = 0);
+  /// \brief The counters of query `index`; waits for the result.
+  PipelineStatistics result(uint32_t index = 0) const;
+
+ private:
+  VkDevice device_;
+  UniqueQueryPool pool_;
+  uint32_t count_;
+};
+
+/// \brief A pool of timestamp queries.
+class TimestampQuery {
+ public:
+  /// \throws osd_cull::Error when the queue has no timestamp support.
+  TimestampQuery(Context& context, uint32_t count);
+  /// \brief Resets all queries (record before any write()).
+  void reset(VkCommandBuffer cmd);
+  /// \brief Writes timestamp `index` when `stage` completes.
+  void write(VkCommandBuffer cmd, VkPipelineStageFlagBits stage, uint32_t index);
+  /// \brief Milliseconds between timestamps `first` and `second`; waits for the results.
+  double elapsedMs(uint32_t first, uint32_t second) const;
+
+ private:
+  VkDevice device_;
+  UniqueQueryPool pool_;
+  uint32_t count_;
+  double periodNs_;
+  uint64_t mask_;
+};
+
+}  // namespace osd_cull::vk

@@ -1,0 +1,212 @@
+#include "osd_cull/vk/shader_compiler.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/vk/shader_sources.h"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+
+#if defined(OSD_CULL_HAVE_OSD_GPU)
+#include <opensubdiv/osd/glslPatchShaderSource.h>
+#endif
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+namespace osd_cull::vk {
+
+namespace {
+
+constexpr std::string_view kOsdPatchBasis = "osd/patch_basis.glsl";
+
+const std::string& osdPatchBasisText() {
+#if defined(OSD_CULL_HAVE_OSD_GPU)
+  static const std::string text =
+      "#define OSD_PATCH_BASIS_GLSL\n" +
+      OpenSubdiv::Osd::GLSLPatchShaderSource::GetPatchBasisShaderSource();
+  return text;
+#else
+  throw Error(std::string(kOsdPatchBasis) +
+              ": OpenSubdiv's osdGPU library was not found at build time; it provides the "
+              "GLSL patch basis");
+#endif
+}
+
+const EmbeddedShader* findEmbedded(std::string_view path) {
+  for (const auto& s : embeddedShaders())
+    if (s.path == path) return &s;
+  return nullptr;
+}
+
+std::string normalize(const std::filesystem::path& p) {
+  return p.lexically_normal().generic_string();
+}
+
+/// Resolves #include against the embedded files; results live as long as the includer.
+class EmbeddedIncluder : public glslang::TShader::Includer {
+ public:
+  IncludeResult* includeLocal(const char* header, const char* includer, size_t) override {
+    const std::filesystem::path dir = std::filesystem::path(includer).parent_path();
+    if (auto* r = tryOpen(normalize(dir / header))) return r;
+    return tryOpen(normalize(header));
+  }
+  IncludeResult* includeSystem(const char* header, const char*, size_t) override {
+    return tryOpen(normalize(header));
+  }
+  void releaseInclude(IncludeResult*) override {}
+
+ private:
+  IncludeResult* tryOpen(const std::string& path) {
+    std::string_view text;
+    if (path == kOsdPatchBasis) {
+      text = osdPatchBasisText();
+    } else if (const EmbeddedShader* s = findEmbedded(path)) {
+      text = s->text;
+    } else {
+      return nullptr;
+    }
+    results_.push_back(std::make_unique<IncludeResult>(path, text.data(), text.size(), nullptr));
+    return results_.back().get();
+  }
+  std::vector<std::unique_ptr<IncludeResult>> results_;
+};
+
+EShLanguage languageOf(VkShaderStageFlagBits stage) {
+  switch (stage) {
+    case VK_SHADER_STAGE_VERTEX_BIT: return EShLangVertex;
+    case VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT: return EShLangTessControl;
+    case VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT: return EShLangTessEvaluation;
+    case VK_SHADER_STAGE_GEOMETRY_BIT: return EShLangGeometry;
+    case VK_SHADER_STAGE_FRAGMENT_BIT: return EShLangFragment;
+    case VK_SHADER_STAGE_COMPUTE_BIT: return EShLangCompute;
+    default: throw Error("shader compiler: unsupported stage " + std::to_string(stage));
+  }
+}
+
+/// glslang prints "ERROR: name:line: message"; keep those lines, drop the summary.
+std::string cleanLog(const std::string& log) {
+  std::istringstream in(log);
+  std::string line, out;
+  while (std::getline(in, line)) {
+    if (line.empty() || line.find("compilation errors") != std::string::npos) continue;
+    for (const char* prefix : {"ERROR: ", "WARNING: "})
+      if (line.starts_with(prefix)) line = line.substr(std::char_traits<char>::length(prefix));
+    out += "\n  " + line;
+  }
+  return out;
+}
+
+std::vector<uint32_t> compile(std::string_view text, const std::string& name,
+                              VkShaderStageFlagBits stage, std::span<const ShaderDefine> defines) {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+
+  const EShLanguage language = languageOf(stage);
+  std::string preamble = "#extension GL_GOOGLE_include_directive : require\n";
+  for (const auto& d : defines) preamble += "#define " + d.name + " " + d.value + "\n";
+
+  glslang::TShader shader(language);
+  const char* strings[] = {text.data()};
+  const int lengths[] = {static_cast<int>(text.size())};
+  const char* names[] = {name.c_str()};
+  shader.setStringsWithLengthsAndNames(strings, lengths, names, 1);
+  shader.setPreamble(preamble.c_str());
+  shader.setEnvInput(glslang::EShSourceGlsl, language, glslang::EShClientVulkan, 100);
+  shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
+  EmbeddedIncluder includer;
+  if (!shader.parse(GetDefaultResources(), 450, false, messages, includer))
+    throw Error("GLSL compile of " + name + " failed:" + cleanLog(shader.getInfoLog()));
+  glslang::TProgram program;
+  program.addShader(&shader);
+  if (!program.link(messages))
+    throw Error("GLSL link of " + name + " failed:" + cleanLog(program.getInfoLog()));
+  std::vector<uint32_t> spirv;
+  glslang::SpvOptions options;
+  options.validate = false;
+  glslang::GlslangToSpv(*program.getIntermediate(language), spirv, &options);
+  return spirv;
+}
+
+struct Cache {
+  std::mutex mutex;
+  std::map<std::string, Spirv> entries;
+  ShaderCacheStats stats;
+};
+
+Cache& cache() {
+  static Cache c;
+  return c;
+}
+
+std::string cacheKey(std::string_view kind, std::string_view what, VkShaderStageFlagBits stage,
+                     std::span<const ShaderDefine> defines) {
+  std::string key(kind);
+  key += '\0';
+  key += what;
+  key += '\0' + std::to_string(stage);
+  for (const auto& d : defines) key += '\0' + d.name + '=' + d.value;
+  return key;
+}
+
+Spirv cached(const std::string& key, const std::function<std::vector<uint32_t>()>& build) {
+  Cache& c = cache();
+  {
+    std::lock_guard lock(c.mutex);
+    if (auto it = c.entries.find(key); it != c.entries.end()) {
+      ++c.stats.hits;
+      return it->second;
+    }
+  }
+  // Compile outside the lock; a concurrent compile of the same key is harmless.
+  auto spirv = std::make_shared<const std::vector<uint32_t>>(build());
+  std::lock_guard lock(c.mutex);
+  ++c.stats.compiles;
+  return c.entries.emplace(key, std::move(spirv)).first->second;
+}
+
+}  // namespace
+
+VkShaderStageFlagBits shaderStageOf(std::string_view path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".vert") return VK_SHADER_STAGE_VERTEX_BIT;
+  if (ext == ".tesc") return VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT;
+  if (ext == ".tese") return VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT;
+  if (ext == ".geom") return VK_SHADER_STAGE_GEOMETRY_BIT;
+  if (ext == ".frag") return VK_SHADER_STAGE_FRAGMENT_BIT;
+  if (ext == ".comp") return VK_SHADER_STAGE_COMPUTE_BIT;
+  throw Error("shader " + std::string(path) +
+              ": unknown stage (extension must be .vert .tesc .tese .geom .frag or .comp)");
+}
+
+std::string_view shaderText(std::string_view path) {
+  if (path == kOsdPatchBasis) return osdPatchBasisText();
+  if (const EmbeddedShader* s = findEmbedded(path)) return s->text;
+  throw Error("shader " + std::string(path) + " is not embedded (files come from shaders/)");
+}
+
+Spirv compileShader(const ShaderSource& source) {
+  const VkShaderStageFlagBits stage = shaderStageOf(source.path);
+  const std::string_view text = shaderText(source.path);
+  return cached(cacheKey("file", source.path, stage, source.defines),
+                [&] { return compile(text, source.path, stage, source.defines); });
+}
+
+Spirv compileGlsl(std::string_view text, std::string_view name, VkShaderStageFlagBits stage,
+                  std::span<const ShaderDefine> defines) {
+  const std::string n(name);
+  return cached(cacheKey(std::string("text\0", 5) + n, text, stage, defines),
+                [&] { return compile(text, n, stage, defines); });
+}
+
+ShaderCacheStats shaderCacheStats() {
+  std::lock_guard lock(cache().mutex);
+  return cache().stats;
+}
+
+}  // namespace osd_cull::vk

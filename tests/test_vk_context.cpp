@@ -1,0 +1,123 @@
+// Device layer: device choice, feature checks, validation wiring, memory sub-allocation.
+#include "osd_cull/error.h"
+#include "osd_cull/vk/buffer.h"
+#include "osd_cull/vk/check.h"
+#include "osd_cull/vk/context.h"
+#include "osd_cull/vk/transfer.h"
+#include "support/vk_test_context.h"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+namespace osd_cull {
+namespace {
+
+using test::VkTest;
+
+TEST(VkDeviceSelection, EmptySelectorPrefersLavapipe) {
+  const std::vector<std::string> names = {"AMD Radeon", "llvmpipe (LLVM 15.0.6, 256 bits)"};
+  EXPECT_EQ(vk::selectDevice(names, ""), 1u);
+  const std::vector<std::string> noCpu = {"AMD Radeon", "Intel UHD"};
+  EXPECT_EQ(vk::selectDevice(noCpu, ""), 0u);
+}
+
+TEST(VkDeviceSelection, IndexAndCaseInsensitiveNameSubstring) {
+  const std::vector<std::string> names = {"AMD Radeon", "llvmpipe (LLVM 15)", "Intel UHD"};
+  EXPECT_EQ(vk::selectDevice(names, "2"), 2u);
+  EXPECT_EQ(vk::selectDevice(names, "intel"), 2u);
+  EXPECT_EQ(vk::selectDevice(names, "RADEON"), 0u);
+}
+
+TEST(VkDeviceSelection, NoMatchListsTheDevices) {
+  const std::vector<std::string> names = {"AMD Radeon", "llvmpipe"};
+  try {
+    vk::selectDevice(names, "nvidia");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("nvidia"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("1: llvmpipe"), std::string::npos);
+  }
+  EXPECT_THROW(vk::selectDevice(names, "7"), Error);
+  EXPECT_THROW(vk::selectDevice({}, ""), Error);
+}
+
+TEST_F(VkTest, ContextReportsTheChosenDeviceAndItsLimits) {
+  const vk::DeviceInfo& info = context().info();
+  EXPECT_FALSE(info.name.empty());
+  EXPECT_GE(info.apiVersion, VK_API_VERSION_1_2);
+  EXPECT_GE(info.limits.maxTessellationPatchSize, 20u);
+  EXPECT_GE(info.limits.maxTessellationGenerationLevel, 64u);
+  EXPECT_NE(context().device(), VK_NULL_HANDLE);
+  EXPECT_NE(context().validationLog(), nullptr);
+}
+
+TEST_F(VkTest, ValidationLayerReportsMisuse) {
+  // A buffer with no usage bits is invalid (VUID-VkBufferCreateInfo-usage-requiredbitmask);
+  // the layer must see it, which proves every other test runs with validation live.
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = 256;
+  info.usage = 0;
+  VkBuffer buffer = VK_NULL_HANDLE;
+  const VkResult result = vkCreateBuffer(context().device(), &info, nullptr, &buffer);
+  if (result == VK_SUCCESS) vkDestroyBuffer(context().device(), buffer, nullptr);
+  ASSERT_GE(validationLog().count(), 1u);
+  EXPECT_NE(validationLog().summary().find("usage"), std::string::npos);
+  validationLog().clear();
+}
+
+TEST_F(VkTest, BuffersShareLargeMemoryBlocks) {
+  const auto before = context().memory().stats();
+  {
+    std::vector<vk::Buffer> buffers;
+    for (int i = 0; i < 50; ++i)
+      buffers.emplace_back(context(), 4096, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    const auto during = context().memory().stats();
+    EXPECT_EQ(during.allocations - before.allocations, 50u);
+    EXPECT_LE(during.blocks - before.blocks, 1u);  // all 50 in one block
+    EXPECT_GE(during.usedBytes - before.usedBytes, 50u * 4096u);
+  }
+  const auto after = context().memory().stats();
+  EXPECT_EQ(after.allocations, before.allocations);
+  EXPECT_EQ(after.usedBytes, before.usedBytes);  // freed ranges coalesce back
+}
+
+TEST_F(VkTest, LargeBufferGetsItsOwnBlockFreedWithIt) {
+  const auto before = context().memory().stats();
+  {
+    vk::Buffer big(context(), VkDeviceSize{48} << 20, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    EXPECT_EQ(context().memory().stats().blocks, before.blocks + 1);
+  }
+  EXPECT_EQ(context().memory().stats().blocks, before.blocks);
+}
+
+TEST_F(VkTest, UploadThenReadbackRoundTrips) {
+  std::vector<uint32_t> values(1000);
+  std::iota(values.begin(), values.end(), 7u);
+  vk::Buffer buffer(context(), values.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vk::upload<uint32_t>(context(), buffer, values);
+  EXPECT_EQ(vk::readback<uint32_t>(context(), buffer), values);
+  std::vector<uint32_t> part = {1, 2, 3};
+  vk::upload<uint32_t>(context(), buffer, part, 10);
+  const auto back = vk::readback<uint32_t>(context(), buffer);
+  EXPECT_EQ(back[9], 16u);
+  EXPECT_EQ(back[10], 1u);
+  EXPECT_EQ(back[12], 3u);
+  EXPECT_EQ(back[13], 20u);
+  EXPECT_THROW(vk::upload<uint32_t>(context(), buffer, values, 1), Error);
+}
+
+TEST_F(VkTest, FailedVulkanCallNamesTheCallAndResult) {
+  try {
+    vk::check(VK_ERROR_DEVICE_LOST, "vkQueueSubmit(queue, ...)");
+    FAIL();
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("vkQueueSubmit"), std::string::npos);
+    EXPECT_NE(what.find("VK_ERROR_DEVICE_LOST"), std::string::npos);
+    EXPECT_NE(what.find("test_vk_context.cpp"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace osd_cull
