@@ -1,0 +1,58 @@
+#pragma once
+/// \file tess_levels.h
+/// \brief Tessellation options and a double-precision host mirror of the levels the patch
+/// shaders compute (shaders/patch/tess_levels.glsl), used to plan draws and in tests.
+
+#include "osd_cull/patch/patch_set.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+
+#include <array>
+#include <cstdint>
+
+namespace osd_cull::frame {
+
+/// \brief How patches are tessellated.
+struct TessellationOptions {
+  enum class Mode { Uniform, Adaptive };
+  Mode mode = Mode::Uniform;
+  /// Uniform: segments per patch edge (a transition edge gets this many per half).
+  /// Levels above maxLevel/2 cannot be crack-free at transition edges and are clamped there.
+  uint32_t uniformLevel = 4;
+  /// Adaptive: target length of one segment of an edge's screen-space control polygon.
+  double pixelsPerSegment = 8.0;
+  /// Largest level the device may generate (adaptive edges use at most half of it, so
+  /// that a transition edge can hold two; as OpenSubdiv does).
+  uint32_t maxLevel = 64;
+};
+
+/// \brief Levels of one patch: outer edges in gl_TessLevelOuter order (0: u=0, 1: v=0,
+/// 2: u=1, 3: v=1), split into Lo and Hi halves (Hi is 0 except on transition edges).
+struct PatchTessLevels {
+  std::array<double, 4> lo{};
+  std::array<double, 4> hi{};
+  double outer(int e) const { return lo[e] + hi[e]; }
+  double inner(int i) const {
+    return i == 0 ? 0.5 * (outer(1) + outer(3)) : 0.5 * (outer(0) + outer(2));
+  }
+  /// \brief Vertices the tessellator can emit for these levels (equal spacing, quads):
+  /// (m + 1)^2 with m the largest level after rounding up.
+  uint32_t vertexBound() const;
+};
+
+/// \brief The boundary-curve point indices of each edge (same table as the shaders).
+std::array<std::array<uint32_t, 4>, 4> edgeCurveIndices(PatchType type);
+
+/// \brief The levels the shaders compute for `patch`, in double precision.
+PatchTessLevels patchTessLevels(const PatchSet& patches, uint32_t patch,
+                                const glm::dmat4& viewProjection, const glm::dvec2& viewport,
+                                const TessellationOptions& options);
+
+/// \brief An upper bound of the tessellated vertices of each patch for this view,
+/// allowing for fp32 rounding in the shader (one extra segment per adaptive level).
+std::vector<uint32_t> tessVertexBounds(const PatchSet& patches, const glm::dmat4& viewProjection,
+                                       const glm::dvec2& viewport,
+                                       const TessellationOptions& options);
+
+}  // namespace osd_cull::frame

@@ -1,0 +1,31 @@
+// Resources shared by the patch draw stages. PATCH_POINTS is 16 (Bezier) or 20 (Gregory).
+#ifndef OSD_CULL_PATCH_COMMON_GLSL
+#define OSD_CULL_PATCH_COMMON_GLSL
+#include <shared/draw_layout.h>
+
+#if !defined(PATCH_POINTS)
+#error "define PATCH_POINTS (16: Bezier, 20: Gregory)"
+#endif
+
+layout(push_constant) uniform Push { DrawConstants pc; };
+
+layout(std430, set = 0, binding = 0) readonly buffer Points { float points[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Params { uint params[]; };
+layout(std430, set = 0, binding = 2) readonly buffer DrawList { uint drawList[]; };
+
+// Index of the first control point of a patch (PatchSet layout: Bezier first, then Gregory).
+uint firstPoint(uint patchIndex) {
+  return patchIndex < pc.bezierCount
+             ? patchIndex * 16u
+             : pc.bezierCount * 16u + (patchIndex - pc.bezierCount) * 20u;
+}
+
+vec3 controlPoint(uint index) {
+  uint base = pc.pointOffset + index * pc.pointStride;
+  return vec3(points[base], points[base + 1u], points[base + 2u]);
+}
+
+// Far::PatchParam transition mask: bit k set when edge k (0: v=0, 1: u=1, 2: v=1, 3: u=0)
+// borders two patches of the next refinement level.
+uint transitionMask(uint patchIndex) { return params[2u * patchIndex] >> 28u; }
+#endif

@@ -1,0 +1,62 @@
+// Tessellation levels per edge, from the edge's own boundary curve only, so the two
+// patches sharing an edge compute the same level (no cracks). Transition edges (Far
+// PatchParam transition bits) are split at their midpoint into a Lo and a Hi half, each
+// levelled like the neighbouring finer patch's edge, as OpenSubdiv's
+// OsdEvalPatchBezierTessLevels / OsdComputeTessLevels do for equal spacing.
+#ifndef OSD_CULL_TESS_LEVELS_GLSL
+#define OSD_CULL_TESS_LEVELS_GLSL
+#include "edge_curves.glsl"
+
+// Pixel position of a world point; w <= 0 reports false.
+bool toPixels(vec3 p, out vec2 pixel) {
+  vec4 c = pc.viewProjection * vec4(p, 1.0);
+  pixel = c.xy / c.w * 0.5 * pc.viewport.xy;
+  return c.w > 1e-6;
+}
+
+// Segments for one cubic curve: its screen-space control-polygon length over the target
+// segment length, rounded up, in [1, maxLevel]. The sum is ordered so that the reversed
+// curve gives the bit-identical result (neighbours traverse shared edges oppositely).
+// A curve reaching behind the eye gets maxLevel.
+float curveLevel(vec3 b0, vec3 b1, vec3 b2, vec3 b3, float maxLevel) {
+  vec2 s0, s1, s2, s3;
+  bool ok = toPixels(b0, s0);
+  ok = toPixels(b1, s1) && ok;
+  ok = toPixels(b2, s2) && ok;
+  ok = toPixels(b3, s3) && ok;
+  if (!ok) return maxLevel;
+  float len = (distance(s0, s1) + distance(s2, s3)) + distance(s1, s2);
+  float level = ceil(len / pc.eye.w);
+  // NaN or Inf coordinates: keep the patch drawn at the finest level.
+  if (!(level >= 1.0)) return level < 1.0 ? 1.0 : maxLevel;
+  return min(level, maxLevel);
+}
+
+// Outer levels split into Lo and Hi halves (Hi is 0 on non-transition edges).
+void edgeLevels(vec3 cp[PATCH_POINTS], uint transition, out vec4 lo, out vec4 hi) {
+  float maxLevel = pc.viewport.w;
+  for (int e = 0; e < 4; ++e) {
+    vec3 b0 = cp[kEdgeCurve[4 * e + 0]];
+    vec3 b1 = cp[kEdgeCurve[4 * e + 1]];
+    vec3 b2 = cp[kEdgeCurve[4 * e + 2]];
+    vec3 b3 = cp[kEdgeCurve[4 * e + 3]];
+    bool split = (transition & kEdgeTransitionBit[e]) != 0u;
+    if (pc.mode == kTessUniform) {
+      float level = split ? min(pc.viewport.z, floor(maxLevel * 0.5)) : min(pc.viewport.z, maxLevel);
+      lo[e] = level;
+      hi[e] = split ? level : 0.0;
+    } else if (!split) {
+      // Half the maximum, so that a neighbour's transition edge can hold two of these.
+      lo[e] = curveLevel(b0, b1, b2, b3, floor(maxLevel * 0.5));
+      hi[e] = 0.0;
+    } else {
+      // de Casteljau at 1/2: the halves are the finer neighbours' edges.
+      vec3 b01 = 0.5 * (b0 + b1), b12 = 0.5 * (b1 + b2), b23 = 0.5 * (b2 + b3);
+      vec3 b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23);
+      vec3 m = 0.5 * (b012 + b123);
+      lo[e] = curveLevel(b0, b01, b012, m, floor(maxLevel * 0.5));
+      hi[e] = curveLevel(m, b123, b23, b3, floor(maxLevel * 0.5));
+    }
+  }
+}
+#endif

@@ -1,0 +1,46 @@
+// Push constants and buffer layouts of the patch and triangle draw pipelines
+// (shaders/patch/*, shaders/mesh/*), shared by C++ (osd_cull/frame) and GLSL.
+#ifndef OSD_CULL_SHARED_DRAW_LAYOUT_H
+#define OSD_CULL_SHARED_DRAW_LAYOUT_H
+#include "glsl_compat.h"
+
+OSD_CULL_SHARED_BEGIN
+
+// Descriptor bindings of the patch draw set (set 0).
+OSD_CULL_CONST uint kBindingPoints = 0;    // float points[]: control points, pointStride floats each
+OSD_CULL_CONST uint kBindingParams = 1;    // uint params[]: Far::PatchParam field0, field1 per patch
+OSD_CULL_CONST uint kBindingDrawList = 2;  // uint drawList[]: patch index per draw slot
+
+// DrawConstants.mode
+OSD_CULL_CONST uint kTessUniform = 0u;
+OSD_CULL_CONST uint kTessAdaptive = 1u;
+
+// DrawConstants.flags
+OSD_CULL_CONST uint kFlagDebugColors = 1u;  // color each patch by a hash of its index
+
+// Item-buffer values: 0 is background, patch p of a set with itemBase b writes b + p + 1,
+// triangle occluders write kItemOccluder.
+OSD_CULL_CONST uint kItemBackground = 0u;
+OSD_CULL_CONST uint kItemOccluder = 0xFFFFFFFFu;
+
+// 128 bytes: the minimum push-constant size every Vulkan device supports.
+struct DrawConstants {
+  mat4 viewProjection;  // world to clip space (Vulkan: y down, depth 0..1)
+  vec4 eye;             // xyz: camera position (world); w: pixels per segment (adaptive)
+  vec4 viewport;        // xy: width, height in pixels; z: uniform level; w: max level
+  uint mode;            // kTessUniform or kTessAdaptive
+  uint bezierCount;     // patches [0, bezierCount) are Bezier, the rest Gregory
+  uint pointStride;     // floats between consecutive control points (>= 3)
+  uint pointOffset;     // float index of control point 0
+  uint flags;           // kFlag* bits
+  uint itemBase;        // added to the item-buffer value (triangles: the value written)
+  uint pad0;
+  uint pad1;
+};
+
+OSD_CULL_SHARED_END
+
+#ifdef __cplusplus
+static_assert(sizeof(osd_cull::shader::DrawConstants) == 128);
+#endif
+#endif
