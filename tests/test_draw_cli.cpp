@@ -1,0 +1,78 @@
+// `osd-cull render`: the built-in scene renders with validation on, writes the images and
+// prints a line per frame.
+#include "osd_cull/frame/png_io.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace osd_cull {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string output;
+};
+
+Result runCommand(const std::string& command) {
+  Result r;
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>&1").c_str(), "r"), pclose);
+  if (!pipe) return r;
+  std::array<char, 512> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe.get())) r.output += buffer.data();
+  r.status = pclose(pipe.release());
+  return r;
+}
+
+fs::path program() { return fs::path(OSD_CULL_BINARY_DIR) / "samples" / "osd-cull"; }
+
+TEST(RenderCommand, DrawsTheBuiltInSceneAndWritesImages) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built (OSD_CULL_BUILD_SAMPLES=OFF?)";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Result r = runCommand(program().string() + " render --out " + (dir / "scene.png").string() +
+                              " --width 96 --height 64 --tess 2 --frames 2 --orbit 30 --ids --validate --out-dir " +
+                              (dir / "frames").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("frame 0:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("frame 1:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("TES invocations"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("wrote "), std::string::npos) << r.output;
+  for (const char* f : {"scene.png", "scene_ids.png", "scene_depth.png", "frames/frame_0000.png", "frames/frame_0001.png"}) {
+    ASSERT_TRUE(fs::exists(dir / f)) << f;
+    const auto image = frame::readPng(dir / f);
+    EXPECT_EQ(image.width, 96u) << f;
+    EXPECT_EQ(image.height, 64u) << f;
+  }
+  // The two frames differ (the camera orbits); the last frame is the one in --out.
+  const auto a = frame::readPng(dir / "frames/frame_0000.png");
+  const auto b = frame::readPng(dir / "frames/frame_0001.png");
+  EXPECT_NE(a.samples8, b.samples8);
+  EXPECT_EQ(frame::readPng(dir / "scene.png").samples8, b.samples8);
+}
+
+TEST(RenderCommand, RejectsBadOptionsWithAClearMessage) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  Result r = runCommand(program().string() + " render --width 64");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
+  r = runCommand(program().string() + " render --out x.png --tess 3 --adaptive 4");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("exclude"), std::string::npos) << r.output;
+  r = runCommand(program().string() + " render --out x.png --camera 1,2,3");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("10 comma-separated"), std::string::npos) << r.output;
+  r = runCommand(program().string() + " render --out x.png --device no-such-device-name");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("no Vulkan device name contains"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace osd_cull
