@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 namespace osd_cull {
 namespace {
@@ -188,6 +189,39 @@ TEST_F(DrawTest, BackFaceCullingKeepsTheSideFacingTheEye) {
     frame::GpuPatchSet gpuOne(context(), one);
     renderer.render(target, test::pixelCamera(64, 64), gpuOne, &one, options);
     EXPECT_EQ(test::itemHistogram(target.readItems(context())).count(1), visible ? 1u : 0u);
+  }
+}
+
+TEST_F(DrawTest, DegeneratePatchesDoNotDisturbTheOthers) {
+  // Patch 0: NaN point; 1: collapsed to one point; 2: one edge collapsed (like the teapot
+  // lid), its normal at the apex comes from slightly inside; 3: an ordinary square.
+  auto nan = frame::flatBezierPatch({2, -14, -3}, {12, 0, 0}, {0, 12, 0});
+  nan[5].x = std::numeric_limits<double>::quiet_NaN();
+  std::array<glm::dvec3, 16> point;
+  point.fill({20.0, -8.0, -3.0});
+  auto lid = frame::flatBezierPatch({34, -30, -3}, {28, 0, 0}, {0, 28, 0});
+  for (int i = 0; i < 4; ++i) lid[12 + i] = {48.0, -2.0, -2.0};  // v = 1 edge -> apex
+  const auto square = frame::flatBezierPatch({2, -62, -3}, {24, 0, 0}, {0, 24, 0});
+  const std::array patches{nan, point, lid, square};
+  const PatchSet set = frame::bezierPatchSet(patches, "test:degenerate");
+  frame::GpuPatchSet gpu(context(), set);
+  frame::RenderTarget target(context(), 64, 64);
+  frame::Renderer renderer(context());
+  for (auto mode : {TessellationOptions::Mode::Uniform, TessellationOptions::Mode::Adaptive}) {
+    RenderOptions options;
+    options.tessellation.mode = mode;
+    options.tessellation.uniformLevel = 6;
+    renderer.render(target, test::pixelCamera(64, 64), gpu, &set, options);
+    const auto items = target.readItems(context());
+    const auto color = target.readColor(context());
+    const auto histogram = test::itemHistogram(items);
+    EXPECT_EQ(histogram.count(2), 0u);                              // a point covers nothing
+    EXPECT_EQ(histogram.count(4) ? histogram.at(4) : 0u, 24u * 24u);  // rows 38..61, columns 2..25
+    ASSERT_GT(histogram.count(3) ? histogram.at(3) : 0u, 100u);
+    for (size_t i = 0; i < items.size(); ++i)
+      if (items[i] == 3) {  // lit: a NaN or zero normal would shade black
+        ASSERT_GT(int(color[4 * i]) + color[4 * i + 1] + color[4 * i + 2], 30) << "pixel " << i;
+      }
   }
 }
 

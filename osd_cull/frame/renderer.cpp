@@ -47,7 +47,8 @@ void checkOptions(const vk::Context& context, const Camera& camera, const Render
 }  // namespace
 
 Renderer::Renderer(vk::Context& context)
-    : context_(context), statistics_(context, 1), timestamps_(context, 2) {
+    : context_(context), statistics_(context, 1) {
+  if (context.info().timestampValidBits > 0) timestamps_.emplace(context, 2);
   referencePass_ = createTargetRenderPass(context, true);
   patchSetLayout_ = vk::createDescriptorSetLayout(context, patchSetBindings());
   meshSetLayout_ = vk::createDescriptorSetLayout(context, triangleMeshBindings());
@@ -195,8 +196,10 @@ FrameStats Renderer::render(RenderTarget& target, const Camera& camera,
   const auto start = std::chrono::steady_clock::now();
   context_.submit([&](VkCommandBuffer cmd) {
     statistics_.reset(cmd);
-    timestamps_.reset(cmd);
-    timestamps_.write(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
+    if (timestamps_) {
+      timestamps_->reset(cmd);
+      timestamps_->write(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
+    }
     beginPass(cmd, target, options);
     statistics_.begin(cmd);
     recordOccluders(cmd, camera, occluders);
@@ -206,10 +209,10 @@ FrameStats Renderer::render(RenderTarget& target, const Camera& camera,
     }
     statistics_.end(cmd);
     endPass(cmd);
-    timestamps_.write(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
+    if (timestamps_) timestamps_->write(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
   });
   stats.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  stats.gpuMs = timestamps_.elapsedMs(0, 1);
+  if (timestamps_) stats.gpuMs = timestamps_->elapsedMs(0, 1);
   stats.statistics = statistics_.result();
   for (const GpuTriangleMesh* m : occluders) stats.occluderTriangles += m->indexCount() / 3;
   stats.drawCalls += static_cast<uint32_t>(occluders.size());

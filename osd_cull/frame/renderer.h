@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include <map>
+#include <optional>
 #include <span>
 #include <tuple>
 
@@ -47,7 +48,7 @@ struct PatchDraw {
 /// \brief What one frame did.
 struct FrameStats {
   double wallMs = 0.0;  ///< recording, submission and wait, on the host clock
-  double gpuMs = 0.0;   ///< timestamps around the render pass
+  double gpuMs = 0.0;   ///< timestamps around the render pass (0 without timestamp support)
   uint32_t patchesDrawn = 0;
   uint32_t drawCalls = 0;
   uint32_t occluderTriangles = 0;
@@ -98,7 +99,7 @@ class Renderer {
   std::map<std::tuple<PatchType, bool>, vk::UniquePipeline> patchPipelines_;
   vk::UniquePipeline trianglePipeline_;
   vk::PipelineStatisticsQuery statistics_;
-  vk::TimestampQuery timestamps_;
+  std::optional<vk::TimestampQuery> timestamps_;  // absent when the queue has no timestamps
 };
 
 }  // namespace osd_cull::frame

@@ -1,0 +1,139 @@
+// bench-draw: frame time and tessellation work of the patch draw path for tessellation
+// levels 1..64, with draws split by tessellated vertex count (chunked) and as one draw per
+// patch type, on a BigGuy-sized patch set. Prints a Markdown table; see docs/results/draw.md.
+//
+//   bench-draw [--width 1280] [--height 720] [--repeats 3] [--max-one-draw-level 16]
+//              [--nu 96 --nv 58] [--device X]
+#include "osd_cull/error.h"
+#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/vk/context.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace osd_cull;
+
+struct Options {
+  uint32_t width = 1280, height = 720, repeats = 3, maxOneDrawLevel = 16, nu = 96, nv = 58;
+  std::string device;
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw Error(a + " needs a value");
+      return argv[++i];
+    };
+    auto number = [&]() { return static_cast<uint32_t>(std::stoul(next())); };
+    if (a == "--width") o.width = number();
+    else if (a == "--height") o.height = number();
+    else if (a == "--repeats") o.repeats = std::max(1u, number());
+    else if (a == "--max-one-draw-level") o.maxOneDrawLevel = number();
+    else if (a == "--nu") o.nu = number();
+    else if (a == "--nv") o.nv = number();
+    else if (a == "--device") o.device = next();
+    else throw Error("unknown option " + a + " (see the comment at the top of bench_draw.cpp)");
+  }
+  return o;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+struct Row {
+  double wallMs = 0, gpuMs = 0;
+  uint64_t tes = 0, fragments = 0;
+  uint32_t draws = 0, visible = 0;
+};
+
+Row measure(frame::Renderer& renderer, frame::VisibilityOracle& oracle, frame::RenderTarget& target,
+            const frame::Camera& camera, const frame::GpuPatchSet& gpu, const PatchSet& host,
+            const frame::RenderOptions& options, uint32_t repeats) {
+  Row row;
+  std::vector<double> wall, gpuTimes;
+  const frame::PatchDraw draw{&gpu, &host, 0};
+  renderer.render(target, camera, {&draw, 1}, {}, options);  // warm-up (pipeline JIT)
+  for (uint32_t r = 0; r < repeats; ++r) {
+    const auto stats = renderer.render(target, camera, {&draw, 1}, {}, options);
+    wall.push_back(stats.wallMs);
+    gpuTimes.push_back(stats.gpuMs);
+    row.tes = stats.statistics.tessEvaluationInvocations;
+    row.fragments = stats.statistics.fragmentShaderInvocations;
+    row.draws = stats.drawCalls;
+  }
+  row.wallMs = median(wall);
+  row.gpuMs = median(gpuTimes);
+  row.visible = oracle.count(target, gpu.patchCount()).visiblePatchCount();
+  return row;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    vk::ContextOptions contextOptions;
+    contextOptions.device = o.device;
+    vk::Context context(contextOptions);
+    // BigGuy at isolation 2 has 5554 patches (shared/PLATFORM.md); until the mesh loaders
+    // and patch extraction are in this build, a bicubic torus of the same size stands in.
+    const PatchSet set = frame::convertToGregory(
+        frame::bsplineTorus({o.nu, o.nv, 1.0, 0.4, {0, 0, 0}, -1}),
+        [](uint32_t p) { return p % 7 == 3; });  // about the Gregory share of BigGuy (14%)
+    frame::GpuPatchSet gpu(context, set);
+    frame::RenderTarget target(context, o.width, o.height);
+    frame::Renderer renderer(context);
+    frame::VisibilityOracle oracle(context);
+    const auto camera = frame::frameBounds(frame::boundsOf(set.points), {0.4, -1.0, 0.8}, {0, 0, 1},
+                                           40.0, o.width, o.height);
+    std::printf("device: %s\npatches: %s, %u Bezier + %u Gregory; image %ux%u; median of %u frames\n\n",
+                context.info().name.c_str(), set.source.c_str(), set.bezierCount, set.gregoryCount,
+                o.width, o.height, o.repeats);
+    std::printf("| level | draws | frame ms (wall) | GPU ms | TES invocations | TES / patch | fragment inv. | patches with pixels | one draw: frame ms | one draw: TES | one draw: patches with pixels | one draw / chunked time |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (uint32_t level : {1u, 2u, 4u, 8u, 12u, 14u, 16u, 24u, 32u, 48u, 64u}) {
+      frame::RenderOptions options;
+      options.tessellation.uniformLevel = level;
+      const Row chunked = measure(renderer, oracle, target, camera, gpu, set, options, o.repeats);
+      std::printf("| %u | %u | %.1f | %.1f | %llu | %.0f | %llu | %u |", level, chunked.draws,
+                  chunked.wallMs, chunked.gpuMs, static_cast<unsigned long long>(chunked.tes),
+                  double(chunked.tes) / set.patchCount(),
+                  static_cast<unsigned long long>(chunked.fragments), chunked.visible);
+      if (level <= o.maxOneDrawLevel) {
+        options.chunkDraws = false;
+        const Row one = measure(renderer, oracle, target, camera, gpu, set, options, o.repeats);
+        std::printf(" %.1f | %llu | %u | %.2f |\n", one.wallMs, static_cast<unsigned long long>(one.tes),
+                    one.visible, one.wallMs / chunked.wallMs);
+      } else {
+        std::printf(" - | - | - | - |\n");
+      }
+      std::fflush(stdout);
+    }
+    // Adaptive levels for comparison.
+    std::printf("\n| adaptive px/segment | draws | frame ms (wall) | TES invocations | patches with pixels |\n|---:|---:|---:|---:|---:|\n");
+    for (double px : {16.0, 8.0, 4.0, 2.0}) {
+      frame::RenderOptions options;
+      options.tessellation.mode = frame::TessellationOptions::Mode::Adaptive;
+      options.tessellation.pixelsPerSegment = px;
+      const Row r = measure(renderer, oracle, target, camera, gpu, set, options, o.repeats);
+      std::printf("| %.0f | %u | %.1f | %llu | %u |\n", px, r.draws, r.wallMs,
+                  static_cast<unsigned long long>(r.tes), r.visible);
+      std::fflush(stdout);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench-draw: %s\n", e.what());
+    return 1;
+  }
+}
