@@ -3,6 +3,8 @@
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/png_io.h"
 #include "osd_cull/frame/renderer.h"
+#include "osd_cull/vk/context.h"
+#include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
 #include "support/vk_test_eval.h"
 #include "support/vk_test_images.h"
@@ -255,6 +257,39 @@ TEST_F(DrawTest, NoPatchIsMissingAtHighLevelsWhenDrawsAreChunked) {
       ASSERT_EQ(histogram.count(p + 1) ? histogram.at(p + 1) : 0u, 64u) << "patch " << p;
     EXPECT_EQ(stats.statistics.tessEvaluationInvocations, 256u * 19u * 19u);
   }
+}
+
+TEST_F(DrawTest, IndirectDrawsOfACulledListDrawExactlyThoseSlots) {
+  // What a cull pass produces: a compact draw list of surviving patches and indirect
+  // draw commands over its slots, with the command count in a buffer.
+  const PatchSet grid = patchGrid(4, 16.0);
+  frame::GpuPatchSet gpu(context(), grid);
+  const std::vector<uint32_t> survivors = {3, 7, 12, 0, 9};
+  vk::Buffer list(context(), survivors.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vk::upload<uint32_t>(context(), list, survivors);
+  const std::vector<VkDrawIndirectCommand> commands = {
+      {2 * 16, 1, 0 * 16, 0}, {2 * 16, 1, 2 * 16, 0}, {1 * 16, 1, 4 * 16, 0}};
+  vk::Buffer commandBuffer(context(), sizeof(VkDrawIndirectCommand) * commands.size(),
+                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+  vk::upload<VkDrawIndirectCommand>(context(), commandBuffer, commands);
+  vk::Buffer count(context(), 4, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+  const uint32_t two = 2;  // the third command (slot 4, patch 9) is not counted
+  vk::upload<uint32_t>(context(), count, std::span(&two, 1));
+
+  frame::RenderTarget target(context(), 64, 64);
+  frame::Renderer renderer(context());
+  frame::PatchDraw draw{&gpu, &grid, 0, gpu.descriptorSetWithDrawList(context(), list)};
+  const auto camera = test::pixelCamera(64, 64);
+  RenderOptions options;
+  context().submit([&](VkCommandBuffer cmd) {
+    renderer.beginPass(cmd, target, options);
+    renderer.recordIndirect(cmd, camera, draw, PatchType::Bezier, commandBuffer, 0, count, 0, 3, options);
+    renderer.endPass(cmd);
+  });
+  const auto histogram = test::itemHistogram(target.readItems(context()));
+  EXPECT_EQ(histogram.size(), 5u);  // background and four patches
+  for (uint32_t p : {3u, 7u, 12u, 0u}) EXPECT_EQ(histogram.count(p + 1) ? histogram.at(p + 1) : 0u, 256u) << p;
+  EXPECT_EQ(histogram.count(10), 0u);
 }
 
 TEST_F(DrawTest, AdaptiveLevelsGrowWithScreenSizeAndMatchTheHostMirror) {

@@ -48,7 +48,7 @@ GpuPatchSet::GpuPatchSet(vk::Context& context, const PatchSet& patches)
   params_ = vk::Buffer(context, std::max<size_t>(8, size_t{n} * 8), storage);
   drawList_ = vk::Buffer(context, std::max<size_t>(4, size_t{n} * 4), storage);
   setLayout_ = vk::createDescriptorSetLayout(context, patchSetBindings());
-  pool_ = std::make_unique<vk::DescriptorPool>(context, 1, patchSetBindings());
+  pool_ = std::make_unique<vk::DescriptorPool>(context, 1 + kMaxDrawListSets, patchSetBindings());
   set_ = pool_->allocate(setLayout_.get());
   vk::DescriptorWriter()
       .buffer(0, points_)
@@ -66,6 +66,21 @@ GpuPatchSet::GpuPatchSet(vk::Context& context, const PatchSet& patches)
   std::vector<uint32_t> list(n);
   std::iota(list.begin(), list.end(), 0u);
   vk::upload<uint32_t>(context, drawList_, list);
+}
+
+VkDescriptorSet GpuPatchSet::descriptorSetWithDrawList(vk::Context& context,
+                                                       const vk::Buffer& drawList) {
+  if (extraSets_ >= kMaxDrawListSets)
+    throw Error("GpuPatchSet: more than " + std::to_string(kMaxDrawListSets) +
+                " draw-list descriptor sets requested");
+  const VkDescriptorSet set = pool_->allocate(setLayout_.get());
+  ++extraSets_;
+  vk::DescriptorWriter()
+      .buffer(0, points_)
+      .buffer(1, params_)
+      .buffer(2, drawList)
+      .update(context.device(), set);
+  return set;
 }
 
 void GpuPatchSet::updatePoints(vk::Context& context, std::span<const glm::dvec3> points) {

@@ -49,6 +49,12 @@ class GpuPatchSet {
   /// \brief A descriptor set with points, params and draw list at the bindings of
   /// patchSetBindings() (shaders/shared/draw_layout.h kBinding*).
   VkDescriptorSet descriptorSet() const { return set_; }
+  /// \brief A descriptor set like descriptorSet() but reading the draw list from
+  /// `drawList` (e.g. survivors a cull pass appended). Up to kMaxDrawListSets per set;
+  /// `drawList` must outlive every draw that uses the returned set.
+  /// \throws osd_cull::Error when the sets are used up.
+  VkDescriptorSet descriptorSetWithDrawList(vk::Context& context, const vk::Buffer& drawList);
+  static constexpr uint32_t kMaxDrawListSets = 15;
 
  private:
   uint32_t bezierCount_ = 0;
@@ -60,6 +66,7 @@ class GpuPatchSet {
   vk::UniqueDescriptorSetLayout setLayout_;
   std::unique_ptr<vk::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
+  uint32_t extraSets_ = 0;
 };
 
 /// \brief The descriptor bindings of a patch set (points, params, draw list), visible

@@ -132,13 +132,11 @@ void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
   }
 }
 
-uint32_t Renderer::recordSlots(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
-                               PatchType type, uint32_t firstSlot, uint32_t count,
-                               std::span<const uint32_t> vertexBounds, const RenderOptions& options) {
-  if (count == 0) return 0;
+void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                           PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchPipeline(type, options.cullBackFaces));
-  const VkDescriptorSet set = gpu.descriptorSet();
+  const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0, nullptr);
   shader::DrawConstants c = drawConstants(camera, options);
   c.bezierCount = gpu.bezierCount();
@@ -146,7 +144,24 @@ uint32_t Renderer::recordSlots(VkCommandBuffer cmd, const Camera& camera, const 
   c.pointOffset = gpu.pointOffset();
   c.itemBase = draw.itemBase;
   vkCmdPushConstants(cmd, patchLayout_.get(), kGraphicsStages, 0, sizeof(c), &c);
+}
 
+void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                              PatchType type, const vk::Buffer& commands, VkDeviceSize offset,
+                              const vk::Buffer& count, VkDeviceSize countOffset, uint32_t maxDraws,
+                              const RenderOptions& options) {
+  if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
+  if (maxDraws == 0) return;
+  bindPatches(cmd, camera, draw, type, options);
+  vkCmdDrawIndirectCount(cmd, commands.handle(), offset, count.handle(), countOffset, maxDraws,
+                         sizeof(VkDrawIndirectCommand));
+}
+
+uint32_t Renderer::recordSlots(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                               PatchType type, uint32_t firstSlot, uint32_t count,
+                               std::span<const uint32_t> vertexBounds, const RenderOptions& options) {
+  if (count == 0) return 0;
+  bindPatches(cmd, camera, draw, type, options);
   const uint32_t points = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
   std::vector<DrawChunk> chunks;
   if (!options.chunkDraws) {

@@ -43,6 +43,9 @@ struct PatchDraw {
   const PatchSet* host = nullptr;
   /// Patch p writes itemBase + p + 1 into the item buffer.
   uint32_t itemBase = 0;
+  /// Descriptor set to draw with instead of gpu->descriptorSet(), e.g. one from
+  /// GpuPatchSet::descriptorSetWithDrawList() for a culled draw list.
+  VkDescriptorSet set = VK_NULL_HANDLE;
 };
 
 /// \brief What one frame did.
@@ -85,10 +88,21 @@ class Renderer {
   uint32_t recordSlots(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
                        PatchType type, uint32_t firstSlot, uint32_t count,
                        std::span<const uint32_t> vertexBounds, const RenderOptions& options);
+  /// \brief Records GPU-generated draws of one patch type (inside a pass): `commands`
+  /// holds VkDrawIndirectCommand entries {slots * P, 1, firstSlot * P, 0} with P = 16 or
+  /// 20; their count is read from `count` at `countOffset` (vkCmdDrawIndirectCount), at
+  /// most maxDraws. Whoever writes the commands must keep each within the batch limits of
+  /// draw_chunks.h (lavapipe) and make the writes visible to DRAW_INDIRECT before the pass.
+  void recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                      PatchType type, const vk::Buffer& commands, VkDeviceSize offset,
+                      const vk::Buffer& count, VkDeviceSize countOffset, uint32_t maxDraws,
+                      const RenderOptions& options);
 
  private:
   VkPipeline patchPipeline(PatchType type, bool cullBackFaces);
   VkPipeline trianglePipeline();
+  void bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw, PatchType type,
+                   const RenderOptions& options);
 
   vk::Context& context_;
   vk::UniqueRenderPass referencePass_;  // compatible with every RenderTarget's passes
