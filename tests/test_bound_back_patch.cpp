@@ -113,9 +113,11 @@ TEST(BoundBackPatch, RandomPatchesAndViewsNeverCullAFrontFacingSample) {
     if (HasFatalFailure()) return;
     print(test::name(kind), t);
     // The sweep exercises culling, not just "keep": the tangent plane finds most of the
-    // patch-views that are truly back-facing on the samples.
+    // patch-views that are truly back-facing on the samples (fewer on folded random nets,
+    // where sign changes of the degree-7 control planes need not mean a silhouette).
+    const double found = kind == test::PatchKind::RandomNet ? 0.2 : 0.85;
     EXPECT_GT(t.culled[kTangentPlane], 0) << test::name(kind);
-    EXPECT_GE(t.culled[kTangentPlane], 0.4 * t.oracle) << test::name(kind);
+    EXPECT_GE(t.culled[kTangentPlane], found * t.oracle) << test::name(kind);
     if (kind == test::PatchKind::CollapsedEdge) EXPECT_GT(t.pcntOnly, 0);
     else EXPECT_EQ(t.pcntOnly, 0) << "only collapsed edges make control planes exactly zero";
     all.views += t.views;
