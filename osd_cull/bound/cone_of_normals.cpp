@@ -144,6 +144,47 @@ ConeOfNormals combineTangentCones(const DirectionCone& tu, const DirectionCone& 
   return withApex(c / sinTheta, gamma, points);
 }
 
+// The tangent cone of a Gregory patch in one direction. With the Bézier net at (u,v),
+//   G_u = 3 Σ B2_i(u) B3_j(v) (q[i+1,j] - q[i,j])  +  Σ_m β_m(u,v) r_m,
+// where each q is a convex blend of its candidates, so the first sum divided by 3 is a
+// convex combination of the candidate differences d_k, and r_m are the four signed blend
+// derivative directions with weights β_m = B_i B_j |a_u b - a b_u| / (a + b)² >= 0. In the
+// corner's local coordinates (x, y) every β_m has the form 9 x y (1-x)² (1-y)² y / (x+y)²
+// (or with x in place of the last y) <= (9/4) y (1-y)² <= 1/3, so
+//   G_u / 3  lies in  conv{d_k} + ball(ρ),  ρ = Σ_m |r_m| / 9.
+// Two conservative cones, the narrower one is used:
+// (A) if every d_k has component >= h along an axis a with h > ρ, then G_u / 3 has
+//     component >= h - ρ along a and <= P + ρ across it (P = max perpendicular part of the
+//     d_k), so G_u is within atan((P + ρ) / (h - ρ)) of a;
+// (B) G_u is a non-negative combination of the d_k and r_m: the cone of their directions.
+DirectionCone gregoryTangentCone(const std::vector<glm::dvec3>& d, const std::vector<glm::dvec3>& r) {
+  std::vector<glm::dvec3> all = d;
+  all.insert(all.end(), r.begin(), r.end());
+  const std::vector<double> zeros(all.size(), 0.0);
+  DirectionCone best = boundDirections(all, zeros);
+  const DirectionCone main = boundDirections(d, std::span<const double>(zeros).first(d.size()));
+  if (!main.valid) return best;
+  double rho = 0.0;
+  for (const glm::dvec3& v : r) rho += glm::length(v);
+  rho = rho / 9.0 * (1.0 + kRelativeMargin);
+  double h = std::numeric_limits<double>::infinity(), perp = 0.0, scale = 0.0;
+  for (const glm::dvec3& v : d) {
+    const double along = glm::dot(v, main.axis);
+    h = std::min(h, along);
+    perp = std::max(perp, glm::length(v - along * main.axis));
+    scale = std::max(scale, glm::length(v));
+  }
+  // Rounding of the dot products and lengths is far below kRelativeMargin * scale.
+  h -= kRelativeMargin * scale;
+  perp += kRelativeMargin * scale;
+  if (h > rho) {
+    const double angle = std::atan2(perp + rho, h - rho) + kConeAngleMargin;
+    if (angle < kHalfPi && (!best.valid || angle < best.angle))
+      best = {main.axis, angle, true, BackPatchVerdict::BackFacing};
+  }
+  return best;
+}
+
 }  // namespace
 
 std::array<glm::dvec3, 36> normalPatch(std::span<const glm::dvec3> bezier) {
@@ -240,6 +281,7 @@ ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> grego
   // Derivatives of the rational blends: d/du of (a A + b B)/(a + b) is
   // (a_u b - a b_u)/(a + b)² (A - B); a_u b - a b_u is linear in (u, v), so its sign on
   // the unit square is that of its four corner values.
+  std::vector<glm::dvec3> ru, rv;
   auto addBlendDerivative = [&](const GregoryInterior& g, bool alongU, std::vector<glm::dvec3>& out) {
     const glm::dvec3 diff = gregory[g.a] - gregory[g.b];
     bool positive = false, negative = false;
@@ -254,11 +296,10 @@ ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> grego
     if (negative) out.push_back(-diff);
   };
   for (const GregoryInterior& g : kGregoryInterior) {
-    addBlendDerivative(g, true, du);
-    addBlendDerivative(g, false, dv);
+    addBlendDerivative(g, true, ru);
+    addBlendDerivative(g, false, rv);
   }
-  const std::vector<double> zu(du.size(), 0.0), zv(dv.size(), 0.0);
-  return combineTangentCones(boundDirections(du, zu), boundDirections(dv, zv), gregory);
+  return combineTangentCones(gregoryTangentCone(du, ru), gregoryTangentCone(dv, rv), gregory);
 }
 
 BackPatchResult testConeOfNormals(const ConeOfNormals& cone, const glm::dvec3& eye) {
