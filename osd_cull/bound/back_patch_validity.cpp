@@ -11,11 +11,6 @@ namespace osd_cull::bound {
 BackPatchValidity backPatchValidity(const TopologySummary& t, std::optional<double> signedVol) {
   auto disabled = [](std::string why) { return BackPatchValidity{false, std::move(why)}; };
   if (t.faces == 0) return disabled("the mesh has no faces");
-  if (t.boundaryEdges > 0)
-    return disabled("the surface is open: " + std::to_string(t.boundaryEdges) +
-                    " boundary edges (the inside can be seen through them)");
-  if (t.holes > 0)
-    return disabled("the surface is open: " + std::to_string(t.holes) + " faces are holes");
   if (t.nonManifoldEdges > 0)
     return disabled(std::to_string(t.nonManifoldEdges) +
                     " non-manifold edges (more than two faces, or faces that disagree on "
@@ -23,6 +18,11 @@ BackPatchValidity backPatchValidity(const TopologySummary& t, std::optional<doub
   if (t.nonManifoldVertices > 0)
     return disabled(std::to_string(t.nonManifoldVertices) +
                     " non-manifold vertices (orientation around them is not verified)");
+  if (t.boundaryEdges > 0)
+    return disabled("the surface is open: " + std::to_string(t.boundaryEdges) +
+                    " boundary edges (the inside can be seen through them)");
+  if (t.holes > 0)
+    return disabled("the surface is open: " + std::to_string(t.holes) + " faces are holes");
   if (!signedVol)
     return {true, "closed and manifold; outward orientation assumed (no signed volume given)"};
   if (!std::isfinite(*signedVol)) return disabled("the signed volume is not finite");
