@@ -21,6 +21,10 @@
 
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -303,6 +307,38 @@ inline OsdPatches buildOsdPatches(const CageMesh& cage, int level) {
   return out;
 }
 
+// The regular interior patches of an OpenSubdiv patch table (B-spline, no boundary) in
+// Bézier form: b = M p M^T per direction with the uniform B-spline -> Bézier matrix.
+inline std::vector<Bezier> regularPatchesAsBezier(const OsdPatches& osd, int* skipped) {
+  namespace Far = OpenSubdiv::Far;
+  const double M[4][4] = {{1 / 6.0, 4 / 6.0, 1 / 6.0, 0},
+                          {0, 4 / 6.0, 2 / 6.0, 0},
+                          {0, 2 / 6.0, 4 / 6.0, 0},
+                          {0, 1 / 6.0, 4 / 6.0, 1 / 6.0}};
+  std::vector<Bezier> out;
+  *skipped = 0;
+  for (int a = 0; a < osd.table->GetNumPatchArrays(); ++a) {
+    if (osd.table->GetPatchArrayDescriptor(a).GetType() != Far::PatchDescriptor::REGULAR) continue;
+    for (int p = 0; p < osd.table->GetNumPatches(a); ++p) {
+      if (osd.table->GetPatchParam(a, p).GetBoundary() != 0) {
+        ++*skipped;
+        continue;
+      }
+      const auto cvs = osd.table->GetPatchVertices(a, p);
+      Bezier b;
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+          glm::dvec3 s(0.0);
+          for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 4; ++x) s += M[i][x] * M[j][y] * osd.points[cvs[4 * y + x]];
+          b[4 * j + i] = s;
+        }
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
 // The Gregory-basis patches of an OpenSubdiv patch table, 20 points each.
 inline std::vector<Gregory> gregoryPatches(const OsdPatches& osd) {
   namespace Far = OpenSubdiv::Far;
@@ -318,6 +354,34 @@ inline std::vector<Gregory> gregoryPatches(const OsdPatches& osd) {
     }
   }
   return out;
+}
+
+// Reads the vertices and faces of an OBJ file (enough for topology and volume; the shapes
+// checked here carry no tags that change closedness).
+inline CageMesh readObjFaces(const std::filesystem::path& path) {
+  CageMesh m;
+  m.source = path.string();
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      glm::dvec3 p;
+      ls >> p.x >> p.y >> p.z;
+      m.positions.push_back(p);
+    } else if (tag == "f") {
+      int n = 0;
+      std::string corner;
+      while (ls >> corner) {
+        m.faceVertices.push_back(std::stoi(corner.substr(0, corner.find('/'))) - 1);
+        ++n;
+      }
+      m.faceSizes.push_back(n);
+    }
+  }
+  return m;
 }
 
 }  // namespace osd_cull::bound::test

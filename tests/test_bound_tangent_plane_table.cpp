@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <string>
 #include <tuple>
 
 namespace osd_cull::bound {
@@ -76,6 +77,25 @@ TEST(BoundTangentPlaneTable, ParallelOrderGivesEachOfSixteenThreadsItsOwnFourTar
   constexpr int kPaperBlockSums[16] = {32, 33, 33, 32, 33, 31, 31, 33,
                                        33, 31, 31, 33, 32, 33, 33, 32};
   for (int t = 0; t < 16; ++t) EXPECT_EQ(perThread[t], kPaperBlockSums[t]) << "thread " << t;
+}
+
+size_t occurrences(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(BoundTangentPlaneTable, GlslTableListsEveryTermWithItsExactWeight) {
+  for (bool parallel : {false, true}) {
+    const std::string glsl = tangentPlaneTableGlsl(parallel);
+    const size_t n = parallel ? tangentPlaneParallelTerms().size() : tangentPlaneTerms().size();
+    EXPECT_EQ(occurrences(glsl, "uvec4(") - 1, n);  // minus the array constructor uvec4[](
+    EXPECT_NE(glsl.find("kTangentPlaneTermCount = " + std::to_string(n) + "u;"), std::string::npos);
+    EXPECT_EQ(occurrences(glsl, ".0 / "), n);
+  }
+  const std::string serial = tangentPlaneTableGlsl(false);
+  EXPECT_NE(serial.find("uvec4(0u, 0u, 1u, 4u)"), std::string::npos);  // 9 cross4(b0, b1, b4)
+  EXPECT_NE(serial.find("9.0 / 1.0"), std::string::npos);
 }
 
 TEST(BoundTangentPlaneTable, Cross4IsTheOrientedPlaneThroughThreePoints) {

@@ -6,8 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace osd_cull::bound {
@@ -129,46 +127,18 @@ TEST(BoundValidity, OpenSubdivPatchNormalsBuCrossBvPointOutOfACounterClockwiseCu
   EXPECT_GT(firstPatch, 0);
 }
 
-// Reads the vertices and faces of an OBJ file (enough for topology and volume; the shapes
-// checked here carry no tags that change closedness).
-CageMesh readObjFaces(const std::filesystem::path& path) {
-  CageMesh m;
-  m.source = path.string();
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      glm::dvec3 p;
-      ls >> p.x >> p.y >> p.z;
-      m.positions.push_back(p);
-    } else if (tag == "f") {
-      int n = 0;
-      std::string corner;
-      while (ls >> corner) {
-        m.faceVertices.push_back(std::stoi(corner.substr(0, corner.find('/'))) - 1);
-        ++n;
-      }
-      m.faceSizes.push_back(n);
-    }
-  }
-  return m;
-}
-
 TEST(BoundValidity, SharedShapesLeftHandedIsDisabledClosedOnesEnabled) {
   OSD_CULL_REQUIRE_DATA();
   const auto dir = osd_cull::test::dataDir() / "shapes";
   for (const char* name : {"catmark_cube", "catmark_torus", "catmark_pyramid_creases0",
                            "catmark_toroidal_tet"}) {
-    const BackPatchValidity v = decide(readObjFaces(dir / (std::string(name) + ".obj")));
+    const BackPatchValidity v = decide(test::readObjFaces(dir / (std::string(name) + ".obj")));
     EXPECT_TRUE(v.enabled) << name << ": " << v.reason;
   }
-  const BackPatchValidity left = decide(readObjFaces(dir / "catmark_lefthanded.obj"));
+  const BackPatchValidity left = decide(test::readObjFaces(dir / "catmark_lefthanded.obj"));
   EXPECT_FALSE(left.enabled);
   EXPECT_TRUE(contains(left.reason, "inward")) << left.reason;
-  const BackPatchValidity open = decide(readObjFaces(dir / "catmark_nonman_edges.obj"));
+  const BackPatchValidity open = decide(test::readObjFaces(dir / "catmark_nonman_edges.obj"));
   EXPECT_FALSE(open.enabled) << open.reason;
 }
 

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 
 namespace osd_cull::bound {
 
@@ -48,5 +49,11 @@ std::span<const TangentPlaneTerm> tangentPlaneTerms();
 /// one are padded with weight-0 terms on their own first target (indices 0, 1, 2), so the
 /// loop `for (k = thread; k < size; k += 16)` needs no bounds check. Size is 16 * slots.
 std::span<const TangentPlaneTerm> tangentPlaneParallelTerms();
+
+/// \brief GLSL source declaring the table for a shader, generated from the derived terms:
+/// `const uint kTangentPlaneTermCount`, `const uvec4 kTangentPlaneTerms[]` (target, j, k, l)
+/// and `const float kTangentPlaneWeights[]` (each an exact quotient of integers, rounded
+/// once by the compiler). `parallelOrder` selects tangentPlaneParallelTerms().
+std::string tangentPlaneTableGlsl(bool parallelOrder);
 
 }  // namespace osd_cull::bound
