@@ -89,7 +89,7 @@ TEST(BoundTangentPlaneTable, GlslTableListsEveryTermWithItsExactWeight) {
   for (bool parallel : {false, true}) {
     const std::string glsl = tangentPlaneTableGlsl(parallel);
     const size_t n = parallel ? tangentPlaneParallelTerms().size() : tangentPlaneTerms().size();
-    EXPECT_EQ(occurrences(glsl, "uvec4(") - 1, n);  // minus the array constructor uvec4[](
+    EXPECT_EQ(occurrences(glsl, "uvec4("), n);  // the array constructor is "uvec4[]("
     EXPECT_NE(glsl.find("kTangentPlaneTermCount = " + std::to_string(n) + "u;"), std::string::npos);
     EXPECT_EQ(occurrences(glsl, ".0 / "), n);
   }
