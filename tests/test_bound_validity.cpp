@@ -127,6 +127,51 @@ TEST(BoundValidity, OpenSubdivPatchNormalsBuCrossBvPointOutOfACounterClockwiseCu
   EXPECT_GT(firstPatch, 0);
 }
 
+TEST(BoundValidity, RegularPatchesConvertedToBezierKeepOpenSubdivsParameterization) {
+  // The B-spline -> Bézier conversion used by the rate tests must keep u and v (a transposed
+  // patch would flip N and with it every back-patch decision).
+  const test::OsdPatches osd = test::buildOsdPatches(test::cubeCage(), 3);
+  int skipped = 0;
+  const std::vector<test::Bezier> bezier = test::regularPatchesAsBezier(osd, &skipped);
+  const Far::PatchTable& table = *osd.table;
+  size_t next = 0;
+  int firstPatch = 0;
+  for (int a = 0; a < table.GetNumPatchArrays(); ++a) {
+    const Far::PatchDescriptor desc = table.GetPatchArrayDescriptor(a);
+    for (int p = 0; p < table.GetNumPatches(a); ++p) {
+      if (desc.GetType() != Far::PatchDescriptor::REGULAR || table.GetPatchParam(a, p).GetBoundary())
+        continue;
+      Far::PatchTable::PatchHandle h;
+      h.arrayIndex = a;
+      h.patchIndex = firstPatch + p;
+      h.vertIndex = p * desc.GetNumControlVertices();
+      const auto cvs = table.GetPatchVertices(h);
+      const Far::PatchParam param = table.GetPatchParam(h);
+      const double s = 0.3, t = 0.6;
+      double u = s, v = t;
+      param.Unnormalize(u, v);
+      double w[16], wu[16], wv[16];
+      table.EvaluateBasis(h, u, v, w, wu, wv);
+      glm::dvec3 pos(0.0), du(0.0), dv(0.0);
+      for (int k = 0; k < 16; ++k) {
+        pos += w[k] * osd.points[cvs[k]];
+        du += wu[k] * osd.points[cvs[k]];
+        dv += wv[k] * osd.points[cvs[k]];
+      }
+      // OpenSubdiv differentiates with respect to the face's parameters: scale by the
+      // patch's parametric size to compare with the patch-local derivatives.
+      const double f = param.GetParamFraction();
+      const PatchSample mine = evaluateBezier(bezier.at(next++), s, t);
+      EXPECT_NEAR(glm::length(mine.position - pos), 0.0, 1e-6);
+      EXPECT_NEAR(glm::length(mine.du - f * du), 0.0, 1e-5 * glm::length(mine.du));
+      EXPECT_NEAR(glm::length(mine.dv - f * dv), 0.0, 1e-5 * glm::length(mine.dv));
+    }
+    firstPatch += table.GetNumPatches(a);
+  }
+  EXPECT_EQ(next, bezier.size());
+  EXPECT_GT(next, 0u);
+}
+
 TEST(BoundValidity, SharedShapesLeftHandedIsDisabledClosedOnesEnabled) {
   OSD_CULL_REQUIRE_DATA();
   const auto dir = osd_cull::test::dataDir() / "shapes";
