@@ -9,8 +9,8 @@
 #include "support/test_data.h"
 #include "test_bound_fixtures.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -62,8 +62,8 @@ void check(const Bezier& b, const SurfaceSamples& samples, const ConeOfNormals& 
   const TangentPlaneResult rp = tangentPlaneTest(b, view.viewProj, clipSpaceEyeSign(view.viewProj));
   ASSERT_FALSE(rt.culled && front) << "TCONE false cull: " << where;
   ASSERT_FALSE(rn.culled && front) << "NCONE false cull: " << where;
-  ASSERT_FALSE(rp.culled && front) << "tangent-plane false cull: " << where << " pcnt " << rp.pcnt
-                                   << " ncnt " << rp.ncnt;
+  ASSERT_FALSE(rp.culled && front)
+      << "tangent-plane false cull: " << where << " pcnt " << rp.pcnt << " ncnt " << rp.ncnt;
   t->culled[kTcone] += rt.culled;
   t->culled[kNcone] += rn.culled;
   t->culled[kTangentPlane] += rp.culled;
@@ -86,8 +86,10 @@ Tally sweepKind(test::PatchKind kind, double scale, uint64_t seed, int patches, 
     test::boundingSphere(b, &centre, &radius);
     for (int k = 0; k < views; ++k) {
       const auto vk = static_cast<test::ViewKind>(k % static_cast<int>(test::ViewKind::Count));
-      const size_t at = static_cast<size_t>(rng.integer(0, static_cast<int>(s.position.size()) - 1));
-      const test::View view = test::randomView(rng, vk, centre, radius, s.position[at], s.normal[at]);
+      const size_t at =
+          static_cast<size_t>(rng.integer(0, static_cast<int>(s.position.size()) - 1));
+      const test::View view =
+          test::randomView(rng, vk, centre, radius, s.position[at], s.normal[at]);
       const std::string where = std::string(test::name(kind)) + " patch " + std::to_string(n) +
                                 " view " + std::to_string(k) + " (" + test::name(vk) + ")";
       check(b, s, tcone, ncone, view, &t, where.c_str());
@@ -98,11 +100,11 @@ Tally sweepKind(test::PatchKind kind, double scale, uint64_t seed, int patches, 
 }
 
 void print(const char* label, const Tally& t) {
-  std::printf("%-16s views %6ld  truly back-facing %5.1f%%  TCONE %5.1f%%  NCONE %5.1f%%  "
-              "tangent plane %5.1f%% (Pcnt-only %ld)\n",
-              label, t.views, 100.0 * t.oracle / t.views, 100.0 * t.culled[kTcone] / t.views,
-              100.0 * t.culled[kNcone] / t.views, 100.0 * t.culled[kTangentPlane] / t.views,
-              t.pcntOnly);
+  std::printf(
+      "%-16s views %6ld  truly back-facing %5.1f%%  TCONE %5.1f%%  NCONE %5.1f%%  "
+      "tangent plane %5.1f%% (Pcnt-only %ld)\n",
+      label, t.views, 100.0 * t.oracle / t.views, 100.0 * t.culled[kTcone] / t.views,
+      100.0 * t.culled[kNcone] / t.views, 100.0 * t.culled[kTangentPlane] / t.views, t.pcntOnly);
 }
 
 TEST(BoundBackPatch, RandomPatchesAndViewsNeverCullAFrontFacingSample) {
@@ -118,8 +120,10 @@ TEST(BoundBackPatch, RandomPatchesAndViewsNeverCullAFrontFacingSample) {
     const double found = kind == test::PatchKind::RandomNet ? 0.2 : 0.85;
     EXPECT_GT(t.culled[kTangentPlane], 0) << test::name(kind);
     EXPECT_GE(t.culled[kTangentPlane], found * t.oracle) << test::name(kind);
-    if (kind == test::PatchKind::CollapsedEdge) EXPECT_GT(t.pcntOnly, 0);
-    else EXPECT_EQ(t.pcntOnly, 0) << "only collapsed edges make control planes exactly zero";
+    if (kind == test::PatchKind::CollapsedEdge)
+      EXPECT_GT(t.pcntOnly, 0);
+    else
+      EXPECT_EQ(t.pcntOnly, 0) << "only collapsed edges make control planes exactly zero";
     all.views += t.views;
     all.oracle += t.oracle;
     all.pcntOnly += t.pcntOnly;
@@ -164,7 +168,8 @@ TEST(BoundBackPatch, PlanarPatchIsKeptFromJustInFrontAndCulledFromJustBehind) {
     const bool expectCulled = side < 0.0;
     const TangentPlaneResult rp = tangentPlaneTest(b, vp, clipSpaceEyeSign(vp));
     EXPECT_EQ(rp.culled, expectCulled) << side;
-    EXPECT_EQ(rp.verdict, expectCulled ? BackPatchVerdict::BackFacing : BackPatchVerdict::FrontFacing);
+    EXPECT_EQ(rp.verdict,
+              expectCulled ? BackPatchVerdict::BackFacing : BackPatchVerdict::FrontFacing);
     EXPECT_EQ(testConeOfNormals(ncone, eye).culled, expectCulled) << side;
     EXPECT_EQ(testConeOfNormals(tcone, eye).culled, expectCulled) << side;
   }
@@ -188,8 +193,10 @@ TEST(BoundBackPatch, EyeInsideAClosedSphereSeesOnlyBackFacesIncludingBehindTheEy
       withPointsBehindEye += clipBounds(b, view.viewProj).behindEye;
     }
   }
-  std::printf("inside the sphere: %ld of %ld patch-views culled by the tangent plane, %ld of "
-              "them with control points behind the eye\n", culled, total, withPointsBehindEye);
+  std::printf(
+      "inside the sphere: %ld of %ld patch-views culled by the tangent plane, %ld of "
+      "them with control points behind the eye\n",
+      culled, total, withPointsBehindEye);
   EXPECT_GT(withPointsBehindEye, total / 4);
 }
 

@@ -37,7 +37,8 @@ TEST(BoundBigGuyRates, BackPatchCullRatesOverSphereViewsAreConservative) {
   EXPECT_EQ(skipped, 0) << "BigGuy is closed: no boundary patches";
   std::vector<SurfaceSamples> sb, sg;
   std::vector<ConeOfNormals> ncone, gcone;
-  for (const Bezier& b : bezier) sb.push_back(samplePatch(b, 6)), ncone.push_back(buildConeOfNormals(b));
+  for (const Bezier& b : bezier)
+    sb.push_back(samplePatch(b, 6)), ncone.push_back(buildConeOfNormals(b));
   for (const Gregory& g : gregory)
     sg.push_back(samplePatch(g, 6)), gcone.push_back(buildGregoryConeFromTangentCones(g));
   glm::dvec3 centre;
@@ -51,9 +52,9 @@ TEST(BoundBigGuyRates, BackPatchCullRatesOverSphereViewsAreConservative) {
   for (int v = 0; v < views; ++v) {
     const double dist = radius * rng.uniform(2.0, 6.0);
     const glm::dvec3 eye = centre + dist * rng.direction();
-    const glm::dmat4 vp = glm::perspective(2.2 * std::asin(radius / dist), 1.0, 0.05 * radius,
-                                           dist + 2 * radius) *
-                          glm::lookAt(eye, centre, rng.direction());
+    const glm::dmat4 vp =
+        glm::perspective(2.2 * std::asin(radius / dist), 1.0, 0.05 * radius, dist + 2 * radius) *
+        glm::lookAt(eye, centre, rng.direction());
     const double sign = clipSpaceEyeSign(vp);
     for (size_t p = 0; p < bezier.size(); ++p) {
       const auto t0 = Clock::now();
@@ -67,7 +68,8 @@ TEST(BoundBigGuyRates, BackPatchCullRatesOverSphereViewsAreConservative) {
       tNcone += std::chrono::duration<double, std::nano>(t2 - t1).count();
       tPlane += std::chrono::duration<double, std::nano>(t3 - t2).count();
       const bool front = anyFrontFacing(sb[p], eye);
-      ASSERT_FALSE(front && (tc || nc || tp)) << "false cull of Bézier patch " << p << " view " << v;
+      ASSERT_FALSE(front && (tc || nc || tp))
+          << "false cull of Bézier patch " << p << " view " << v;
       oracleB += !front;
       tcone += tc;
       ncull += nc;
@@ -85,12 +87,15 @@ TEST(BoundBigGuyRates, BackPatchCullRatesOverSphereViewsAreConservative) {
   const double ng = static_cast<double>(gregory.size()) * views;
   std::printf("BigGuy level 2: %zu Bézier + %zu Gregory patches, %d sphere views\n", bezier.size(),
               gregory.size(), views);
-  std::printf("  Bézier:  truly back-facing %.1f%%  TCONE %.1f%%  NCONE %.1f%%  tangent plane %.1f%%\n",
-              100 * oracleB / nb, 100 * tcone / nb, 100 * ncull / nb, 100 * tplane / nb);
+  std::printf(
+      "  Bézier:  truly back-facing %.1f%%  TCONE %.1f%%  NCONE %.1f%%  tangent plane %.1f%%\n",
+      100 * oracleB / nb, 100 * tcone / nb, 100 * ncull / nb, 100 * tplane / nb);
   std::printf("  Gregory: truly back-facing %.1f%%  Gregory TCONE %.1f%%\n", 100 * oracleG / ng,
               100 * gcull / ng);
-  std::printf("  CPU double reference per patch: TCONE build+test %.0f ns, NCONE test %.0f ns, "
-              "tangent plane %.0f ns\n", tTcone / nb, tNcone / nb, tPlane / nb);
+  std::printf(
+      "  CPU double reference per patch: TCONE build+test %.0f ns, NCONE test %.0f ns, "
+      "tangent plane %.0f ns\n",
+      tTcone / nb, tNcone / nb, tPlane / nb);
   EXPECT_GT(tplane / nb, 0.30);
   EXPECT_GE(tplane, ncull / 2);
 }

@@ -24,11 +24,14 @@ using test::Rng;
 struct Rates {
   long patchViews = 0, oracle = 0, frustum = 0, tcone = 0, ncone = 0, tangentPlane = 0;
   void print(const char* shape, size_t patches, int views) const {
-    auto pct = [&](long n) { return 100.0 * static_cast<double>(n) / static_cast<double>(patchViews); };
-    std::printf("%-16s %4zu patches x %d sphere views: truly back-facing %5.1f%%  frustum %5.1f%%  "
-                "TCONE %5.1f%%  NCONE %5.1f%%  tangent plane %5.1f%%\n",
-                shape, patches, views, pct(oracle), pct(frustum), pct(tcone), pct(ncone),
-                pct(tangentPlane));
+    auto pct = [&](long n) {
+      return 100.0 * static_cast<double>(n) / static_cast<double>(patchViews);
+    };
+    std::printf(
+        "%-16s %4zu patches x %d sphere views: truly back-facing %5.1f%%  frustum %5.1f%%  "
+        "TCONE %5.1f%%  NCONE %5.1f%%  tangent plane %5.1f%%\n",
+        shape, patches, views, pct(oracle), pct(frustum), pct(tcone), pct(ncone),
+        pct(tangentPlane));
   }
   double rate(long n) const { return static_cast<double>(n) / static_cast<double>(patchViews); }
 };
@@ -62,7 +65,8 @@ Rates bezierRates(const std::vector<Bezier>& patches, double radius, int views, 
       const bool nc = testConeOfNormals(ncones[p], view.eye).culled;
       const bool tp = tangentPlaneTest(patches[p], view.viewProj, sign).culled;
       const bool fr = frustumTest(patches[p], view.viewProj).culled;
-      EXPECT_FALSE(front && (tc || nc || tp)) << "false back-patch cull, patch " << p << " view " << v;
+      EXPECT_FALSE(front && (tc || nc || tp))
+          << "false back-patch cull, patch " << p << " view " << v;
       EXPECT_FALSE(fr && anyInsideClipVolume(samples[p], view.viewProj)) << "false frustum cull";
       ++r.patchViews;
       r.oracle += !front;
@@ -102,7 +106,8 @@ TEST(BoundCullRates, BsplineTorusCullRatesOverSphereViews) {
 TEST(BoundCullRates, GregorySphereIsCulledOnlyByAConservativeTangentCone) {
   Rng build(33);
   std::vector<Gregory> sphere;
-  for (const Bezier& b : test::bezierSphere(12, 8)) sphere.push_back(test::gregoryFromBezier(b, build, 0.01));
+  for (const Bezier& b : test::bezierSphere(12, 8))
+    sphere.push_back(test::gregoryFromBezier(b, build, 0.01));
   std::vector<SurfaceSamples> samples;
   std::vector<ConeOfNormals> cones;
   for (const Gregory& g : sphere) {
@@ -126,10 +131,11 @@ TEST(BoundCullRates, GregorySphereIsCulledOnlyByAConservativeTangentCone) {
       r.frustum += fr;
     }
   }
-  std::printf("%-16s %4zu patches x %d sphere views: truly back-facing %5.1f%%  frustum %5.1f%%  "
-              "Gregory TCONE %5.1f%%\n",
-              "Gregory sphere", sphere.size(), views, 100 * r.rate(r.oracle), 100 * r.rate(r.frustum),
-              100 * r.rate(r.tcone));
+  std::printf(
+      "%-16s %4zu patches x %d sphere views: truly back-facing %5.1f%%  frustum %5.1f%%  "
+      "Gregory TCONE %5.1f%%\n",
+      "Gregory sphere", sphere.size(), views, 100 * r.rate(r.oracle), 100 * r.rate(r.frustum),
+      100 * r.rate(r.tcone));
   EXPECT_GT(r.rate(r.tcone), 0.10);
 }
 

@@ -23,11 +23,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-#include <string>
 #include <memory>
 #include <numbers>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace osd_cull::bound::test {
@@ -64,12 +64,18 @@ inline Bezier transformed(const Bezier& b, Rng& rng, double scale = 1.0) {
 enum class PatchKind { RandomNet, SmoothBump, Planar, Saddle, CollapsedEdge, Count };
 inline const char* name(PatchKind k) {
   switch (k) {
-    case PatchKind::RandomNet: return "random-net";
-    case PatchKind::SmoothBump: return "smooth-bump";
-    case PatchKind::Planar: return "planar";
-    case PatchKind::Saddle: return "saddle";
-    case PatchKind::CollapsedEdge: return "collapsed-edge";
-    default: return "?";
+    case PatchKind::RandomNet:
+      return "random-net";
+    case PatchKind::SmoothBump:
+      return "smooth-bump";
+    case PatchKind::Planar:
+      return "planar";
+    case PatchKind::Saddle:
+      return "saddle";
+    case PatchKind::CollapsedEdge:
+      return "collapsed-edge";
+    default:
+      return "?";
   }
 }
 
@@ -83,18 +89,26 @@ inline Bezier randomBezier(Rng& rng, PatchKind kind) {
       const glm::dvec3 grid(i / 3.0 - 0.5, j / 3.0 - 0.5, 0.0);
       glm::dvec3 p = grid;
       switch (kind) {
-        case PatchKind::RandomNet: p += rng.inBox(0.35); break;
-        case PatchKind::SmoothBump:
-          p.z = h * ((i == 1 || i == 2) && (j == 1 || j == 2) ? 1.0 : 0.0) + rng.uniform(-0.05, 0.05);
+        case PatchKind::RandomNet:
+          p += rng.inBox(0.35);
           break;
-        case PatchKind::Planar: p += glm::dvec3(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), 0.0); break;
-        case PatchKind::Saddle: p.z = h * (c[i] - c[j]); break;
+        case PatchKind::SmoothBump:
+          p.z =
+              h * ((i == 1 || i == 2) && (j == 1 || j == 2) ? 1.0 : 0.0) + rng.uniform(-0.05, 0.05);
+          break;
+        case PatchKind::Planar:
+          p += glm::dvec3(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), 0.0);
+          break;
+        case PatchKind::Saddle:
+          p.z = h * (c[i] - c[j]);
+          break;
         case PatchKind::CollapsedEdge:
           // Teapot-lid style: row 0 collapses to one point, a dome rises toward it.
           p.z = h * (j == 0 ? 1.0 : (j == 1 ? 0.8 : 0.3 * (i == 1 || i == 2)));
           if (j == 0) p.x = p.y = -0.5;
           break;
-        default: break;
+        default:
+          break;
       }
       b[4 * j + i] = p;
     }
@@ -183,12 +197,18 @@ struct View {
 enum class ViewKind { Around, InsideBox, NearSurface, CrossingNear, LookingAway, Count };
 inline const char* name(ViewKind k) {
   switch (k) {
-    case ViewKind::Around: return "around";
-    case ViewKind::InsideBox: return "inside-box";
-    case ViewKind::NearSurface: return "near-surface";
-    case ViewKind::CrossingNear: return "crossing-near";
-    case ViewKind::LookingAway: return "looking-away";
-    default: return "?";
+    case ViewKind::Around:
+      return "around";
+    case ViewKind::InsideBox:
+      return "inside-box";
+    case ViewKind::NearSurface:
+      return "near-surface";
+    case ViewKind::CrossingNear:
+      return "crossing-near";
+    case ViewKind::LookingAway:
+      return "looking-away";
+    default:
+      return "?";
   }
 }
 
@@ -236,7 +256,8 @@ inline View randomView(Rng& rng, ViewKind kind, const glm::dvec3& centre, double
       const glm::dvec3 fallback = rng.direction();
       const glm::dvec3 n = len > 0.0 ? surfaceNormal / len : fallback;
       const double side = rng.uniform() < 0.5 ? -1.0 : 1.0;
-      const glm::dvec3 eye = onSurface + side * radius * std::pow(10.0, rng.uniform(-6.0, -1.0)) * n;
+      const glm::dvec3 eye =
+          onSurface + side * radius * std::pow(10.0, rng.uniform(-6.0, -1.0)) * n;
       return makeView(rng, eye, eye + rng.direction(), radius * 1e-7, radius * 10.0);
     }
     case ViewKind::CrossingNear: {
@@ -293,7 +314,8 @@ inline OsdPatches buildOsdPatches(const CageMesh& cage, int level) {
   so.generateOffsets = true;
   so.generateControlVerts = true;
   so.generateIntermediateLevels = true;
-  std::unique_ptr<const Far::StencilTable> stencils(Far::StencilTableFactory::Create(*out.refiner, so));
+  std::unique_ptr<const Far::StencilTable> stencils(
+      Far::StencilTableFactory::Create(*out.refiner, so));
   if (const Far::StencilTable* local = out.table->GetLocalPointStencilTable()) {
     stencils.reset(Far::StencilTableFactory::AppendLocalPointStencilTable(*out.refiner,
                                                                           stencils.get(), local));
@@ -302,7 +324,8 @@ inline OsdPatches buildOsdPatches(const CageMesh& cage, int level) {
   for (int s = 0; s < stencils->GetNumStencils(); ++s) {
     const auto st = stencils->GetStencil(s);
     for (int k = 0; k < st.GetSize(); ++k)
-      out.points[s] += static_cast<double>(st.GetWeights()[k]) * cage.positions[st.GetVertexIndices()[k]];
+      out.points[s] +=
+          static_cast<double>(st.GetWeights()[k]) * cage.positions[st.GetVertexIndices()[k]];
   }
   return out;
 }

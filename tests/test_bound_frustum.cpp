@@ -4,8 +4,8 @@
 #include "osd_cull/bound/sampling.h"
 #include "test_bound_fixtures.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <cstdio>
 #include <limits>
@@ -26,7 +26,8 @@ glm::dmat4 simpleViewProj() {
 Bezier flatPatch(const glm::dvec3& c, double size = 1.0) {
   Bezier b;
   for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) b[4 * j + i] = c + size * glm::dvec3(i / 3.0 - 0.5, j / 3.0 - 0.5, 0.0);
+    for (int i = 0; i < 4; ++i)
+      b[4 * j + i] = c + size * glm::dvec3(i / 3.0 - 0.5, j / 3.0 - 0.5, 0.0);
   return b;
 }
 
@@ -127,8 +128,10 @@ void sweep(double scale, uint64_t seed, int* culledOut, int* testsOut) {
     test::boundingSphere(b, &centre, &radius);
     for (int k = 0; k < 40; ++k) {
       const auto vk = static_cast<test::ViewKind>(k % static_cast<int>(test::ViewKind::Count));
-      const size_t s = static_cast<size_t>(rng.integer(0, static_cast<int>(sb.position.size()) - 1));
-      const test::View view = test::randomView(rng, vk, centre, radius, sb.position[s], sb.normal[s]);
+      const size_t s =
+          static_cast<size_t>(rng.integer(0, static_cast<int>(sb.position.size()) - 1));
+      const test::View view =
+          test::randomView(rng, vk, centre, radius, sb.position[s], sb.normal[s]);
       for (int which = 0; which < 2; ++which) {
         const SurfaceSamples& samples = which == 0 ? sb : sg;
         const std::span<const glm::dvec3> pts =

@@ -30,7 +30,7 @@ TEST(BoundGregory, EvaluationMatchesOpenSubdivOnTheGregoryPatchesOfACube) {
       for (int p = 0; p < n; ++p) {
         Far::PatchTable::PatchHandle handle;
         handle.arrayIndex = a;
-        handle.patchIndex = firstPatch + p;  // absolute
+        handle.patchIndex = firstPatch + p;                   // absolute
         handle.vertIndex = p * desc.GetNumControlVertices();  // relative to the array
         const auto cvs = table.GetPatchVertices(handle);
         Gregory g;
@@ -48,10 +48,12 @@ TEST(BoundGregory, EvaluationMatchesOpenSubdivOnTheGregoryPatchesOfACube) {
           EXPECT_NEAR(glm::length(mine.position - expected), 0.0, 1e-6);
           // True derivatives: central differences of the positions.
           const double h = 1e-6;
-          const glm::dvec3 fdU = (evaluateGregory(g, u + h, v).position -
-                                  evaluateGregory(g, u - h, v).position) / (2 * h);
-          const glm::dvec3 fdV = (evaluateGregory(g, u, v + h).position -
-                                  evaluateGregory(g, u, v - h).position) / (2 * h);
+          const glm::dvec3 fdU =
+              (evaluateGregory(g, u + h, v).position - evaluateGregory(g, u - h, v).position) /
+              (2 * h);
+          const glm::dvec3 fdV =
+              (evaluateGregory(g, u, v + h).position - evaluateGregory(g, u, v - h).position) /
+              (2 * h);
           EXPECT_NEAR(glm::length(mine.du - fdU), 0.0, 1e-6 * (1.0 + glm::length(fdU)));
           EXPECT_NEAR(glm::length(mine.dv - fdV), 0.0, 1e-6 * (1.0 + glm::length(fdV)));
           ++checked;
@@ -89,7 +91,8 @@ TEST(BoundGregory, BlendDerivativeWeightsAreAtMostOneThird) {
         const double a = g.a0 + g.as * u + g.at * v, b = g.b0 + g.bs * u + g.bt * v;
         if (!(a + b > 0.0)) continue;
         const double w = bernstein(3, g.i, u) * bernstein(3, g.j, v) / ((a + b) * (a + b));
-        worst = std::max({worst, w * std::abs(g.as * b - a * g.bs), w * std::abs(g.at * b - a * g.bt)});
+        worst =
+            std::max({worst, w * std::abs(g.as * b - a * g.bs), w * std::abs(g.at * b - a * g.bt)});
       }
     }
   EXPECT_LE(worst, 1.0 / 3.0);
@@ -128,8 +131,10 @@ TEST(BoundGregory, RandomGregoryPatchesAndViewsNeverCullAVisibleSample) {
     test::boundingSphere(g, &centre, &radius);
     for (int k = 0; k < 60; ++k) {
       const auto vk = static_cast<test::ViewKind>(k % static_cast<int>(test::ViewKind::Count));
-      const size_t at = static_cast<size_t>(rng.integer(0, static_cast<int>(s.position.size()) - 1));
-      const test::View view = test::randomView(rng, vk, centre, radius, s.position[at], s.normal[at]);
+      const size_t at =
+          static_cast<size_t>(rng.integer(0, static_cast<int>(s.position.size()) - 1));
+      const test::View view =
+          test::randomView(rng, vk, centre, radius, s.position[at], s.normal[at]);
       const bool front = anyFrontFacing(s, view.eye);
       const bool culled = testConeOfNormals(cone, view.eye).culled;
       const bool outside = frustumTest(g, view.viewProj).culled;
@@ -141,10 +146,10 @@ TEST(BoundGregory, RandomGregoryPatchesAndViewsNeverCullAVisibleSample) {
       frustum += outside;
     }
   }
-  std::printf("random Gregory patches: %ld patch-views, truly back-facing %.1f%%, Gregory TCONE "
-              "%.1f%%, frustum %.1f%%, valid cones %ld of 150\n",
-              views, 100.0 * oracle / views, 100.0 * tcone / views, 100.0 * frustum / views,
-              validCones);
+  std::printf(
+      "random Gregory patches: %ld patch-views, truly back-facing %.1f%%, Gregory TCONE "
+      "%.1f%%, frustum %.1f%%, valid cones %ld of 150\n",
+      views, 100.0 * oracle / views, 100.0 * tcone / views, 100.0 * frustum / views, validCones);
   EXPECT_GT(tcone, 0);
   EXPECT_GT(frustum, 0);
 }
@@ -173,9 +178,10 @@ TEST(BoundGregory, OpenSubdivCubeGregoryPatchesAreCulledConservatively) {
       culled += c;
     }
   }
-  std::printf("OpenSubdiv cube (level 2), %zu Gregory patches x 500 views: truly back-facing "
-              "%.1f%%, Gregory TCONE %.1f%%\n",
-              patches.size(), 100.0 * oracle / views, 100.0 * culled / views);
+  std::printf(
+      "OpenSubdiv cube (level 2), %zu Gregory patches x 500 views: truly back-facing "
+      "%.1f%%, Gregory TCONE %.1f%%\n",
+      patches.size(), 100.0 * oracle / views, 100.0 * culled / views);
   EXPECT_GT(culled, views / 10);
 }
 

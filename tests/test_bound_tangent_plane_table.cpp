@@ -7,8 +7,8 @@
 #include "osd_cull/bound/tangent_plane_table.h"
 #include "test_bound_fixtures.h"
 
-#include <glm/matrix.hpp>
 #include <gtest/gtest.h>
+#include <glm/matrix.hpp>
 
 #include <set>
 #include <string>
@@ -23,9 +23,8 @@ using test::Rng;
 // The distribution matrix printed in §6: how many of the 516 terms write each target.
 // Typed in from the paper only to check the derived table against the publication.
 constexpr int kPaperTermsPerTarget[8][8] = {
-    {1, 2, 4, 5, 5, 4, 2, 1},       {2, 4, 8, 10, 10, 8, 4, 2},
-    {4, 8, 11, 17, 17, 11, 8, 4},   {5, 10, 17, 21, 21, 17, 10, 5},
-    {5, 10, 17, 21, 21, 17, 10, 5}, {4, 8, 11, 17, 17, 11, 8, 4},
+    {1, 2, 4, 5, 5, 4, 2, 1},       {2, 4, 8, 10, 10, 8, 4, 2},     {4, 8, 11, 17, 17, 11, 8, 4},
+    {5, 10, 17, 21, 21, 17, 10, 5}, {5, 10, 17, 21, 21, 17, 10, 5}, {4, 8, 11, 17, 17, 11, 8, 4},
     {2, 4, 8, 10, 10, 8, 4, 2},     {1, 2, 4, 5, 5, 4, 2, 1}};
 
 TEST(BoundTangentPlaneTable, HasThe516TermsOfSection5WithThePaperDistribution) {
@@ -45,7 +44,8 @@ TEST(BoundTangentPlaneTable, HasThe516TermsOfSection5WithThePaperDistribution) {
     ++count[t.target];
   }
   for (int r = 0; r < 8; ++r)
-    for (int c = 0; c < 8; ++c) EXPECT_EQ(count[8 * r + c], kPaperTermsPerTarget[r][c]) << r << "," << c;
+    for (int c = 0; c < 8; ++c)
+      EXPECT_EQ(count[8 * r + c], kPaperTermsPerTarget[r][c]) << r << "," << c;
   // The corner plane: T(0,0) = cross4(b0, 3(b1 - b0), 3(b4 - b0)) = 9 cross4(b0, b1, b4).
   EXPECT_EQ(terms[0].target, 0u);
   EXPECT_EQ(std::tie(terms[0].j, terms[0].k, terms[0].l), std::make_tuple(0u, 1u, 4u));
@@ -111,7 +111,8 @@ TEST(BoundTangentPlaneTable, Cross4IsTheOrientedPlaneThroughThreePoints) {
 }
 
 // Evaluates the control planes' z polynomial (bidegree 7) and its magnitude bound at (u, v).
-std::pair<double, double> evaluatePlanes(const TangentPlaneControlPlanes& planes, double u, double v) {
+std::pair<double, double> evaluatePlanes(const TangentPlaneControlPlanes& planes, double u,
+                                         double v) {
   double z = 0.0, bound = 0.0;
   for (int q = 0; q < 8; ++q)
     for (int p = 0; p < 8; ++p) {
@@ -144,9 +145,9 @@ TEST(BoundTangentPlaneTable, ControlPlanesMatchDirectCross4OfClipSpaceBAndDeriva
       const double u = rng.uniform(), v = rng.uniform();
       const PatchSample p = evaluateBezier(b, u, v);
       // Direct: cross4Z of the clip-space point and derivatives (derivatives have w = 0).
-      const double direct = cross4Z(view.viewProj * glm::dvec4(p.position, 1.0),
-                                    view.viewProj * glm::dvec4(p.du, 0.0),
-                                    view.viewProj * glm::dvec4(p.dv, 0.0));
+      const double direct =
+          cross4Z(view.viewProj * glm::dvec4(p.position, 1.0),
+                  view.viewProj * glm::dvec4(p.du, 0.0), view.viewProj * glm::dvec4(p.dv, 0.0));
       const auto [viaTable, bound] = evaluatePlanes(serial, u, v);
       ASSERT_NEAR(viaTable, direct, 1e-10 * bound) << "patch " << n << " (u,v) = " << u << "," << v;
       // §4.1: T'_z = e·T = e.w * dot(N, E - B) with e the homogeneous eye.

@@ -139,7 +139,8 @@ TEST(BoundValidity, RegularPatchesConvertedToBezierKeepOpenSubdivsParameterizati
   for (int a = 0; a < table.GetNumPatchArrays(); ++a) {
     const Far::PatchDescriptor desc = table.GetPatchArrayDescriptor(a);
     for (int p = 0; p < table.GetNumPatches(a); ++p) {
-      if (desc.GetType() != Far::PatchDescriptor::REGULAR || table.GetPatchParam(a, p).GetBoundary())
+      if (desc.GetType() != Far::PatchDescriptor::REGULAR ||
+          table.GetPatchParam(a, p).GetBoundary())
         continue;
       Far::PatchTable::PatchHandle h;
       h.arrayIndex = a;
@@ -175,8 +176,8 @@ TEST(BoundValidity, RegularPatchesConvertedToBezierKeepOpenSubdivsParameterizati
 TEST(BoundValidity, SharedShapesLeftHandedIsDisabledClosedOnesEnabled) {
   OSD_CULL_REQUIRE_DATA();
   const auto dir = osd_cull::test::dataDir() / "shapes";
-  for (const char* name : {"catmark_cube", "catmark_torus", "catmark_pyramid_creases0",
-                           "catmark_toroidal_tet"}) {
+  for (const char* name :
+       {"catmark_cube", "catmark_torus", "catmark_pyramid_creases0", "catmark_toroidal_tet"}) {
     const BackPatchValidity v = decide(test::readObjFaces(dir / (std::string(name) + ".obj")));
     EXPECT_TRUE(v.enabled) << name << ": " << v.reason;
   }

@@ -16,14 +16,14 @@ namespace osd_cull::bound {
 /// \brief Why a back-patch test culled or kept a patch. The numeric values are part of the
 /// GPU interface (the cull kernel writes them per patch).
 enum class BackPatchVerdict : uint32_t {
-  BackFacing = 0,   ///< culled: no point of the patch faces the eye
-  FrontFacing = 1,  ///< kept (tangent plane): every control plane faces the eye
-  Silhouette = 2,   ///< kept (tangent plane): control planes of both signs
+  BackFacing = 0,            ///< culled: no point of the patch faces the eye
+  FrontFacing = 1,           ///< kept (tangent plane): every control plane faces the eye
+  Silhouette = 2,            ///< kept (tangent plane): control planes of both signs
   EyeOutsideBackRegion = 3,  ///< kept (cones): the eye is not in the cone's cull region
-  NonFinite = 4,    ///< kept: NaN or Inf in the control points, matrix, eye or results
-  NoNormal = 5,     ///< kept (cones): no tangent/normal direction survives rounding
-  WideCone = 6,     ///< kept (cones): the normals do not fit in a cone narrower than 90°
-  NoFiniteEye = 7,  ///< kept (tangent plane): the projection has no finite eye
+  NonFinite = 4,             ///< kept: NaN or Inf in the control points, matrix, eye or results
+  NoNormal = 5,              ///< kept (cones): no tangent/normal direction survives rounding
+  WideCone = 6,              ///< kept (cones): the normals do not fit in a cone narrower than 90°
+  NoFiniteEye = 7,           ///< kept (tangent plane): the projection has no finite eye
 };
 
 /// \brief Result of a back-patch test.

@@ -27,8 +27,9 @@ BackPatchValidity backPatchValidity(const TopologySummary& t, std::optional<doub
     return {true, "closed and manifold; outward orientation assumed (no signed volume given)"};
   if (!std::isfinite(*signedVol)) return disabled("the signed volume is not finite");
   if (*signedVol < 0.0)
-    return disabled("the faces are oriented inward (negative signed volume); reverse the "
-                    "face vertex order to enable back-patch culling");
+    return disabled(
+        "the faces are oriented inward (negative signed volume); reverse the "
+        "face vertex order to enable back-patch culling");
   if (*signedVol == 0.0) return disabled("the surface encloses no volume");
   return {true, "closed, manifold and oriented outward"};
 }

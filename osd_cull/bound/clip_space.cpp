@@ -32,8 +32,8 @@ bool allFinite(const glm::dmat4& m) {
 namespace {
 
 // det [[a0 b0 c0], [a1 b1 c1], [a2 b2 c2]]
-double det3(double a0, double a1, double a2, double b0, double b1, double b2, double c0,
-            double c1, double c2) {
+double det3(double a0, double a1, double a2, double b0, double b1, double b2, double c0, double c1,
+            double c2) {
   return a0 * (b1 * c2 - b2 * c1) - b0 * (a1 * c2 - a2 * c1) + c0 * (a1 * b2 - a2 * b1);
 }
 
@@ -72,10 +72,9 @@ glm::dvec4 homogeneousEye(const glm::dmat4& viewProj) {
     int n = 0;
     for (int c = 0; c < 4; ++c)
       if (c != r) cols[n++] = c;
-    const double minor =
-        det3(m(rows[0], cols[0]), m(rows[1], cols[0]), m(rows[2], cols[0]),
-             m(rows[0], cols[1]), m(rows[1], cols[1]), m(rows[2], cols[1]),
-             m(rows[0], cols[2]), m(rows[1], cols[2]), m(rows[2], cols[2]));
+    const double minor = det3(m(rows[0], cols[0]), m(rows[1], cols[0]), m(rows[2], cols[0]),
+                              m(rows[0], cols[1]), m(rows[1], cols[1]), m(rows[2], cols[1]),
+                              m(rows[0], cols[2]), m(rows[1], cols[2]), m(rows[2], cols[2]));
     e[r] = (r % 2 == 0) ? minor : -minor;
   }
   return e;

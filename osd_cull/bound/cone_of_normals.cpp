@@ -157,7 +157,8 @@ ConeOfNormals combineTangentCones(const DirectionCone& tu, const DirectionCone& 
 //     component >= h - ρ along a and <= P + ρ across it (P = max perpendicular part of the
 //     d_k), so G_u is within atan((P + ρ) / (h - ρ)) of a;
 // (B) G_u is a non-negative combination of the d_k and r_m: the cone of their directions.
-DirectionCone gregoryTangentCone(const std::vector<glm::dvec3>& d, const std::vector<glm::dvec3>& r) {
+DirectionCone gregoryTangentCone(const std::vector<glm::dvec3>& d,
+                                 const std::vector<glm::dvec3>& r) {
   std::vector<glm::dvec3> all = d;
   all.insert(all.end(), r.begin(), r.end());
   const std::vector<double> zeros(all.size(), 0.0);
@@ -237,7 +238,7 @@ ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier) {
   std::array<glm::dvec3, 12> du, dv;
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 3; ++i) {
-      du[3 * j + i] = bezier[4 * j + i + 1] - bezier[4 * j + i];  // tangent patch (§2, SM88)
+      du[3 * j + i] = bezier[4 * j + i + 1] - bezier[4 * j + i];    // tangent patch (§2, SM88)
       dv[3 * j + i] = bezier[4 * (i + 1) + j] - bezier[4 * i + j];  // bitangent patch
     }
   // Differences of doubles are exact to an ulp: their directions are covered by the angle
@@ -282,7 +283,8 @@ ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> grego
   // (a_u b - a b_u)/(a + b)² (A - B); a_u b - a b_u is linear in (u, v), so its sign on
   // the unit square is that of its four corner values.
   std::vector<glm::dvec3> ru, rv;
-  auto addBlendDerivative = [&](const GregoryInterior& g, bool alongU, std::vector<glm::dvec3>& out) {
+  auto addBlendDerivative = [&](const GregoryInterior& g, bool alongU,
+                                std::vector<glm::dvec3>& out) {
     const glm::dvec3 diff = gregory[g.a] - gregory[g.b];
     bool positive = false, negative = false;
     for (int corner = 0; corner < 4; ++corner) {

@@ -38,10 +38,10 @@ struct GregoryInterior {
 /// \brief The four interior blends of OpenSubdiv's 20-point Gregory basis (points
 /// 5*corner + {P, Ep, Em, Fp, Fm}, corners (0,0), (1,0), (1,1), (0,1)).
 inline constexpr std::array<GregoryInterior, 4> kGregoryInterior{{
-    {1, 1, 3, 4, 0, 1, 0, 0, 0, 1},     // Fp0 s/(s+t),        Fm0 t/(s+t)
-    {2, 1, 8, 9, 0, 0, 1, 1, -1, 0},    // Fp1 t/(1-s+t),      Fm1 (1-s)/(1-s+t)
-    {2, 2, 13, 14, 1, -1, 0, 1, 0, -1}, // Fp2 (1-s)/(2-s-t),  Fm2 (1-t)/(2-s-t)
-    {1, 2, 18, 19, 1, 0, -1, 0, 1, 0},  // Fp3 (1-t)/(s+1-t),  Fm3 s/(s+1-t)
+    {1, 1, 3, 4, 0, 1, 0, 0, 0, 1},      // Fp0 s/(s+t),        Fm0 t/(s+t)
+    {2, 1, 8, 9, 0, 0, 1, 1, -1, 0},     // Fp1 t/(1-s+t),      Fm1 (1-s)/(1-s+t)
+    {2, 2, 13, 14, 1, -1, 0, 1, 0, -1},  // Fp2 (1-s)/(2-s-t),  Fm2 (1-t)/(2-s-t)
+    {1, 2, 18, 19, 1, 0, -1, 0, 1, 0},   // Fp3 (1-t)/(s+1-t),  Fm3 s/(s+1-t)
 }};
 
 /// \brief The Gregory point on each of the 12 boundary positions of the 4x4 Bézier net,
@@ -52,7 +52,8 @@ inline constexpr std::array<int, 16> kGregoryBoundary{0,  1,  7,  5,  2,  -1, -1
 /// \brief The Bézier net of a 20-point Gregory patch at (u, v): boundary points copied,
 /// interior points blended with the rational multipliers (corners use 1/2 each, where the
 /// multiplier is undefined and its basis function is zero).
-std::array<glm::dvec3, 16> gregoryBezierNet(std::span<const glm::dvec3> gregory, double u, double v);
+std::array<glm::dvec3, 16> gregoryBezierNet(std::span<const glm::dvec3> gregory, double u,
+                                            double v);
 
 /// \brief Evaluates a 20-point Gregory-basis patch at (u, v): the position OpenSubdiv
 /// evaluates, and the true partial derivatives (including the derivatives of the rational

@@ -13,8 +13,10 @@ namespace osd_cull::bound {
 SurfaceSamples samplePatch(std::span<const glm::dvec3> points, int n) {
   if (n < 1) throw Error(std::string(__FILE__) + ": samplePatch needs n >= 1");
   if (points.size() != 16 && points.size() != 20)
-    throw Error(std::string(__FILE__) + ": samplePatch takes 16 (Bézier) or 20 (Gregory) "
-                "points, got " + std::to_string(points.size()));
+    throw Error(std::string(__FILE__) +
+                ": samplePatch takes 16 (Bézier) or 20 (Gregory) "
+                "points, got " +
+                std::to_string(points.size()));
   SurfaceSamples s;
   const size_t count = static_cast<size_t>(n + 1) * static_cast<size_t>(n + 1);
   s.position.reserve(count);

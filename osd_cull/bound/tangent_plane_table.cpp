@@ -20,7 +20,8 @@ struct Rational {
   int64_t den = 1;
 
   static int64_t checked(bool overflow, int64_t value) {
-    if (overflow) throw Error(std::string(__FILE__) + ": tangent-plane table derivation overflowed");
+    if (overflow)
+      throw Error(std::string(__FILE__) + ": tangent-plane table derivation overflowed");
     return value;
   }
   static Rational make(int64_t n, int64_t d) {
@@ -80,8 +81,8 @@ Bernstein multiply(const Bernstein& a, const Bernstein& b) {
   for (int i = 0; i <= a.degree; ++i)
     for (int j = 0; j <= b.degree; ++j) {
       if (a.c[i].isZero() || b.c[j].isZero()) continue;
-      const Rational w = Rational::make(binomial(a.degree, i) * binomial(b.degree, j),
-                                        binomial(r.degree, i + j));
+      const Rational w =
+          Rational::make(binomial(a.degree, i) * binomial(b.degree, j), binomial(r.degree, i + j));
       r.c[i + j] = r.c[i + j] + a.c[i] * b.c[j] * w;
     }
   return r;
@@ -119,10 +120,8 @@ std::vector<TangentPlaneTerm> derive() {
           for (int y = x + 1; y < 3; ++y)
             if (s[x] > s[y]) sign = -sign;
         std::sort(s.begin(), s.end());
-        const Bernstein pu =
-            multiply(multiply(basis3(a % 4), derivative3(b % 4)), basis3(c % 4));
-        const Bernstein pv =
-            multiply(multiply(basis3(a / 4), basis3(b / 4)), derivative3(c / 4));
+        const Bernstein pu = multiply(multiply(basis3(a % 4), derivative3(b % 4)), basis3(c % 4));
+        const Bernstein pv = multiply(multiply(basis3(a / 4), basis3(b / 4)), derivative3(c / 4));
         Grid9& g = byTriple[{s[0], s[1], s[2]}];
         for (int q = 0; q <= 8; ++q)
           for (int p = 0; p <= 8; ++p) {
@@ -211,9 +210,9 @@ std::string tangentPlaneTableGlsl(bool parallelOrder) {
   out += "const uvec4 kTangentPlaneTerms[" + n + "] = uvec4[](";
   for (size_t i = 0; i < terms.size(); ++i) {
     const TangentPlaneTerm& t = terms[i];
-    out += (i % 4 == 0 ? "\n    " : " ") + std::string("uvec4(") + std::to_string(t.target) + "u, " +
-           std::to_string(t.j) + "u, " + std::to_string(t.k) + "u, " + std::to_string(t.l) + "u)" +
-           (i + 1 < terms.size() ? "," : "");
+    out += (i % 4 == 0 ? "\n    " : " ") + std::string("uvec4(") + std::to_string(t.target) +
+           "u, " + std::to_string(t.j) + "u, " + std::to_string(t.k) + "u, " + std::to_string(t.l) +
+           "u)" + (i + 1 < terms.size() ? "," : "");
   }
   out += ");\nconst float kTangentPlaneWeights[" + n + "] = float[](";
   for (size_t i = 0; i < terms.size(); ++i) {

@@ -33,7 +33,7 @@ struct TangentPlaneTerm {
   uint32_t j = 0;       ///< control point indices, j < k < l (4 * row_v + col_u)
   uint32_t k = 0;
   uint32_t l = 0;
-  double weight = 0.0;   ///< numerator / denominator, rounded to double
+  double weight = 0.0;      ///< numerator / denominator, rounded to double
   int64_t numerator = 0;    ///< the exact rational weight
   int64_t denominator = 1;  ///< > 0
 };
