@@ -34,14 +34,22 @@ Options parse(int argc, char** argv) {
       return argv[++i];
     };
     auto number = [&]() { return static_cast<uint32_t>(std::stoul(next())); };
-    if (a == "--width") o.width = number();
-    else if (a == "--height") o.height = number();
-    else if (a == "--repeats") o.repeats = std::max(1u, number());
-    else if (a == "--max-one-draw-level") o.maxOneDrawLevel = number();
-    else if (a == "--nu") o.nu = number();
-    else if (a == "--nv") o.nv = number();
-    else if (a == "--device") o.device = next();
-    else throw Error("unknown option " + a + " (see the comment at the top of bench_draw.cpp)");
+    if (a == "--width")
+      o.width = number();
+    else if (a == "--height")
+      o.height = number();
+    else if (a == "--repeats")
+      o.repeats = std::max(1u, number());
+    else if (a == "--max-one-draw-level")
+      o.maxOneDrawLevel = number();
+    else if (a == "--nu")
+      o.nu = number();
+    else if (a == "--nv")
+      o.nv = number();
+    else if (a == "--device")
+      o.device = next();
+    else
+      throw Error("unknown option " + a + " (see the comment at the top of bench_draw.cpp)");
   }
   return o;
 }
@@ -97,10 +105,14 @@ int main(int argc, char** argv) {
     frame::VisibilityOracle oracle(context);
     const auto camera = frame::frameBounds(frame::boundsOf(set.points), {0.4, -1.0, 0.8}, {0, 0, 1},
                                            40.0, o.width, o.height);
-    std::printf("device: %s\npatches: %s, %u Bezier + %u Gregory; image %ux%u; median of %u frames\n\n",
-                context.info().name.c_str(), set.source.c_str(), set.bezierCount, set.gregoryCount,
-                o.width, o.height, o.repeats);
-    std::printf("| level | draws | frame ms (wall) | GPU ms | TES invocations | TES / patch | fragment inv. | patches with pixels | one draw: frame ms | one draw: TES | one draw: patches with pixels | one draw / chunked time |\n");
+    std::printf(
+        "device: %s\npatches: %s, %u Bezier + %u Gregory; image %ux%u; median of %u frames\n\n",
+        context.info().name.c_str(), set.source.c_str(), set.bezierCount, set.gregoryCount, o.width,
+        o.height, o.repeats);
+    std::printf(
+        "| level | draws | frame ms (wall) | GPU ms | TES invocations | TES / patch | fragment "
+        "inv. | patches with pixels | one draw: frame ms | one draw: TES | one draw: patches with "
+        "pixels | one draw / chunked time |\n");
     std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (uint32_t level : {1u, 2u, 4u, 8u, 12u, 14u, 16u, 24u, 32u, 48u, 64u}) {
       frame::RenderOptions options;
@@ -113,15 +125,18 @@ int main(int argc, char** argv) {
       if (level <= o.maxOneDrawLevel) {
         options.chunkDraws = false;
         const Row one = measure(renderer, oracle, target, camera, gpu, set, options, o.repeats);
-        std::printf(" %.1f | %llu | %u | %.2f |\n", one.wallMs, static_cast<unsigned long long>(one.tes),
-                    one.visible, one.wallMs / chunked.wallMs);
+        std::printf(" %.1f | %llu | %u | %.2f |\n", one.wallMs,
+                    static_cast<unsigned long long>(one.tes), one.visible,
+                    one.wallMs / chunked.wallMs);
       } else {
         std::printf(" - | - | - | - |\n");
       }
       std::fflush(stdout);
     }
     // Adaptive levels for comparison.
-    std::printf("\n| adaptive px/segment | draws | frame ms (wall) | TES invocations | patches with pixels |\n|---:|---:|---:|---:|---:|\n");
+    std::printf(
+        "\n| adaptive px/segment | draws | frame ms (wall) | TES invocations | patches with pixels "
+        "|\n|---:|---:|---:|---:|---:|\n");
     for (double px : {16.0, 8.0, 4.0, 2.0}) {
       frame::RenderOptions options;
       options.tessellation.mode = frame::TessellationOptions::Mode::Adaptive;

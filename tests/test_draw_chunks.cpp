@@ -95,7 +95,8 @@ TEST(TessLevels, AdaptiveLevelOfASharedEdgeIsTheSameFromBothSides) {
   for (int i = 0; i < 4; ++i) b[i] = a[4 * (3 - i) + 3];
   const std::array patches{a, b};
   const PatchSet set = frame::bezierPatchSet(patches, "test:pair");
-  const auto camera = frame::Camera::lookAt({0.3, 0.2, 0}, {0.5, 0.5, -5}, {0, 1, 0}, 50, 200, 100, 0.1, 20);
+  const auto camera =
+      frame::Camera::lookAt({0.3, 0.2, 0}, {0.5, 0.5, -5}, {0, 1, 0}, 50, 200, 100, 0.1, 20);
   frame::TessellationOptions t;
   t.mode = frame::TessellationOptions::Mode::Adaptive;
   t.pixelsPerSegment = 3.0;

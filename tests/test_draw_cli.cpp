@@ -37,15 +37,17 @@ TEST(RenderCommand, DrawsTheBuiltInSceneAndWritesImages) {
   const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cli";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const Result r = runCommand(program().string() + " render --out " + (dir / "scene.png").string() +
-                              " --width 96 --height 64 --tess 2 --frames 2 --orbit 30 --ids --validate --out-dir " +
-                              (dir / "frames").string());
+  const Result r = runCommand(
+      program().string() + " render --out " + (dir / "scene.png").string() +
+      " --width 96 --height 64 --tess 2 --frames 2 --orbit 30 --ids --validate --out-dir " +
+      (dir / "frames").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("frame 0:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("frame 1:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("TES invocations"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("wrote "), std::string::npos) << r.output;
-  for (const char* f : {"scene.png", "scene_ids.png", "scene_depth.png", "frames/frame_0000.png", "frames/frame_0001.png"}) {
+  for (const char* f : {"scene.png", "scene_ids.png", "scene_depth.png", "frames/frame_0000.png",
+                        "frames/frame_0001.png"}) {
     ASSERT_TRUE(fs::exists(dir / f)) << f;
     const auto image = frame::readPng(dir / f);
     EXPECT_EQ(image.width, 96u) << f;

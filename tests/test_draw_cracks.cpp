@@ -97,18 +97,20 @@ TEST_F(CrackTest, TorusWithTransitionEdgesHasNoPinholes) {
   o.nu = 8;
   o.nv = 6;
   o.refinePatch = 0;  // around theta = 0, phi = 0: the outer equator at (1.4, 0, 0)
-  const PatchSet torus = frame::convertToGregory(frame::bsplineTorus(o), [](uint32_t p) { return p % 2 == 1; });
+  const PatchSet torus =
+      frame::convertToGregory(frame::bsplineTorus(o), [](uint32_t p) { return p % 2 == 1; });
   frame::GpuPatchSet gpu(context(), torus);
   frame::RenderTarget target(context(), 96, 96);
   frame::Renderer renderer(context());
   // Targets on the refined patch's boundary (theta in [0, 45], phi in [0, 60] degrees):
   // its transition edges, their midpoints (where the children meet) and corners.
   const std::pair<double, double> targets[] = {{0, 30}, {45, 30}, {22.5, 0}, {22.5, 60},
-                                               {0, 0}, {45, 60}, {22.5, 30}};
+                                               {0, 0},  {45, 60}, {22.5, 30}};
   for (const RenderOptions& options : tessellations()) {
     for (const auto& [thetaDeg, phiDeg] : targets) {
       const double theta = glm::radians(thetaDeg), phi = glm::radians(phiDeg);
-      const glm::dvec3 normal(std::cos(phi) * std::cos(theta), std::cos(phi) * std::sin(theta), std::sin(phi));
+      const glm::dvec3 normal(std::cos(phi) * std::cos(theta), std::cos(phi) * std::sin(theta),
+                              std::sin(phi));
       const glm::dvec3 onSurface = glm::dvec3(std::cos(theta), std::sin(theta), 0.0) + 0.4 * normal;
       const glm::dvec3 tangent(-std::sin(theta), std::cos(theta), 0.0);
       const glm::dvec3 eye = onSurface + 0.15 * glm::normalize(normal + 0.3 * tangent);
@@ -123,8 +125,8 @@ TEST_F(CrackTest, TorusWithTransitionEdgesHasNoPinholes) {
                                std::to_string(int(phiDeg)) + ".png"),
                         frame::colorImage(96, 96, target.readColor(context())));
       }
-      EXPECT_EQ(histogram.count(0), 0u) << "background pixels (cracks) looking at theta "
-                                        << thetaDeg << ", phi " << phiDeg;
+      EXPECT_EQ(histogram.count(0), 0u)
+          << "background pixels (cracks) looking at theta " << thetaDeg << ", phi " << phiDeg;
       EXPECT_GE(histogram.size(), 2u);  // patches meet in view
     }
   }

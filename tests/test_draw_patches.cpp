@@ -95,11 +95,13 @@ TEST_F(DrawTest, UniformLevelGivesPatchesTimesLevelPlusOneSquaredEvaluations) {
 // Height field over pixels [8, 56) x [8, 56): x, y of every point on the Bézier grid (so
 // x = 8 + 48u, y = -(8 + 48v) exactly), z = -3 + h with Fp and Fm of different heights.
 PatchSet gregoryHeightField() {
-  auto grid = [](int i, int j, double h) { return glm::dvec3(8.0 + 16.0 * i, -(8.0 + 16.0 * j), -3.0 + h); };
+  auto grid = [](int i, int j, double h) {
+    return glm::dvec3(8.0 + 16.0 * i, -(8.0 + 16.0 * j), -3.0 + h);
+  };
   std::vector<glm::dvec3> g = {
-      grid(0, 0, 0.0), grid(1, 0, 0.3), grid(0, 1, -0.2), grid(1, 1, 1.0), grid(1, 1, -1.0),
+      grid(0, 0, 0.0), grid(1, 0, 0.3), grid(0, 1, -0.2), grid(1, 1, 1.0),  grid(1, 1, -1.0),
       grid(3, 0, 0.1), grid(3, 1, 0.2), grid(2, 0, -0.3), grid(2, 1, -0.8), grid(2, 1, 0.9),
-      grid(3, 3, 0.0), grid(2, 3, 0.4), grid(3, 2, -0.1), grid(2, 2, 1.1), grid(2, 2, -0.7),
+      grid(3, 3, 0.0), grid(2, 3, 0.4), grid(3, 2, -0.1), grid(2, 2, 1.1),  grid(2, 2, -0.7),
       grid(0, 3, 0.2), grid(0, 2, 0.0), grid(1, 3, -0.4), grid(1, 2, -1.0), grid(1, 2, 0.8)};
   PatchSet set;
   set.source = "test:gregory-height-field";
@@ -123,7 +125,8 @@ TEST_F(DrawTest, GregoryPatchBlendsInteriorPointsAsOpenSubdiv) {
   // The same points with Fp and Fm averaged: a plain Bézier patch that a renderer
   // ignoring the Gregory blend would draw.
   std::vector<glm::dvec3> averaged(cp.begin(), cp.end());
-  for (int c = 0; c < 4; ++c) averaged[5 * c + 3] = averaged[5 * c + 4] = 0.5 * (cp[5 * c + 3] + cp[5 * c + 4]);
+  for (int c = 0; c < 4; ++c)
+    averaged[5 * c + 3] = averaged[5 * c + 4] = 0.5 * (cp[5 * c + 3] + cp[5 * c + 4]);
   double maxError = 0.0, maxBlendEffect = 0.0;
   for (uint32_t y = 8; y < 56; ++y)
     for (uint32_t x = 8; x < 56; ++x) {
@@ -145,7 +148,8 @@ TEST_F(DrawTest, GregoryPatchesFromBezierDrawTheSameSurface) {
   frame::GpuPatchSet gpuB(context(), bezier), gpuG(context(), gregory);
   frame::RenderTarget target(context(), 96, 96);
   frame::Renderer renderer(context());
-  const auto camera = frame::Camera::lookAt({1.5, 2.0, 2.5}, {0, 0, 0}, {0, 1, 0}, 50.0, 96, 96, 0.5, 10);
+  const auto camera =
+      frame::Camera::lookAt({1.5, 2.0, 2.5}, {0, 0, 0}, {0, 1, 0}, 50.0, 96, 96, 0.5, 10);
   RenderOptions options;
   options.tessellation.uniformLevel = 6;
   renderer.render(target, camera, gpuB, &bezier, options);
@@ -172,7 +176,8 @@ TEST_F(DrawTest, BackFaceCullingKeepsTheSideFacingTheEye) {
   frame::GpuPatchSet gpu(context(), sphere);
   frame::RenderTarget target(context(), 64, 64);
   frame::Renderer renderer(context());
-  const auto camera = frame::Camera::lookAt({0.3, 0.4, 3.0}, {0, 0, 0}, {0, 1, 0}, 50.0, 64, 64, 0.5, 10);
+  const auto camera =
+      frame::Camera::lookAt({0.3, 0.4, 3.0}, {0, 0, 0}, {0, 1, 0}, 50.0, 64, 64, 0.5, 10);
   RenderOptions options;
   options.tessellation.uniformLevel = 4;
   const auto all = renderer.render(target, camera, gpu, &sphere, options);
@@ -185,7 +190,8 @@ TEST_F(DrawTest, BackFaceCullingKeepsTheSideFacingTheEye) {
 
   // A single flat patch whose normal (dP/du x dP/dv) points away from the eye vanishes.
   const auto away = frame::flatBezierPatch({16.0, -48.0, -3.0}, {0.0, 32.0, 0.0}, {32.0, 0.0, 0.0});
-  const auto toward = frame::flatBezierPatch({16.0, -48.0, -3.0}, {32.0, 0.0, 0.0}, {0.0, 32.0, 0.0});
+  const auto toward =
+      frame::flatBezierPatch({16.0, -48.0, -3.0}, {32.0, 0.0, 0.0}, {0.0, 32.0, 0.0});
   for (const auto& [patch, visible] : {std::pair{away, false}, std::pair{toward, true}}) {
     const PatchSet one = frame::bezierPatchSet(std::span(&patch, 1), "test:one");
     frame::GpuPatchSet gpuOne(context(), one);
@@ -217,7 +223,7 @@ TEST_F(DrawTest, DegeneratePatchesDoNotDisturbTheOthers) {
     const auto items = target.readItems(context());
     const auto color = target.readColor(context());
     const auto histogram = test::itemHistogram(items);
-    EXPECT_EQ(histogram.count(2), 0u);                              // a point covers nothing
+    EXPECT_EQ(histogram.count(2), 0u);                                // a point covers nothing
     EXPECT_EQ(histogram.count(4) ? histogram.at(4) : 0u, 24u * 24u);  // rows 38..61, columns 2..25
     ASSERT_GT(histogram.count(3) ? histogram.at(3) : 0u, 100u);
     for (size_t i = 0; i < items.size(); ++i)
@@ -232,7 +238,8 @@ PatchSet patchGrid(uint32_t k, double size) {
   std::vector<std::array<glm::dvec3, 16>> patches;
   for (uint32_t j = 0; j < k; ++j)
     for (uint32_t i = 0; i < k; ++i)
-      patches.push_back(frame::flatBezierPatch({size * i, -size * (j + 1), -3.0}, {size, 0, 0}, {0, size, 0}));
+      patches.push_back(
+          frame::flatBezierPatch({size * i, -size * (j + 1), -3.0}, {size, 0, 0}, {0, size, 0}));
   return frame::bezierPatchSet(patches, "test:grid");
 }
 
@@ -283,12 +290,14 @@ TEST_F(DrawTest, IndirectDrawsOfACulledListDrawExactlyThoseSlots) {
   RenderOptions options;
   context().submit([&](VkCommandBuffer cmd) {
     renderer.beginPass(cmd, target, options);
-    renderer.recordIndirect(cmd, camera, draw, PatchType::Bezier, commandBuffer, 0, count, 0, 3, options);
+    renderer.recordIndirect(cmd, camera, draw, PatchType::Bezier, commandBuffer, 0, count, 0, 3,
+                            options);
     renderer.endPass(cmd);
   });
   const auto histogram = test::itemHistogram(target.readItems(context()));
   EXPECT_EQ(histogram.size(), 5u);  // background and four patches
-  for (uint32_t p : {3u, 7u, 12u, 0u}) EXPECT_EQ(histogram.count(p + 1) ? histogram.at(p + 1) : 0u, 256u) << p;
+  for (uint32_t p : {3u, 7u, 12u, 0u})
+    EXPECT_EQ(histogram.count(p + 1) ? histogram.at(p + 1) : 0u, 256u) << p;
   EXPECT_EQ(histogram.count(10), 0u);
 }
 
@@ -302,13 +311,15 @@ TEST_F(DrawTest, AdaptiveLevelsGrowWithScreenSizeAndMatchTheHostMirror) {
   options.tessellation.pixelsPerSegment = 6.0;
   uint64_t previous = 0;
   for (double distance : {12.0, 6.0, 3.0}) {
-    const auto camera = frame::Camera::lookAt({0.2, 0.3, distance}, {0, 0, 0}, {0, 1, 0}, 40.0, 128, 128, 0.1, 20);
+    const auto camera =
+        frame::Camera::lookAt({0.2, 0.3, distance}, {0, 0, 0}, {0, 1, 0}, 40.0, 128, 128, 0.1, 20);
     const auto stats = renderer.render(target, camera, gpu, &sphere, options);
     // Expected evaluations from the host mirror: equal spacing rounds levels up; a quad
     // with an inner level of 1 and some outer level above 1 uses inner level 2.
     uint64_t expected = 0;
     for (uint32_t p = 0; p < sphere.patchCount(); ++p) {
-      const auto levels = frame::patchTessLevels(sphere, p, camera.viewProjection(), {128.0, 128.0}, options.tessellation);
+      const auto levels = frame::patchTessLevels(sphere, p, camera.viewProjection(), {128.0, 128.0},
+                                                 options.tessellation);
       double o[4], in[2] = {std::ceil(levels.inner(0)), std::ceil(levels.inner(1))};
       bool allOne = in[0] == 1 && in[1] == 1;
       for (int e = 0; e < 4; ++e) {
@@ -335,7 +346,8 @@ TEST_F(DrawTest, ImagesRoundTripThroughPng) {
   frame::Renderer renderer(context());
   RenderOptions options;
   options.debugColors = true;
-  const auto camera = frame::Camera::lookAt({0, 0, 3.5}, {0, 0, 0}, {0, 1, 0}, 45.0, 48, 32, 0.5, 10);
+  const auto camera =
+      frame::Camera::lookAt({0, 0, 3.5}, {0, 0, 0}, {0, 1, 0}, 45.0, 48, 32, 0.5, 10);
   renderer.render(target, camera, gpu, &sphere, options);
   const auto dir = std::filesystem::path(OSD_CULL_BINARY_DIR) / "test_output";
   std::filesystem::create_directories(dir);
@@ -356,7 +368,8 @@ TEST_F(DrawTest, ImagesRoundTripThroughPng) {
   const auto d = frame::readPng(dir / "sphere_depth.png");
   ASSERT_EQ(d.bitDepth, 16);
   for (size_t i = 0; i < depth.size(); ++i) ASSERT_EQ(d.samples16[i] == 65535, depth[i] >= 1.0f);
-  EXPECT_THROW(frame::writePng(dir / "no_such_dir" / "x.png", frame::colorImage(48, 32, color)), Error);
+  EXPECT_THROW(frame::writePng(dir / "no_such_dir" / "x.png", frame::colorImage(48, 32, color)),
+               Error);
 }
 
 }  // namespace

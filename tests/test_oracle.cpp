@@ -27,12 +27,14 @@ TEST_F(OracleTest, PatchesBehindAnOpaqueWallHaveZeroPixels) {
   for (int i = 0; i < 4; ++i) row.push_back(square(16.0 * i, 8, 16, 16, -5));
   const PatchSet set = frame::bezierPatchSet(row, "test:row");
   frame::GpuPatchSet gpu(context(), set);
-  frame::GpuTriangleMesh wall(context(), frame::quadMesh({-4, 4, -3}, {40, 4, -3}, {40, -40, -3}, {-4, -40, -3}));
+  frame::GpuTriangleMesh wall(
+      context(), frame::quadMesh({-4, 4, -3}, {40, 4, -3}, {40, -40, -3}, {-4, -40, -3}));
   const frame::GpuTriangleMesh* occluders[] = {&wall};
   frame::RenderTarget target(context(), 64, 32);
   frame::Renderer renderer(context());
   frame::VisibilityOracle oracle(context());
-  const auto counts = oracle.query(renderer, target, test::pixelCamera(64, 32), gpu, &set, occluders, {});
+  const auto counts =
+      oracle.query(renderer, target, test::pixelCamera(64, 32), gpu, &set, occluders, {});
   ASSERT_EQ(counts.patchCount(), 4u);
   EXPECT_EQ(counts.pixels[0], 0u);
   EXPECT_EQ(counts.pixels[1], 0u);
@@ -40,7 +42,8 @@ TEST_F(OracleTest, PatchesBehindAnOpaqueWallHaveZeroPixels) {
   EXPECT_EQ(counts.pixels[3], 16u * 16u);
   EXPECT_EQ(counts.visiblePatchCount(), 2u);
   EXPECT_EQ(counts.occluderPixels, 40u * 32u);  // the wall covers columns 0..39, all rows
-  EXPECT_EQ(counts.backgroundPixels + counts.occluderPixels + counts.pixels[2] + counts.pixels[3], 64u * 32u);
+  EXPECT_EQ(counts.backgroundPixels + counts.occluderPixels + counts.pixels[2] + counts.pixels[3],
+            64u * 32u);
   EXPECT_EQ(counts.unknownPixels, 0u);
 }
 
@@ -64,7 +67,8 @@ TEST_F(OracleTest, PatchesOutsideTheViewHaveZeroPixels) {
 
 TEST_F(OracleTest, PatchSeenExactlyEdgeOnHasZeroPixels) {
   // Eye at the origin looking down -z; a flat patch in the plane y = 0 projects to a line.
-  const auto camera = frame::Camera::lookAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60.0, 64, 64, 0.1, 100);
+  const auto camera =
+      frame::Camera::lookAt({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60.0, 64, 64, 0.1, 100);
   frame::RenderTarget target(context(), 64, 64);
   frame::Renderer renderer(context());
   frame::VisibilityOracle oracle(context());
@@ -84,13 +88,14 @@ TEST_F(OracleTest, PatchSeenExactlyEdgeOnHasZeroPixels) {
 
 TEST_F(OracleTest, FullyVisiblePatchCountsItsRectangleAndItsTiles) {
   const auto patch = square(16, 8, 32, 32, -3);  // columns 16..47, rows 8..39
-  const PatchSet set = frame::convertToGregory(frame::bezierPatchSet(std::span(&patch, 1), "test:rect"),
-                                               [](uint32_t) { return true; });
+  const PatchSet set = frame::convertToGregory(
+      frame::bezierPatchSet(std::span(&patch, 1), "test:rect"), [](uint32_t) { return true; });
   frame::GpuPatchSet gpu(context(), set);
   frame::RenderTarget target(context(), 64, 64);
   frame::Renderer renderer(context());
   frame::VisibilityOracle oracle(context());
-  const auto counts = oracle.query(renderer, target, test::pixelCamera(64, 64), gpu, &set, {}, {}, 2);
+  const auto counts =
+      oracle.query(renderer, target, test::pixelCamera(64, 64), gpu, &set, {}, {}, 2);
   EXPECT_EQ(counts.pixels[0], 32u * 32u);
   ASSERT_EQ(counts.tilesPerSide(), 4u);
   ASSERT_EQ(counts.tileWidth(), 16u);
@@ -117,7 +122,8 @@ TEST_F(OracleTest, CountsEqualTheItemBufferReadBack) {
   frame::RenderTarget target(context(), w, h);
   frame::Renderer renderer(context());
   frame::VisibilityOracle oracle(context());
-  const auto camera = frame::Camera::lookAt({0.5, -1.0, 3.5}, {0, 0, 0}, {0, 0, 1}, 45.0, w, h, 0.1, 20);
+  const auto camera =
+      frame::Camera::lookAt({0.5, -1.0, 3.5}, {0, 0, 0}, {0, 0, 1}, 45.0, w, h, 0.1, 20);
   TessellationOptions tess;
   tess.mode = TessellationOptions::Mode::Adaptive;
   const auto counts = oracle.query(renderer, target, camera, gpu, &scene, occluders, tess, 3);

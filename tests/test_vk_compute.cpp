@@ -45,11 +45,13 @@ TEST_F(VkTest, ComputeAxpyProducesExactValuesAndIsCounted) {
   vk::upload<uint32_t>(context(), bx, x);
   vk::upload<uint32_t>(context(), by, y);
 
-  const vk::DescriptorBinding bindings[] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-                                            {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+  const vk::DescriptorBinding bindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
   auto setLayout = vk::createDescriptorSetLayout(context(), bindings);
   const VkDescriptorSetLayout sl = setLayout.get();
-  auto layout = vk::createPipelineLayout(context(), {&sl, 1}, sizeof(Push), VK_SHADER_STAGE_COMPUTE_BIT);
+  auto layout =
+      vk::createPipelineLayout(context(), {&sl, 1}, sizeof(Push), VK_SHADER_STAGE_COMPUTE_BIT);
   vk::SpecializationConstants constants;
   constants.set(0, uint32_t{5});
   auto spirv = vk::compileGlsl(kAxpy, "test/axpy.comp", VK_SHADER_STAGE_COMPUTE_BIT);
@@ -64,7 +66,8 @@ TEST_F(VkTest, ComputeAxpyProducesExactValuesAndIsCounted) {
     stats.reset(cmd);
     stats.begin(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0,
+                            nullptr);
     vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, vk::groupCount(n, 64), 1, 1);
     stats.end(cmd);
@@ -92,7 +95,8 @@ TEST_F(VkTest, TimestampsAreOrderedAndNonNegative) {
 }
 
 TEST_F(VkTest, ComputeProgramRefusesAShaderThatIsNotEmbedded) {
-  const vk::DescriptorBinding bindings[] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+  const vk::DescriptorBinding bindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
   EXPECT_THROW(vk::ComputeProgram(context(), {"no/such/file.comp", {}}, bindings, 8), Error);
 }
 

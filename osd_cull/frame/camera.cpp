@@ -2,8 +2,8 @@
 
 #include "osd_cull/error.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -41,7 +41,8 @@ Camera Camera::lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm
     throw Error("camera: eye equals target, or up is parallel to the view direction");
   Camera c;
   c.view = glm::lookAt(eye, target, up);
-  c.projection = perspectiveVk(glm::radians(fovyDegrees), double(width) / double(height), zNear, zFar);
+  c.projection =
+      perspectiveVk(glm::radians(fovyDegrees), double(width) / double(height), zNear, zFar);
   c.width = width;
   c.height = height;
   return c;
@@ -86,7 +87,8 @@ Camera frameBounds(const Bounds& bounds, const glm::dvec3& fromDirection, const 
                         std::max(distance - r * 1.5, distance * 1e-3), distance + r * 1.5);
 }
 
-Camera orbit(const Camera& camera, const glm::dvec3& pivot, const glm::dvec3& axis, double degrees) {
+Camera orbit(const Camera& camera, const glm::dvec3& pivot, const glm::dvec3& axis,
+             double degrees) {
   glm::dmat4 m = glm::translate(glm::dmat4(1.0), pivot);
   m = glm::rotate(m, glm::radians(degrees), glm::normalize(axis));
   m = glm::translate(m, -pivot);

@@ -25,7 +25,8 @@ OpenSubdiv::Far::PatchParam makeParam(uint32_t faceId, unsigned short u, unsigne
 std::array<Patch16, 4> splitQuarters(const Patch16& b) {
   auto splitCurve = [](const std::array<glm::dvec3, 4>& c, std::array<glm::dvec3, 4>& left,
                        std::array<glm::dvec3, 4>& right) {
-    const glm::dvec3 b01 = 0.5 * (c[0] + c[1]), b12 = 0.5 * (c[1] + c[2]), b23 = 0.5 * (c[2] + c[3]);
+    const glm::dvec3 b01 = 0.5 * (c[0] + c[1]), b12 = 0.5 * (c[1] + c[2]),
+                     b23 = 0.5 * (c[2] + c[3]);
     const glm::dvec3 b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23);
     const glm::dvec3 m = 0.5 * (b012 + b123);
     left = {c[0], b01, b012, m};
@@ -71,10 +72,9 @@ std::array<glm::dvec3, 20> gregoryFromBezier(std::span<const glm::dvec3, 16> b) 
   auto at = [&](int i, int j) { return b[4 * j + i]; };
   // Corner c: P, Ep (towards the next corner), Em (towards the previous), Fp, Fm
   // (see Osd_EvalBasisGregory's boundary and interior tables).
-  return {at(0, 0), at(1, 0), at(0, 1), at(1, 1), at(1, 1),
-          at(3, 0), at(3, 1), at(2, 0), at(2, 1), at(2, 1),
-          at(3, 3), at(2, 3), at(3, 2), at(2, 2), at(2, 2),
-          at(0, 3), at(0, 2), at(1, 3), at(1, 2), at(1, 2)};
+  return {at(0, 0), at(1, 0), at(0, 1), at(1, 1), at(1, 1), at(3, 0), at(3, 1),
+          at(2, 0), at(2, 1), at(2, 1), at(3, 3), at(2, 3), at(3, 2), at(2, 2),
+          at(2, 2), at(0, 3), at(0, 2), at(1, 3), at(1, 2), at(1, 2)};
 }
 
 PatchSet bezierPatchSet(std::span<const std::array<glm::dvec3, 16>> patches, std::string source) {
@@ -151,9 +151,10 @@ PatchSet bezierSphere(const glm::dvec3& center, double radius, uint32_t k) {
   if (k == 0) throw Error("bezierSphere: k must be positive");
   // Cube face f: point = n + a * s + b * t, a, b in [-1, 1]; (s, t, n) right-handed so
   // that dP/du x dP/dv points outwards.
-  const glm::dvec3 axes[6][3] = {{{0, 1, 0}, {0, 0, 1}, {1, 0, 0}},  {{0, 0, 1}, {0, 1, 0}, {-1, 0, 0}},
-                                 {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
-                                 {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},  {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}};
+  const glm::dvec3 axes[6][3] = {
+      {{0, 1, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, 0, 1}, {0, 1, 0}, {-1, 0, 0}},
+      {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, {{1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+      {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}};
   const uint32_t n = 3 * k;  // grid intervals per face side
   std::vector<Patch16> patches;
   for (const auto& f : axes) {
@@ -184,7 +185,8 @@ PatchSet bsplineTorus(const TorusOptions& o) {
     const double theta = 2.0 * glm::pi<double>() * ii / nu;
     const double phi = 2.0 * glm::pi<double>() * jj / nv;
     const double ring = o.majorRadius + o.minorRadius * std::cos(phi);
-    return o.center + glm::dvec3(ring * std::cos(theta), ring * std::sin(theta), o.minorRadius * std::sin(phi));
+    return o.center + glm::dvec3(ring * std::cos(theta), ring * std::sin(theta),
+                                 o.minorRadius * std::sin(phi));
   };
   // Uniform cubic B-spline to Bézier: bez = M * cv, per direction.
   const double M[4][4] = {{1.0 / 6, 4.0 / 6, 1.0 / 6, 0},
@@ -212,9 +214,9 @@ PatchSet bsplineTorus(const TorusOptions& o) {
   // Transition bits of the neighbours on the edge they share with patch r
   // (Far edge order: 0 v=0, 1 u=1, 2 v=1, 3 u=0).
   std::vector<unsigned short> transition(patches.size(), 0);
-  transition[rj * nu + (ri + 1) % nu] |= 8;       // right neighbour: its u=0 edge
-  transition[rj * nu + (ri + nu - 1) % nu] |= 2;  // left neighbour: its u=1 edge
-  transition[((rj + 1) % nv) * nu + ri] |= 1;     // upper neighbour: its v=0 edge
+  transition[rj * nu + (ri + 1) % nu] |= 8;         // right neighbour: its u=0 edge
+  transition[rj * nu + (ri + nu - 1) % nu] |= 2;    // left neighbour: its u=1 edge
+  transition[((rj + 1) % nv) * nu + ri] |= 1;       // upper neighbour: its v=0 edge
   transition[((rj + nv - 1) % nv) * nu + ri] |= 4;  // lower neighbour: its v=1 edge
   std::vector<Patch16> out;
   PatchSet result;

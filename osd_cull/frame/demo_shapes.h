@@ -44,8 +44,8 @@ PatchSet bezierSphere(const glm::dvec3& center, double radius, uint32_t k);
 
 /// \brief Options of bsplineTorus().
 struct TorusOptions {
-  uint32_t nu = 8;             ///< patches around the main ring
-  uint32_t nv = 6;             ///< patches around the tube
+  uint32_t nu = 8;  ///< patches around the main ring
+  uint32_t nv = 6;  ///< patches around the tube
   double majorRadius = 1.0;
   double minorRadius = 0.4;
   glm::dvec3 center{0.0};

@@ -33,11 +33,11 @@ GpuPatchSet::GpuPatchSet(vk::Context& context, const PatchSet& patches)
       gregoryCount_(patches.gregoryCount),
       pointCount_(static_cast<uint32_t>(patches.points.size())) {
   const uint32_t n = patches.patchCount();
-  const size_t expectedPoints = size_t{patches.bezierCount} * kBezierPoints +
-                                size_t{patches.gregoryCount} * kGregoryPoints;
+  const size_t expectedPoints =
+      size_t{patches.bezierCount} * kBezierPoints + size_t{patches.gregoryCount} * kGregoryPoints;
   if (patches.points.size() != expectedPoints || patches.params.size() != n)
-    throw Error("GpuPatchSet: PatchSet '" + patches.source + "' is inconsistent: " +
-                std::to_string(patches.points.size()) + " points and " +
+    throw Error("GpuPatchSet: PatchSet '" + patches.source +
+                "' is inconsistent: " + std::to_string(patches.points.size()) + " points and " +
                 std::to_string(patches.params.size()) + " params for " +
                 std::to_string(patches.bezierCount) + " Bezier and " +
                 std::to_string(patches.gregoryCount) + " Gregory patches (expected " +

@@ -28,11 +28,16 @@ void onPngWarning(png_structp, png_const_charp) {}
 
 int colorType(int channels) {
   switch (channels) {
-    case 1: return PNG_COLOR_TYPE_GRAY;
-    case 2: return PNG_COLOR_TYPE_GRAY_ALPHA;
-    case 3: return PNG_COLOR_TYPE_RGB;
-    case 4: return PNG_COLOR_TYPE_RGBA;
-    default: throw Error("PNG: channels must be 1 to 4, got " + std::to_string(channels));
+    case 1:
+      return PNG_COLOR_TYPE_GRAY;
+    case 2:
+      return PNG_COLOR_TYPE_GRAY_ALPHA;
+    case 3:
+      return PNG_COLOR_TYPE_RGB;
+    case 4:
+      return PNG_COLOR_TYPE_RGBA;
+    default:
+      throw Error("PNG: channels must be 1 to 4, got " + std::to_string(channels));
   }
 }
 
@@ -67,12 +72,14 @@ void writePng(const std::filesystem::path& path, const PngImage& image) {
   // Heap-held: the error handler writes it and longjmps back (locals changed between
   // setjmp and longjmp would be indeterminate).
   auto message = std::make_unique<std::string>();
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message.get(), onPngError, onPngWarning);
+  png_structp png =
+      png_create_write_struct(PNG_LIBPNG_VER_STRING, message.get(), onPngError, onPngWarning);
   if (!png) throw Error("PNG " + path.string() + ": libpng init failed");
   png_infop info = png_create_info_struct(png);
   if (!info || setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    throw Error("PNG " + path.string() + ": " + (message->empty() ? std::string("write failed") : *message));
+    throw Error("PNG " + path.string() + ": " +
+                (message->empty() ? std::string("write failed") : *message));
   }
   png_init_io(png, file.get());
   png_set_IHDR(png, info, image.width, image.height, image.bitDepth, type, PNG_INTERLACE_NONE,
@@ -89,7 +96,8 @@ PngImage readPng(const std::filesystem::path& path) {
   // Heap-held: the error handler writes it and longjmps back (locals changed between
   // setjmp and longjmp would be indeterminate).
   auto message = std::make_unique<std::string>();
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, message.get(), onPngError, onPngWarning);
+  png_structp png =
+      png_create_read_struct(PNG_LIBPNG_VER_STRING, message.get(), onPngError, onPngWarning);
   if (!png) throw Error("PNG " + path.string() + ": libpng init failed");
   png_infop info = png_create_info_struct(png);
   PngImage image;
@@ -97,7 +105,8 @@ PngImage readPng(const std::filesystem::path& path) {
   std::vector<png_bytep> rows;
   if (!info || setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, nullptr);
-    throw Error("PNG " + path.string() + ": " + (message->empty() ? std::string("read failed") : *message));
+    throw Error("PNG " + path.string() + ": " +
+                (message->empty() ? std::string("read failed") : *message));
   }
   png_init_io(png, file.get());
   png_read_info(png, info);
@@ -136,8 +145,10 @@ PngImage depthImage(uint32_t width, uint32_t height, std::span<const float> dept
   PngImage image{width, height, 1, 16, {}, std::vector<uint16_t>(depth.size())};
   const float range = hi > lo ? hi - lo : 1.0f;
   for (size_t i = 0; i < depth.size(); ++i)
-    image.samples16[i] = depth[i] >= 1.0f ? 65535
-                                          : static_cast<uint16_t>(std::clamp((depth[i] - lo) / range, 0.0f, 1.0f) * 65534.0f);
+    image.samples16[i] =
+        depth[i] >= 1.0f
+            ? 65535
+            : static_cast<uint16_t>(std::clamp((depth[i] - lo) / range, 0.0f, 1.0f) * 65534.0f);
   return image;
 }
 

@@ -70,8 +70,9 @@ RenderTarget::RenderTarget(vk::Context& context, uint32_t width, uint32_t height
                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
   items_ = vk::Image(context, {width, height, kItemFormat,
                                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT});
-  depth_ = vk::Image(context, {width, height, kDepthFormat,
-                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+  depth_ = vk::Image(context,
+                     {width, height, kDepthFormat,
+                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
   clearPass_ = createTargetRenderPass(context, true);
   loadPass_ = createTargetRenderPass(context, false);
   const VkImageView views[3] = {color_.view(), items_.view(), depth_.view()};

@@ -21,7 +21,8 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
   c.eye = glm::vec4(glm::vec3(camera.eye()), float(t.pixelsPerSegment));
   c.viewport = glm::vec4(float(camera.width), float(camera.height), float(t.uniformLevel),
                          float(t.maxLevel));
-  c.mode = t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
+  c.mode =
+      t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
   c.flags = options.debugColors ? shader::kFlagDebugColors : 0u;
   return c;
 }
@@ -33,9 +34,10 @@ void checkOptions(const vk::Context& context, const Camera& camera, const Render
   if (t.maxLevel < 2 || t.maxLevel > deviceMax)
     throw Error("tessellation maxLevel " + std::to_string(t.maxLevel) + " is not in [2, " +
                 std::to_string(deviceMax) + "]");
-  if (t.mode == TessellationOptions::Mode::Uniform && (t.uniformLevel < 1 || t.uniformLevel > t.maxLevel))
-    throw Error("uniform tessellation level " + std::to_string(t.uniformLevel) +
-                " is not in [1, " + std::to_string(t.maxLevel) + "]");
+  if (t.mode == TessellationOptions::Mode::Uniform &&
+      (t.uniformLevel < 1 || t.uniformLevel > t.maxLevel))
+    throw Error("uniform tessellation level " + std::to_string(t.uniformLevel) + " is not in [1, " +
+                std::to_string(t.maxLevel) + "]");
   if (t.mode == TessellationOptions::Mode::Adaptive && !(t.pixelsPerSegment > 0.0))
     throw Error("adaptive tessellation needs pixelsPerSegment > 0");
   if (camera.width != target.width() || camera.height != target.height())
@@ -46,16 +48,17 @@ void checkOptions(const vk::Context& context, const Camera& camera, const Render
 
 }  // namespace
 
-Renderer::Renderer(vk::Context& context)
-    : context_(context), statistics_(context, 1) {
+Renderer::Renderer(vk::Context& context) : context_(context), statistics_(context, 1) {
   if (context.info().timestampValidBits > 0) timestamps_.emplace(context, 2);
   referencePass_ = createTargetRenderPass(context, true);
   patchSetLayout_ = vk::createDescriptorSetLayout(context, patchSetBindings());
   meshSetLayout_ = vk::createDescriptorSetLayout(context, triangleMeshBindings());
   const VkDescriptorSetLayout p = patchSetLayout_.get();
   const VkDescriptorSetLayout m = meshSetLayout_.get();
-  patchLayout_ = vk::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
-  meshLayout_ = vk::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
+  patchLayout_ =
+      vk::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
+  meshLayout_ =
+      vk::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
 }
 
 VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
@@ -64,10 +67,16 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
   const std::string points = type == PatchType::Bezier ? "16" : "20";
   const std::vector<vk::ShaderDefine> defines = {{"PATCH_POINTS", points}};
   vk::GraphicsPipelineDesc d;
-  d.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, vk::compileShader({"patch/patch.vert", defines}), {}});
-  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, vk::compileShader({"patch/patch.tesc", defines}), {}});
-  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, vk::compileShader({"patch/patch.tese", defines}), {}});
-  d.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, vk::compileShader({"patch/patch.frag", {}}), {}});
+  d.stages.push_back(
+      {VK_SHADER_STAGE_VERTEX_BIT, vk::compileShader({"patch/patch.vert", defines}), {}});
+  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
+                      vk::compileShader({"patch/patch.tesc", defines}),
+                      {}});
+  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
+                      vk::compileShader({"patch/patch.tese", defines}),
+                      {}});
+  d.stages.push_back(
+      {VK_SHADER_STAGE_FRAGMENT_BIT, vk::compileShader({"patch/patch.frag", {}}), {}});
   d.layout = patchLayout_.get();
   d.renderPass = referencePass_.get();
   d.colorAttachments = 2;
@@ -84,8 +93,10 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
 VkPipeline Renderer::trianglePipeline() {
   if (trianglePipeline_) return trianglePipeline_.get();
   vk::GraphicsPipelineDesc d;
-  d.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT, vk::compileShader({"mesh/triangle.vert", {}}), {}});
-  d.stages.push_back({VK_SHADER_STAGE_FRAGMENT_BIT, vk::compileShader({"mesh/triangle.frag", {}}), {}});
+  d.stages.push_back(
+      {VK_SHADER_STAGE_VERTEX_BIT, vk::compileShader({"mesh/triangle.vert", {}}), {}});
+  d.stages.push_back(
+      {VK_SHADER_STAGE_FRAGMENT_BIT, vk::compileShader({"mesh/triangle.frag", {}}), {}});
   d.layout = meshLayout_.get();
   d.renderPass = referencePass_.get();
   d.colorAttachments = 2;
@@ -93,7 +104,8 @@ VkPipeline Renderer::trianglePipeline() {
   return trianglePipeline_.get();
 }
 
-void Renderer::beginPass(VkCommandBuffer cmd, RenderTarget& target, const RenderOptions& options) const {
+void Renderer::beginPass(VkCommandBuffer cmd, RenderTarget& target,
+                         const RenderOptions& options) const {
   if (!options.clear && !target.hasContents())
     throw Error("Renderer: RenderOptions::clear is false but the target was never drawn");
   VkClearValue clears[3]{};
@@ -126,7 +138,8 @@ void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
   vkCmdPushConstants(cmd, meshLayout_.get(), kGraphicsStages, 0, sizeof(c), &c);
   for (const GpuTriangleMesh* mesh : occluders) {
     const VkDescriptorSet set = mesh->descriptorSet();
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshLayout_.get(), 0, 1, &set, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshLayout_.get(), 0, 1, &set, 0,
+                            nullptr);
     vkCmdBindIndexBuffer(cmd, mesh->indices().handle(), 0, VK_INDEX_TYPE_UINT32);
     vkCmdDrawIndexed(cmd, mesh->indexCount(), 1, 0, 0, 0);
   }
@@ -135,9 +148,11 @@ void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
 void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchPipeline(type, options.cullBackFaces));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                    patchPipeline(type, options.cullBackFaces));
   const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
+                          nullptr);
   shader::DrawConstants c = drawConstants(camera, options);
   c.bezierCount = gpu.bezierCount();
   c.pointStride = gpu.pointStride();
@@ -159,7 +174,8 @@ void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const P
 
 uint32_t Renderer::recordSlots(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
                                PatchType type, uint32_t firstSlot, uint32_t count,
-                               std::span<const uint32_t> vertexBounds, const RenderOptions& options) {
+                               std::span<const uint32_t> vertexBounds,
+                               const RenderOptions& options) {
   if (count == 0) return 0;
   bindPatches(cmd, camera, draw, type, options);
   const uint32_t points = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
@@ -170,8 +186,9 @@ uint32_t Renderer::recordSlots(VkCommandBuffer cmd, const Camera& camera, const 
     chunks = planDrawChunks(vertexBounds, points);
   } else {
     const auto& t = options.tessellation;
-    const uint32_t m = t.mode == TessellationOptions::Mode::Uniform ? std::min(t.uniformLevel * 2, t.maxLevel)
-                                                                    : t.maxLevel;
+    const uint32_t m = t.mode == TessellationOptions::Mode::Uniform
+                           ? std::min(t.uniformLevel * 2, t.maxLevel)
+                           : t.maxLevel;
     const std::vector<uint32_t> bounds(count, (m + 1) * (m + 1));
     chunks = planDrawChunks(bounds, points);
   }
@@ -226,7 +243,8 @@ FrameStats Renderer::render(RenderTarget& target, const Camera& camera,
     endPass(cmd);
     if (timestamps_) timestamps_->write(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
   });
-  stats.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  stats.wallMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (timestamps_) stats.gpuMs = timestamps_->elapsedMs(0, 1);
   stats.statistics = statistics_.result();
   for (const GpuTriangleMesh* m : occluders) stats.occluderTriangles += m->indexCount() / 3;

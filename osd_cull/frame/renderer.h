@@ -68,7 +68,8 @@ class Renderer {
 
   /// \brief Draws occluders, then patch sets, into `target` and waits.
   FrameStats render(RenderTarget& target, const Camera& camera, std::span<const PatchDraw> patches,
-                    std::span<const GpuTriangleMesh* const> occluders, const RenderOptions& options);
+                    std::span<const GpuTriangleMesh* const> occluders,
+                    const RenderOptions& options);
   /// \brief One patch set, no occluders.
   FrameStats render(RenderTarget& target, const Camera& camera, const GpuPatchSet& patches,
                     const PatchSet* host, const RenderOptions& options);

@@ -25,7 +25,8 @@ double curveLevel(const std::array<glm::dvec3, 4>& b, const glm::dmat4& vp,
   bool ok = true;
   for (int i = 0; i < 4; ++i) ok = toPixels(b[i], vp, viewport, s[i]) && ok;
   if (!ok) return maxLevel;
-  const double len = (glm::distance(s[0], s[1]) + glm::distance(s[2], s[3])) + glm::distance(s[1], s[2]);
+  const double len =
+      (glm::distance(s[0], s[1]) + glm::distance(s[2], s[3])) + glm::distance(s[1], s[2]);
   const double level = std::ceil(len / pixelsPerSegment);
   if (!(level >= 1.0)) return level < 1.0 ? 1.0 : maxLevel;
   return std::min(level, maxLevel);
@@ -66,11 +67,14 @@ PatchTessLevels patchTessLevels(const PatchSet& patches, uint32_t patch,
     } else if (!split) {
       out.lo[e] = curveLevel(b, viewProjection, viewport, options.pixelsPerSegment, half);
     } else {
-      const glm::dvec3 b01 = 0.5 * (b[0] + b[1]), b12 = 0.5 * (b[1] + b[2]), b23 = 0.5 * (b[2] + b[3]);
+      const glm::dvec3 b01 = 0.5 * (b[0] + b[1]), b12 = 0.5 * (b[1] + b[2]),
+                       b23 = 0.5 * (b[2] + b[3]);
       const glm::dvec3 b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23);
       const glm::dvec3 m = 0.5 * (b012 + b123);
-      out.lo[e] = curveLevel({b[0], b01, b012, m}, viewProjection, viewport, options.pixelsPerSegment, half);
-      out.hi[e] = curveLevel({m, b123, b23, b[3]}, viewProjection, viewport, options.pixelsPerSegment, half);
+      out.lo[e] = curveLevel({b[0], b01, b012, m}, viewProjection, viewport,
+                             options.pixelsPerSegment, half);
+      out.hi[e] = curveLevel({m, b123, b23, b[3]}, viewProjection, viewport,
+                             options.pixelsPerSegment, half);
     }
   }
   return out;

@@ -20,7 +20,8 @@ TriangleMesh boxMesh(const glm::dvec3& lo, const glm::dvec3& hi) {
   // Outward-facing (counter-clockwise seen from outside).
   const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                                 {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) m.indices.insert(m.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+  for (const auto& f : faces)
+    m.indices.insert(m.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
   return m;
 }
 
@@ -40,9 +41,11 @@ GpuTriangleMesh::GpuTriangleMesh(vk::Context& context, const TriangleMesh& mesh)
       throw Error("GpuTriangleMesh: index " + std::to_string(i) + " out of range (" +
                   std::to_string(mesh.positions.size()) + " vertices)");
   const std::vector<float> packed = packPoints(mesh.positions);
-  positions_ = vk::Buffer(context, packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  positions_ =
+      vk::Buffer(context, packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   vk::upload<float>(context, positions_, packed);
-  indices_ = vk::Buffer(context, mesh.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  indices_ =
+      vk::Buffer(context, mesh.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   vk::upload<uint32_t>(context, indices_, mesh.indices);
   setLayout_ = vk::createDescriptorSetLayout(context, triangleMeshBindings());
   pool_ = std::make_unique<vk::DescriptorPool>(context, 1, triangleMeshBindings());

@@ -23,12 +23,14 @@ const vk::DescriptorBinding kBindings[] = {
 }  // namespace
 
 uint32_t VisibilityCounts::visiblePatchCount() const {
-  return static_cast<uint32_t>(std::count_if(pixels.begin(), pixels.end(), [](uint32_t n) { return n > 0; }));
+  return static_cast<uint32_t>(
+      std::count_if(pixels.begin(), pixels.end(), [](uint32_t n) { return n > 0; }));
 }
 
 VisibilityOracle::VisibilityOracle(vk::Context& context)
     : context_(context),
-      program_(std::make_unique<vk::ComputeProgram>(context, vk::ShaderSource{"oracle/count_items.comp", {}},
+      program_(std::make_unique<vk::ComputeProgram>(context,
+                                                    vk::ShaderSource{"oracle/count_items.comp", {}},
                                                     kBindings, sizeof(shader::CountConstants))),
       pool_(std::make_unique<vk::DescriptorPool>(context, 1, kBindings)) {}
 
@@ -46,9 +48,11 @@ VisibilityCounts VisibilityOracle::count(const RenderTarget& target, uint32_t pa
   const uint64_t tileBytes = std::max<uint64_t>(4, tileBins * 4);
   if (tileBytes > context_.info().limits.maxStorageBufferRange)
     throw Error("VisibilityOracle: " + std::to_string(patchCount) + " patches x " +
-                std::to_string(1u << (2 * tileLog2)) + " tiles exceed one storage buffer; use a smaller tileLog2");
+                std::to_string(1u << (2 * tileLog2)) +
+                " tiles exceed one storage buffer; use a smaller tileLog2");
 
-  vk::Buffer counts(context_, (size_t{patchCount} + shader::kCountExtra) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vk::Buffer counts(context_, (size_t{patchCount} + shader::kCountExtra) * 4,
+                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   vk::Buffer tiles(context_, tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   pool_->reset();
   const VkDescriptorSet set = pool_->allocate(program_->setLayout());

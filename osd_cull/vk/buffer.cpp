@@ -7,7 +7,8 @@
 namespace osd_cull::vk {
 
 Buffer::Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use)
-    : size_(size), usage_(usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
+    : size_(size),
+      usage_(usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
   if (size == 0) throw Error("vk::Buffer: size must be positive");
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
@@ -19,11 +20,14 @@ Buffer::Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, Me
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(context.device(), buffer, &req);
   allocation_ = context.memory().allocate(req, use, ResourceKind::Linear);
-  OSD_CULL_VK(vkBindBufferMemory(context.device(), buffer, allocation_.memory(), allocation_.offset()));
+  OSD_CULL_VK(
+      vkBindBufferMemory(context.device(), buffer, allocation_.memory(), allocation_.offset()));
 }
 
 std::byte* Buffer::requireMapped() const {
-  if (!mapped()) throw Error("vk::Buffer: buffer memory is not host-visible (use MemoryUse::Upload or Readback)");
+  if (!mapped())
+    throw Error(
+        "vk::Buffer: buffer memory is not host-visible (use MemoryUse::Upload or Readback)");
   return mapped();
 }
 

@@ -45,8 +45,8 @@ const char* toString(VkResult result) {
 void check(VkResult result, const char* call, std::source_location where) {
   if (result == VK_SUCCESS) return;
   throw Error(std::filesystem::path(where.file_name()).filename().string() + ":" +
-              std::to_string(where.line()) + ": " + call + " returned " + toString(result) +
-              " (" + std::to_string(static_cast<int>(result)) + ")");
+              std::to_string(where.line()) + ": " + call + " returned " + toString(result) + " (" +
+              std::to_string(static_cast<int>(result)) + ")");
 }
 
 }  // namespace osd_cull::vk

@@ -21,8 +21,7 @@ std::string lower(std::string_view s) {
 
 std::string deviceList(std::span<const std::string> names) {
   std::string out;
-  for (size_t i = 0; i < names.size(); ++i)
-    out += "\n  " + std::to_string(i) + ": " + names[i];
+  for (size_t i = 0; i < names.size(); ++i) out += "\n  " + std::to_string(i) + ": " + names[i];
   return names.empty() ? std::string("\n  (none)") : out;
 }
 
@@ -48,8 +47,9 @@ bool hasLayer(const char* name) {
   OSD_CULL_VK(vkEnumerateInstanceLayerProperties(&count, nullptr));
   std::vector<VkLayerProperties> layers(count);
   OSD_CULL_VK(vkEnumerateInstanceLayerProperties(&count, layers.data()));
-  return std::any_of(layers.begin(), layers.end(),
-                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, name) == 0;
+  });
 }
 
 VkInstance createBareInstance() {
@@ -108,15 +108,15 @@ uint32_t selectDevice(std::span<const std::string> names, std::string_view selec
                   [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) {
     const unsigned long index = std::stoul(std::string(selector));
     if (index >= names.size())
-      throw Error("Vulkan device index " + std::string(selector) + " is out of range; devices:" +
-                  deviceList(names));
+      throw Error("Vulkan device index " + std::string(selector) +
+                  " is out of range; devices:" + deviceList(names));
     return static_cast<uint32_t>(index);
   }
   const std::string needle = lower(selector);
   for (size_t i = 0; i < names.size(); ++i)
     if (lower(names[i]).find(needle) != std::string::npos) return static_cast<uint32_t>(i);
-  throw Error("no Vulkan device name contains '" + std::string(selector) + "'; devices:" +
-              deviceList(names));
+  throw Error("no Vulkan device name contains '" + std::string(selector) +
+              "'; devices:" + deviceList(names));
 }
 
 Context::Context(const ContextOptions& options)
@@ -171,10 +171,10 @@ void Context::createInstance(const ContextOptions& options) {
     if (!hasLayer(layer))
       throw Error(std::string("validation requested but ") + layer +
                   " is not installed (Debian package vulkan-validationlayers)");
-    validationLog_ = options.validationLog ? options.validationLog
-                                           : std::make_shared<ValidationLog>();
-    sink_ = std::make_unique<std::pair<ValidationLog*, bool>>(validationLog_.get(),
-                                                              printValidation_);
+    validationLog_ =
+        options.validationLog ? options.validationLog : std::make_shared<ValidationLog>();
+    sink_ =
+        std::make_unique<std::pair<ValidationLog*, bool>>(validationLog_.get(), printValidation_);
     messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
                                     VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
@@ -208,7 +208,8 @@ void Context::pickDevice(const ContextOptions& options) {
   info_.index = selectDevice(names, selector);
   physicalDevice_ = devices[info_.index];
 
-  VkPhysicalDeviceVulkan12Properties props12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
+  VkPhysicalDeviceVulkan12Properties props12{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   VkPhysicalDeviceProperties base;
   vkGetPhysicalDeviceProperties(physicalDevice_, &base);

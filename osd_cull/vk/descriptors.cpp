@@ -58,13 +58,15 @@ DescriptorWriter& DescriptorWriter::buffer(uint32_t binding, const Buffer& buffe
 
 DescriptorWriter& DescriptorWriter::storageImage(uint32_t binding, VkImageView view,
                                                  VkImageLayout layout) {
-  writes_.push_back({binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {}, {VK_NULL_HANDLE, view, layout}, true});
+  writes_.push_back(
+      {binding, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, {}, {VK_NULL_HANDLE, view, layout}, true});
   return *this;
 }
 
 DescriptorWriter& DescriptorWriter::sampledImage(uint32_t binding, VkImageView view,
                                                  VkSampler sampler, VkImageLayout layout) {
-  writes_.push_back({binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {sampler, view, layout}, true});
+  writes_.push_back(
+      {binding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {}, {sampler, view, layout}, true});
   return *this;
 }
 

@@ -68,7 +68,8 @@ Image::Image(Context& context, const ImageDesc& desc) : desc_(desc) {
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(context.device(), image, &req);
   allocation_ = context.memory().allocate(req, MemoryUse::DeviceLocal, ResourceKind::Optimal);
-  OSD_CULL_VK(vkBindImageMemory(context.device(), image, allocation_.memory(), allocation_.offset()));
+  OSD_CULL_VK(
+      vkBindImageMemory(context.device(), image, allocation_.memory(), allocation_.offset()));
 
   auto makeView = [&](uint32_t base, uint32_t count) {
     VkImageViewCreateInfo v{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -81,8 +82,7 @@ Image::Image(Context& context, const ImageDesc& desc) : desc_(desc) {
     return UniqueImageView(context.device(), view);
   };
   view_ = makeView(0, desc.mipLevels);
-  for (uint32_t level = 0; level < desc.mipLevels; ++level)
-    mipViews_.push_back(makeView(level, 1));
+  for (uint32_t level = 0; level < desc.mipLevels; ++level) mipViews_.push_back(makeView(level, 1));
 }
 
 }  // namespace osd_cull::vk

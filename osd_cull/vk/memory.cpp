@@ -25,7 +25,8 @@ Allocation::Allocation(Allocation&& other) noexcept
 
 Allocation& Allocation::operator=(Allocation&& other) noexcept {
   if (this != &other) {
-    if (allocator_) allocator_->release(static_cast<MemoryAllocator::Block*>(block_), offset_, size_);
+    if (allocator_)
+      allocator_->release(static_cast<MemoryAllocator::Block*>(block_), offset_, size_);
     allocator_ = std::exchange(other.allocator_, nullptr);
     block_ = other.block_;
     offset_ = other.offset_;
@@ -83,8 +84,7 @@ uint32_t MemoryAllocator::memoryType(uint32_t typeBits, MemoryUse use) const {
   }
   if (best < 0)
     throw Error("no Vulkan memory type fits (type bits 0x" + std::to_string(typeBits) +
-                ", needs host-visible coherent memory: " +
-                (required ? "yes" : "no") + ")");
+                ", needs host-visible coherent memory: " + (required ? "yes" : "no") + ")");
   return static_cast<uint32_t>(best);
 }
 

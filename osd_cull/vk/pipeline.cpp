@@ -27,7 +27,8 @@ UniqueShaderModule createShaderModule(Context& context, std::span<const uint32_t
 
 UniquePipelineLayout createPipelineLayout(Context& context,
                                           std::span<const VkDescriptorSetLayout> setLayouts,
-                                          uint32_t pushConstantBytes, VkShaderStageFlags pushStages) {
+                                          uint32_t pushConstantBytes,
+                                          VkShaderStageFlags pushStages) {
   if (pushConstantBytes > context.info().limits.maxPushConstantsSize)
     throw Error("push constants of " + std::to_string(pushConstantBytes) +
                 " bytes exceed the device limit of " +
@@ -54,7 +55,8 @@ UniquePipeline createComputePipeline(Context& context, VkPipelineLayout layout, 
   info.stage.pSpecializationInfo = constants.info();
   info.layout = layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  OSD_CULL_VK(vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+  OSD_CULL_VK(
+      vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
   return UniquePipeline(context.device(), pipeline);
 }
 
@@ -83,26 +85,32 @@ UniquePipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDe
   if (tessellated != (desc.topology == VK_PRIMITIVE_TOPOLOGY_PATCH_LIST))
     throw Error("createGraphicsPipeline: tessellation stages need PATCH_LIST topology and back");
 
-  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  VkPipelineVertexInputStateCreateInfo vertexInput{
+      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{
+      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = desc.topology;
   VkPipelineTessellationDomainOriginStateCreateInfo origin{
       VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_DOMAIN_ORIGIN_STATE_CREATE_INFO};
   origin.domainOrigin = desc.domainOrigin;
-  VkPipelineTessellationStateCreateInfo tess{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
+  VkPipelineTessellationStateCreateInfo tess{
+      VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
   tess.pNext = &origin;
   tess.patchControlPoints = desc.patchControlPoints;
   VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
   viewport.viewportCount = 1;
   viewport.scissorCount = 1;
-  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  VkPipelineRasterizationStateCreateInfo raster{
+      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
   raster.polygonMode = desc.polygonMode;
   raster.cullMode = desc.cullMode;
   raster.frontFace = desc.frontFace;
   raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  VkPipelineMultisampleStateCreateInfo multisample{
+      VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  VkPipelineDepthStencilStateCreateInfo depth{
+      VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = desc.depthTest;
   depth.depthWriteEnable = desc.depthWrite;
   depth.depthCompareOp = desc.depthCompare;
@@ -110,11 +118,13 @@ UniquePipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDe
   for (auto& b : blends)
     b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                        VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  VkPipelineColorBlendStateCreateInfo blend{
+      VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = desc.colorAttachments;
   blend.pAttachments = blends.data();
   const VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  VkPipelineDynamicStateCreateInfo dynamicState{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  VkPipelineDynamicStateCreateInfo dynamicState{
+      VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
   dynamicState.dynamicStateCount = 2;
   dynamicState.pDynamicStates = dynamic;
 
@@ -134,7 +144,8 @@ UniquePipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDe
   info.renderPass = desc.renderPass;
   info.subpass = desc.subpass;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  OSD_CULL_VK(vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+  OSD_CULL_VK(
+      vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
   return UniquePipeline(context.device(), pipeline);
 }
 
@@ -144,7 +155,8 @@ ComputeProgram::ComputeProgram(Context& context, const ShaderSource& shader,
     : pushBytes_(pushConstantBytes) {
   setLayout_ = createDescriptorSetLayout(context, bindings);
   const VkDescriptorSetLayout set = setLayout_.get();
-  layout_ = createPipelineLayout(context, {&set, 1}, pushConstantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
+  layout_ =
+      createPipelineLayout(context, {&set, 1}, pushConstantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
   pipeline_ = createComputePipeline(context, layout_.get(), shader, constants);
 }
 
@@ -155,7 +167,8 @@ void ComputeProgram::dispatch(VkCommandBuffer cmd, VkDescriptorSet set,
     throw Error("ComputeProgram::dispatch: push constants of " + std::to_string(push.size()) +
                 " bytes, the program declares " + std::to_string(pushBytes_));
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,
+                          nullptr);
   if (!push.empty())
     vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                        static_cast<uint32_t>(push.size()), push.data());

@@ -12,14 +12,14 @@ namespace {
 
 // Bit order defines the order of results (ascending bit value).
 constexpr VkQueryPipelineStatisticFlags kStatisticFlags =
-    VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_VERTICES_BIT |             // 0x1
-    VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |           // 0x4
-    VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT |                // 0x20
-    VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |                 // 0x40
-    VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT |         // 0x80
-    VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT | // 0x100
+    VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_VERTICES_BIT |                     // 0x1
+    VK_QUERY_PIPELINE_STATISTIC_VERTEX_SHADER_INVOCATIONS_BIT |                   // 0x4
+    VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT |                        // 0x20
+    VK_QUERY_PIPELINE_STATISTIC_CLIPPING_PRIMITIVES_BIT |                         // 0x40
+    VK_QUERY_PIPELINE_STATISTIC_FRAGMENT_SHADER_INVOCATIONS_BIT |                 // 0x80
+    VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_CONTROL_SHADER_PATCHES_BIT |         // 0x100
     VK_QUERY_PIPELINE_STATISTIC_TESSELLATION_EVALUATION_SHADER_INVOCATIONS_BIT |  // 0x200
-    VK_QUERY_PIPELINE_STATISTIC_COMPUTE_SHADER_INVOCATIONS_BIT;          // 0x400
+    VK_QUERY_PIPELINE_STATISTIC_COMPUTE_SHADER_INVOCATIONS_BIT;                   // 0x400
 constexpr uint32_t kStatisticCount = 8;
 
 UniqueQueryPool createPool(Context& context, VkQueryType type, uint32_t count,
@@ -76,8 +76,8 @@ void PipelineStatisticsQuery::end(VkCommandBuffer cmd, uint32_t index) {
 PipelineStatistics PipelineStatisticsQuery::result(uint32_t index) const {
   checkIndex(index, count_, "PipelineStatisticsQuery::result");
   std::array<uint64_t, kStatisticCount> v{};
-  OSD_CULL_VK(vkGetQueryPoolResults(device_, pool_.get(), index, 1, sizeof(v), v.data(),
-                                    sizeof(v), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  OSD_CULL_VK(vkGetQueryPoolResults(device_, pool_.get(), index, 1, sizeof(v), v.data(), sizeof(v),
+                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   PipelineStatistics s;
   s.inputAssemblyVertices = v[0];
   s.vertexShaderInvocations = v[1];
@@ -100,7 +100,9 @@ TimestampQuery::TimestampQuery(Context& context, uint32_t count)
   mask_ = bits >= 64 ? ~uint64_t{0} : (uint64_t{1} << bits) - 1;
 }
 
-void TimestampQuery::reset(VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, pool_.get(), 0, count_); }
+void TimestampQuery::reset(VkCommandBuffer cmd) {
+  vkCmdResetQueryPool(cmd, pool_.get(), 0, count_);
+}
 
 void TimestampQuery::write(VkCommandBuffer cmd, VkPipelineStageFlagBits stage, uint32_t index) {
   checkIndex(index, count_, "TimestampQuery::write");

@@ -77,13 +77,20 @@ class EmbeddedIncluder : public glslang::TShader::Includer {
 
 EShLanguage languageOf(VkShaderStageFlagBits stage) {
   switch (stage) {
-    case VK_SHADER_STAGE_VERTEX_BIT: return EShLangVertex;
-    case VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT: return EShLangTessControl;
-    case VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT: return EShLangTessEvaluation;
-    case VK_SHADER_STAGE_GEOMETRY_BIT: return EShLangGeometry;
-    case VK_SHADER_STAGE_FRAGMENT_BIT: return EShLangFragment;
-    case VK_SHADER_STAGE_COMPUTE_BIT: return EShLangCompute;
-    default: throw Error("shader compiler: unsupported stage " + std::to_string(stage));
+    case VK_SHADER_STAGE_VERTEX_BIT:
+      return EShLangVertex;
+    case VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT:
+      return EShLangTessControl;
+    case VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT:
+      return EShLangTessEvaluation;
+    case VK_SHADER_STAGE_GEOMETRY_BIT:
+      return EShLangGeometry;
+    case VK_SHADER_STAGE_FRAGMENT_BIT:
+      return EShLangFragment;
+    case VK_SHADER_STAGE_COMPUTE_BIT:
+      return EShLangCompute;
+    default:
+      throw Error("shader compiler: unsupported stage " + std::to_string(stage));
   }
 }
 

@@ -159,11 +159,12 @@ int run(Args& args) {
   for (uint32_t f = 0; f < frames; ++f) {
     const frame::Camera view = frame::orbit(camera, pivot, up, orbitDegrees * f);
     const frame::FrameStats stats = renderer.render(target, view, {&draw, 1}, occluders, options);
-    std::printf("frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
-                "fragment invocations %llu\n",
-                f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
-                static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
-                static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+    std::printf(
+        "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
+        "fragment invocations %llu\n",
+        f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
+        static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
+        static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
     const bool last = f + 1 == frames;
     if (!outDir && !last) continue;
     const auto color = frame::colorImage(width, height, target.readColor(context));
@@ -176,8 +177,10 @@ int run(Args& args) {
       frame::writePng(*out, color);
       std::cout << "wrote " << *out << "\n";
       if (ids) {
-        frame::writePng(sibling(*out, "_ids"), frame::itemImage(width, height, target.readItems(context)));
-        frame::writePng(sibling(*out, "_depth"), frame::depthImage(width, height, target.readDepth(context)));
+        frame::writePng(sibling(*out, "_ids"),
+                        frame::itemImage(width, height, target.readItems(context)));
+        frame::writePng(sibling(*out, "_depth"),
+                        frame::depthImage(width, height, target.readDepth(context)));
         std::cout << "wrote " << sibling(*out, "_ids").string() << " and "
                   << sibling(*out, "_depth").string() << "\n";
       }
@@ -190,8 +193,12 @@ int run(Args& args) {
   return 0;
 }
 
-const Registration kRegistration({"render", "draw a mesh or the built-in scene to PNG, print frame statistics",
-                                  kUsage, {"ids", "debug-colors", "validate"}, run});
+const Registration kRegistration(
+    {"render",
+     "draw a mesh or the built-in scene to PNG, print frame statistics",
+     kUsage,
+     {"ids", "debug-colors", "validate"},
+     run});
 
 }  // namespace
 }  // namespace osd_cull::cli

@@ -32,10 +32,18 @@ glm::dvec3 evalGregory(std::span<const glm::dvec3> g, double u, double v) {
   const double su = 1.0 - u, sv = 1.0 - v;
   std::array<glm::dvec3, 16> b{};
   auto at = [&](int i, int j) -> glm::dvec3& { return b[4 * j + i]; };
-  at(0, 0) = g[0];  at(1, 0) = g[1];  at(0, 1) = g[2];
-  at(3, 0) = g[5];  at(3, 1) = g[6];  at(2, 0) = g[7];
-  at(3, 3) = g[10]; at(2, 3) = g[11]; at(3, 2) = g[12];
-  at(0, 3) = g[15]; at(0, 2) = g[16]; at(1, 3) = g[17];
+  at(0, 0) = g[0];
+  at(1, 0) = g[1];
+  at(0, 1) = g[2];
+  at(3, 0) = g[5];
+  at(3, 1) = g[6];
+  at(2, 0) = g[7];
+  at(3, 3) = g[10];
+  at(2, 3) = g[11];
+  at(3, 2) = g[12];
+  at(0, 3) = g[15];
+  at(0, 2) = g[16];
+  at(1, 3) = g[17];
   // Each Fp lies next to its corner's Ep edge and takes over as the point approaches
   // that edge (weight -> 1), Fm likewise for the Em edge:
   at(1, 1) = blend(g[3], g[4], u, v);      // corner 0: Ep edge v = 0, Em edge u = 0
