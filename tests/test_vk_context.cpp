@@ -66,6 +66,22 @@ TEST_F(VkTest, ValidationLayerReportsMisuse) {
   validationLog().clear();
 }
 
+TEST_F(VkTest, SynchronizationValidationReportsAHazard) {
+  // A copy reads a buffer that a fill just wrote, with no barrier between: a
+  // read-after-write hazard only synchronization validation sees.
+  vk::Buffer a(context(), 1024, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vk::Buffer b(context(), 1024, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  context().submit([&](VkCommandBuffer cmd) {
+    vkCmdFillBuffer(cmd, a.handle(), 0, VK_WHOLE_SIZE, 1);
+    const VkBufferCopy region{0, 0, 1024};
+    vkCmdCopyBuffer(cmd, a.handle(), b.handle(), 1, &region);
+  });
+  ASSERT_GE(validationLog().count(), 1u);
+  EXPECT_NE(validationLog().summary().find("SYNC-HAZARD-READ"), std::string::npos)
+      << validationLog().summary();
+  validationLog().clear();
+}
+
 TEST_F(VkTest, BuffersShareLargeMemoryBlocks) {
   const auto before = context().memory().stats();
   {
