@@ -211,6 +211,40 @@ TEST(PatchMatrix, FarStencilTableCopiesGiveTheSamePoints) {
   for (size_t i = 0; i < fdst.size(); ++i) EXPECT_NEAR(fdst[i].y, ex.patches.points[i].y, 1e-5) << i;
 }
 
+TEST(PatchMatrix, EndCapRowsEqualOpenSubdivsAppendedLocalPointStencils) {
+  // Our composition of local-point stencils with refinement stencils must give what
+  // Far::StencilTableFactory::AppendLocalPointStencilTable gives, row for row.
+  const CageMesh cage = test::poleCage(7);
+  const PatchExtraction ex = extractPatches(cage, {});
+  auto refiner = makeTopologyRefiner(cage);
+  const AdaptivePatches ap = buildAdaptivePatches(*refiner, {});
+  ASSERT_NE(ap.localPointStencils, nullptr);
+  std::unique_ptr<const Far::StencilTableReal<double>> appended(
+      Far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(*refiner, ap.refinedStencils.get(),
+                                                                         ap.localPointStencils, true));
+  ASSERT_TRUE(appended);
+  const Far::PatchTable& table = *ap.patchTable;
+  size_t row = ex.patches.bezierCount * kBezierPoints;
+  int compared = 0;
+  for (int a = 0; a < table.GetNumPatchArrays(); ++a) {
+    if (table.GetPatchArrayDescriptor(a).GetType() != Far::PatchDescriptor::GREGORY_BASIS) continue;
+    for (int p = 0; p < table.GetNumPatches(a); ++p) {
+      const Far::ConstIndexArray cvs = table.GetPatchVertices(a, p);
+      for (int k = 0; k < cvs.size(); ++k, ++row) {
+        const auto stencil = appended->GetStencil(cvs[k]);
+        std::vector<double> expected(cage.positions.size(), 0.0), ours(cage.positions.size(), 0.0);
+        for (int e = 0; e < stencil.GetSize(); ++e) expected[static_cast<size_t>(stencil.GetVertexIndices()[e])] += stencil.GetWeights()[e];
+        const int begin = ex.matrix.offsets()[row];
+        for (int e = begin; e < begin + ex.matrix.sizes()[row]; ++e)
+          ours[static_cast<size_t>(ex.matrix.indices()[static_cast<size_t>(e)])] = ex.matrix.weights()[static_cast<size_t>(e)];
+        for (size_t v = 0; v < ours.size(); ++v) ASSERT_NEAR(ours[v], expected[v], 1e-14) << "row " << row << " vertex " << v;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, static_cast<int>(ex.patches.gregoryCount * kGregoryPoints));
+}
+
 TEST(PatchMatrix, UpdateRejectsWrongSizes) {
   const PatchExtraction ex = extractPatches(test::cubeCage(), {});
   std::vector<glm::dvec3> cage(7), points(ex.patches.points.size());

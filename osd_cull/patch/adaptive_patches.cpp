@@ -89,24 +89,27 @@ AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchO
   stencilOptions.generateControlVerts = true;       // rows for level-0 vertices too
   stencilOptions.generateIntermediateLevels = true;  // adaptive patches use every level
   stencilOptions.factorizeIntermediateLevels = true;
-  std::unique_ptr<const Far::StencilTableReal<double>> refined(StencilFactory::Create(refiner, stencilOptions));
-  if (!refined) throw Error("OpenSubdiv could not build the refinement stencils");
+  out.refinedStencils.reset(StencilFactory::Create(refiner, stencilOptions));
+  out.stencilMs = msSince(start);
+  if (!out.refinedStencils) throw Error("OpenSubdiv could not build the refinement stencils");
 
   out.refinedVertexCount = refiner.GetNumVerticesTotal();
   out.localPointCount = out.patchTable->GetNumLocalPoints();
-  const Far::StencilTableReal<double>* local = out.patchTable->GetLocalPointStencilTable<double>();
-  if (local && local->GetNumStencils() > 0) {
-    out.stencils.reset(StencilFactory::AppendLocalPointStencilTable(refiner, refined.get(), local, true));
-    if (!out.stencils) throw Error("OpenSubdiv could not append the local-point stencils");
-  } else {
-    out.stencils = std::move(refined);
+  if (out.refinedStencils->GetNumStencils() != out.refinedVertexCount)
+    throw Error("buildAdaptivePatches: " + std::to_string(out.refinedStencils->GetNumStencils()) +
+                " refinement stencils for " + std::to_string(out.refinedVertexCount) + " vertices");
+  if (out.localPointCount > 0) {
+    if (!out.patchTable->LocalPointStencilPrecisionMatchesType<double>())
+      throw Error("buildAdaptivePatches: OpenSubdiv built single-precision local-point stencils");
+    out.localPointStencils = out.patchTable->GetLocalPointStencilTable<double>();
+    if (!out.localPointStencils || out.localPointStencils->GetNumStencils() != out.localPointCount)
+      throw Error("buildAdaptivePatches: the patch table has " + std::to_string(out.localPointCount) +
+                  " local points but no stencil for each");
+    for (int index : out.localPointStencils->GetControlIndices())
+      if (index < 0 || index >= out.refinedVertexCount)
+        throw Error("buildAdaptivePatches: a local-point stencil uses point " + std::to_string(index) +
+                    ", not a refined vertex");
   }
-  out.stencilMs = msSince(start);
-
-  const int expected = out.refinedVertexCount + out.localPointCount;
-  if (out.stencils->GetNumStencils() != expected)
-    throw Error("buildAdaptivePatches: " + std::to_string(out.stencils->GetNumStencils()) +
-                " stencils for " + std::to_string(expected) + " patch points (refined + local)");
   return out;
 }
 

@@ -34,17 +34,25 @@ struct PatchOptions {
 };
 
 /// \brief A patch table with double-precision stencils for all of its points.
+///
+/// Patch point index i (as in Far::PatchTable::GetPatchVertices) is refined vertex i for
+/// i < refinedVertexCount (row i of refinedStencils), else local point i - refinedVertexCount
+/// (a row of localPointStencils, whose indices are refined vertices). Composing the two
+/// gives the point in terms of cage vertices, what
+/// Far::StencilTableFactory::AppendLocalPointStencilTable computes.
 struct AdaptivePatches {
   std::unique_ptr<const Far::PatchTable> patchTable;
-  /// One stencil per patch point index used by patchTable: first every vertex of every
-  /// refinement level (level 0 included, as identity stencils), then the local points
-  /// (end-cap points). Columns are the cage (level 0) vertices.
-  std::unique_ptr<const Far::StencilTableReal<double>> stencils;
+  /// One stencil per vertex of every refinement level, level 0 included (as identity
+  /// stencils); columns are the cage (level 0) vertices.
+  std::unique_ptr<const Far::StencilTableReal<double>> refinedStencils;
+  /// One stencil per local (end-cap) point over refined vertices; owned by patchTable,
+  /// null when there are no local points.
+  const Far::StencilTableReal<double>* localPointStencils = nullptr;
   int refinedVertexCount = 0;  ///< vertices of all levels (refiner.GetNumVerticesTotal())
   int localPointCount = 0;     ///< end-cap points after them
   double refineMs = 0.0;       ///< adaptive refinement
   double patchTableMs = 0.0;   ///< Far::PatchTableFactory::Create
-  double stencilMs = 0.0;      ///< refinement stencils + local-point stencils
+  double stencilMs = 0.0;      ///< refinement stencils
 };
 
 /// \brief Checks options (ranges above) and throws osd_cull::Error naming the bad option.

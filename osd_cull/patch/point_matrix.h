@@ -41,13 +41,15 @@ class PatchPointMatrix {
   std::span<const int> offsets() const { return offsets_; }  ///< first entry of each row
   std::span<const int> indices() const { return indices_; }  ///< cage vertex of each entry
   std::span<const double> weights() const { return weights_; }  ///< weight of each entry
+  /// \brief The weights rounded to float (for float evaluators and GPU buffers).
+  std::span<const float> floatWeights() const { return floatWeights_; }
 
   /// \brief points[r] = sum of weights * cage[indices] over row r, for all rows.
   /// \throws osd_cull::Error if cage.size() != columnCount() or points.size() != rowCount().
   void update(std::span<const glm::dvec3> cage, std::span<glm::dvec3> points) const;
 
   /// \brief The same for float xyz arrays (3 floats per vertex/point), e.g. a mapped vertex
-  /// buffer; sums are accumulated in double and rounded once.
+  /// buffer, with floatWeights() and float sums, as OpenSubdiv's float stencil evaluation.
   void update(std::span<const float> cageXyz, std::span<float> pointsXyz) const;
 
   /// \brief A Far::StencilTable (float weights) with the same rows, for Osd evaluators.
@@ -61,6 +63,7 @@ class PatchPointMatrix {
   std::vector<int> offsets_;
   std::vector<int> indices_;
   std::vector<double> weights_;
+  std::vector<float> floatWeights_;
 };
 
 }  // namespace osd_cull
