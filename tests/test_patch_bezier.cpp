@@ -3,9 +3,9 @@
 #include "osd_cull/patch/bspline_bezier.h"
 #include "osd_cull/patch/patch_eval.h"
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
-#include <gtest/gtest.h>
 
 #include <random>
 
@@ -17,7 +17,8 @@ std::array<glm::dvec3, 16> randomPoints(uint32_t seed) {
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   std::array<glm::dvec3, 16> p;
   for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) p[4 * j + i] = glm::dvec3(i, j, 0.0) + 0.4 * glm::dvec3(uni(rng), uni(rng), uni(rng));
+    for (int i = 0; i < 4; ++i)
+      p[4 * j + i] = glm::dvec3(i, j, 0.0) + 0.4 * glm::dvec3(uni(rng), uni(rng), uni(rng));
   return p;
 }
 
@@ -40,7 +41,8 @@ glm::dvec3 evalBSpline(const std::array<glm::dvec3, 16>& p, double u, double v) 
   return out;
 }
 
-glm::dvec3 evalCurve(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& d, double t) {
+glm::dvec3 evalCurve(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                     const glm::dvec3& d, double t) {
   double w[4];
   bsplineBasis(t, w);
   return w[0] * a + w[1] * b + w[2] * c + w[3] * d;
@@ -51,7 +53,8 @@ TEST(BSplineToBezier, InteriorPatchIsTheSameSurface) {
   const auto bez = bsplineToBezier(cv, 0);
   for (double u : {0.0, 0.21, 0.5, 0.93, 1.0})
     for (double v : {0.0, 0.37, 0.66, 1.0})
-      EXPECT_LE(glm::length(evaluateBezier(bez, u, v).position - evalBSpline(cv, u, v)), 1e-14) << u << " " << v;
+      EXPECT_LE(glm::length(evaluateBezier(bez, u, v).position - evalBSpline(cv, u, v)), 1e-14)
+          << u << " " << v;
 }
 
 TEST(BSplineToBezier, BoundaryEdgeInterpolatesTheRowNextToIt) {
@@ -60,11 +63,15 @@ TEST(BSplineToBezier, BoundaryEdgeInterpolatesTheRowNextToIt) {
   const auto cv = randomPoints(2);
   const auto bez = bsplineToBezier(cv, 1u);
   for (double u : {0.0, 0.3, 0.8, 1.0})
-    EXPECT_LE(glm::length(evaluateBezier(bez, u, 0.0).position - evalCurve(cv[4], cv[5], cv[6], cv[7], u)), 1e-14);
+    EXPECT_LE(glm::length(evaluateBezier(bez, u, 0.0).position -
+                          evalCurve(cv[4], cv[5], cv[6], cv[7], u)),
+              1e-14);
   // Bit 1: the u = 1 edge interpolates column 2.
   const auto bez2 = bsplineToBezier(cv, 2u);
   for (double v : {0.0, 0.45, 1.0})
-    EXPECT_LE(glm::length(evaluateBezier(bez2, 1.0, v).position - evalCurve(cv[2], cv[6], cv[10], cv[14], v)), 1e-14);
+    EXPECT_LE(glm::length(evaluateBezier(bez2, 1.0, v).position -
+                          evalCurve(cv[2], cv[6], cv[10], cv[14], v)),
+              1e-14);
   // Corner (bits 0 and 3): the corner point is the inner point 5.
   EXPECT_LE(glm::length(evaluateBezier(bsplineToBezier(cv, 9u), 0.0, 0.0).position - cv[5]), 1e-14);
 }
@@ -76,12 +83,13 @@ TEST(BSplineToBezier, StoredDuplicatesBeyondTheBoundaryAreIgnored) {
     // Overwrite every point on a boundary row/column with junk: the result must not change.
     for (int k = 0; k < 16; ++k) {
       const int i = k % 4, j = k / 4;
-      const bool outside = ((mask & 1u) && j == 0) || ((mask & 2u) && i == 3) || ((mask & 4u) && j == 3) ||
-                           ((mask & 8u) && i == 0);
+      const bool outside = ((mask & 1u) && j == 0) || ((mask & 2u) && i == 3) ||
+                           ((mask & 4u) && j == 3) || ((mask & 8u) && i == 0);
       if (outside) other[k] = glm::dvec3(1e3, -7e2, 5e2);
     }
     const auto a = bsplineToBezier(cv, mask), b = bsplineToBezier(other, mask);
-    for (int k = 0; k < 16; ++k) EXPECT_LE(glm::length(a[k] - b[k]), 1e-10) << "mask " << mask << " point " << k;
+    for (int k = 0; k < 16; ++k)
+      EXPECT_LE(glm::length(a[k] - b[k]), 1e-10) << "mask " << mask << " point " << k;
   }
 }
 
@@ -111,8 +119,10 @@ TEST(BezierEval, DerivativesMatchFiniteDifferences) {
   for (double u : {0.1, 0.5, 0.77})
     for (double v : {0.2, 0.9}) {
       const SurfacePoint s = evaluateBezier(p, u, v);
-      const glm::dvec3 fu = (evaluateBezier(p, u + h, v).position - evaluateBezier(p, u - h, v).position) / (2 * h);
-      const glm::dvec3 fv = (evaluateBezier(p, u, v + h).position - evaluateBezier(p, u, v - h).position) / (2 * h);
+      const glm::dvec3 fu =
+          (evaluateBezier(p, u + h, v).position - evaluateBezier(p, u - h, v).position) / (2 * h);
+      const glm::dvec3 fv =
+          (evaluateBezier(p, u, v + h).position - evaluateBezier(p, u, v - h).position) / (2 * h);
       EXPECT_LE(glm::length(s.du - fu), 1e-8);
       EXPECT_LE(glm::length(s.dv - fv), 1e-8);
     }

@@ -12,7 +12,8 @@ using test::compareWithReference;
 using test::OsdReference;
 
 // Extracts, compares with OpenSubdiv's evaluation and returns the extraction.
-PatchExtraction extractAndCompare(const CageMesh& cage, const PatchOptions& options, double relTolerance = 1e-9) {
+PatchExtraction extractAndCompare(const CageMesh& cage, const PatchOptions& options,
+                                  double relTolerance = 1e-9) {
   PatchExtraction ex = extractPatches(cage, options);
   const OsdReference ref(cage, options);
   const double diag = test::boundingDiagonal(cage.positions);
@@ -111,7 +112,8 @@ TEST(PatchExtraction, CreasesCornersAndHolesMatchOpenSubdiv) {
       options.isolationLevel = 3;
       const PatchExtraction ex = extractAndCompare(cube, options);
       EXPECT_GT(ex.patches.patchCount(), 0u);
-      for (const Far::PatchParam& param : ex.patches.params) EXPECT_NE(param.GetFaceId(), 1);  // the hole
+      for (const Far::PatchParam& param : ex.patches.params)
+        EXPECT_NE(param.GetFaceId(), 1);  // the hole
     }
 }
 
@@ -140,7 +142,8 @@ TEST(PatchMatrix, OffsetsAndSizesDescribeTheRows) {
   for (size_t r = 0; r < m.sizes().size(); ++r) {
     EXPECT_EQ(m.offsets()[r], offset);
     for (int k = 1; k < m.sizes()[r]; ++k)  // columns sorted within a row
-      EXPECT_LT(m.indices()[static_cast<size_t>(offset + k - 1)], m.indices()[static_cast<size_t>(offset + k)]);
+      EXPECT_LT(m.indices()[static_cast<size_t>(offset + k - 1)],
+                m.indices()[static_cast<size_t>(offset + k)]);
     offset += m.sizes()[r];
   }
   EXPECT_EQ(static_cast<size_t>(offset), m.nonZeroCount());
@@ -175,7 +178,8 @@ TEST(PatchMatrix, FloatUpdateMatchesDoubleUpdate) {
   const CageMesh cage = test::poleCage(5);
   const PatchExtraction ex = extractPatches(cage, {});
   std::vector<float> cageXyz;
-  for (const glm::dvec3& p : cage.positions) cageXyz.insert(cageXyz.end(), {float(p.x), float(p.y), float(p.z)});
+  for (const glm::dvec3& p : cage.positions)
+    cageXyz.insert(cageXyz.end(), {float(p.x), float(p.y), float(p.z)});
   std::vector<float> pointsXyz(3 * ex.patches.points.size());
   ex.matrix.update(cageXyz, pointsXyz);
   for (size_t i = 0; i < ex.patches.points.size(); ++i)
@@ -208,7 +212,8 @@ TEST(PatchMatrix, FarStencilTableCopiesGiveTheSamePoints) {
   };
   std::vector<FloatPoint> fdst(ex.patches.points.size());
   single->UpdateValues(src.data(), fdst.data());
-  for (size_t i = 0; i < fdst.size(); ++i) EXPECT_NEAR(fdst[i].y, ex.patches.points[i].y, 1e-5) << i;
+  for (size_t i = 0; i < fdst.size(); ++i)
+    EXPECT_NEAR(fdst[i].y, ex.patches.points[i].y, 1e-5) << i;
 }
 
 TEST(PatchMatrix, EndCapRowsEqualOpenSubdivsAppendedLocalPointStencils) {
@@ -220,8 +225,8 @@ TEST(PatchMatrix, EndCapRowsEqualOpenSubdivsAppendedLocalPointStencils) {
   const AdaptivePatches ap = buildAdaptivePatches(*refiner, {});
   ASSERT_NE(ap.localPointStencils, nullptr);
   std::unique_ptr<const Far::StencilTableReal<double>> appended(
-      Far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(*refiner, ap.refinedStencils.get(),
-                                                                         ap.localPointStencils, true));
+      Far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(
+          *refiner, ap.refinedStencils.get(), ap.localPointStencils, true));
   ASSERT_TRUE(appended);
   const Far::PatchTable& table = *ap.patchTable;
   size_t row = ex.patches.bezierCount * kBezierPoints;
@@ -233,11 +238,14 @@ TEST(PatchMatrix, EndCapRowsEqualOpenSubdivsAppendedLocalPointStencils) {
       for (int k = 0; k < cvs.size(); ++k, ++row) {
         const auto stencil = appended->GetStencil(cvs[k]);
         std::vector<double> expected(cage.positions.size(), 0.0), ours(cage.positions.size(), 0.0);
-        for (int e = 0; e < stencil.GetSize(); ++e) expected[static_cast<size_t>(stencil.GetVertexIndices()[e])] += stencil.GetWeights()[e];
+        for (int e = 0; e < stencil.GetSize(); ++e)
+          expected[static_cast<size_t>(stencil.GetVertexIndices()[e])] += stencil.GetWeights()[e];
         const int begin = ex.matrix.offsets()[row];
         for (int e = begin; e < begin + ex.matrix.sizes()[row]; ++e)
-          ours[static_cast<size_t>(ex.matrix.indices()[static_cast<size_t>(e)])] = ex.matrix.weights()[static_cast<size_t>(e)];
-        for (size_t v = 0; v < ours.size(); ++v) ASSERT_NEAR(ours[v], expected[v], 1e-14) << "row " << row << " vertex " << v;
+          ours[static_cast<size_t>(ex.matrix.indices()[static_cast<size_t>(e)])] =
+              ex.matrix.weights()[static_cast<size_t>(e)];
+        for (size_t v = 0; v < ours.size(); ++v)
+          ASSERT_NEAR(ours[v], expected[v], 1e-14) << "row " << row << " vertex " << v;
         ++compared;
       }
     }
@@ -267,7 +275,8 @@ TEST(PatchExtractionErrors, LoopAndBilinearAreRefusedWithAClearMessage) {
     extractPatches(loop, {});
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("Loop patches are not extracted yet"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Loop patches are not extracted yet"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("built-in:tetra"), std::string::npos) << e.what();
   }
   CageMesh bilinear = test::cubeCage();
@@ -276,7 +285,9 @@ TEST(PatchExtractionErrors, LoopAndBilinearAreRefusedWithAClearMessage) {
     extractPatches(bilinear, {});
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("bilinear patches are not extracted yet"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bilinear patches are not extracted yet"),
+              std::string::npos)
+        << e.what();
   }
   // Also through the refiner entry point.
   auto refiner = makeTopologyRefiner(loop);
@@ -306,7 +317,8 @@ TEST(PatchExtractionErrors, BadOptionsAndInputsAreRefused) {
   // A refiner that was refined already, and positions that do not fit the cage.
   const CageMesh cube = test::cubeCage();
   auto refiner = makeTopologyRefiner(cube);
-  EXPECT_THROW(extractPatches(*refiner, std::span<const glm::dvec3>(cube.positions).first(7), {}), Error);
+  EXPECT_THROW(extractPatches(*refiner, std::span<const glm::dvec3>(cube.positions).first(7), {}),
+               Error);
   extractPatches(*refiner, cube.positions, {});
   EXPECT_THROW(extractPatches(*refiner, cube.positions, {}), Error);
 }

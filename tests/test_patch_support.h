@@ -7,11 +7,11 @@
 #include "osd_cull/patch/patch_eval.h"
 #include "osd_cull/patch/refiner.h"
 
-#include <glm/geometric.hpp>
-#include <glm/vec3.hpp>
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/stencilTableFactory.h>
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -52,7 +52,8 @@ inline CageMesh torusCage(int nu = 8, int nv = 6, double major = 2.0, double min
     for (int i = 0; i < nu; ++i) {
       m.faceSizes.push_back(4);
       const int i1 = (i + 1) % nu, j1 = (j + 1) % nv;
-      m.faceVertices.insert(m.faceVertices.end(), {j * nu + i, j * nu + i1, j1 * nu + i1, j1 * nu + i});
+      m.faceVertices.insert(m.faceVertices.end(),
+                            {j * nu + i, j * nu + i1, j1 * nu + i1, j1 * nu + i});
     }
   return m;
 }
@@ -69,7 +70,8 @@ inline CageMesh poleCage(int valence) {
     for (int k = 0; k < ring; ++k) {
       const double a = 2.0 * std::numbers::pi * k / ring;
       const double radius = r * (k % 2 == 0 ? 1.0 : 1.1);
-      m.positions.push_back({radius * std::cos(a), radius * std::sin(a), 0.1 * std::sin(3.0 * a) * r});
+      m.positions.push_back(
+          {radius * std::cos(a), radius * std::sin(a), 0.1 * std::sin(3.0 * a) * r});
     }
   auto ring1 = [&](int k) { return 1 + (k % ring + ring) % ring; };
   auto ring2 = [&](int k) { return 1 + ring + (k % ring + ring) % ring; };
@@ -146,7 +148,8 @@ class OsdReference {
     const int refined = refiner_->GetNumVerticesTotal();
     values_.assign(static_cast<size_t>(refined + table_->GetNumLocalPoints()), RefPoint{});
     stencils_->UpdateValues(src.data(), values_.data());
-    if (const auto* local = table_->GetLocalPointStencilTable<double>(); local && local->GetNumStencils() > 0)
+    if (const auto* local = table_->GetLocalPointStencilTable<double>();
+        local && local->GetNumStencils() > 0)
       local->UpdateValues(values_.data(), values_.data() + refined);
   }
 
@@ -209,7 +212,8 @@ inline Deviation compareWithReference(const PatchSet& set, const OsdReference& r
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uni(1e-3, 1.0 - 1e-3);
   const size_t patches = std::max<size_t>(1, set.patchCount());
-  const int n = static_cast<int>(std::clamp<size_t>(cap / patches, 4, static_cast<size_t>(perPatch)));
+  const int n =
+      static_cast<int>(std::clamp<size_t>(cap / patches, 4, static_cast<size_t>(perPatch)));
   for (uint32_t p = 0; p < set.patchCount(); ++p) {
     for (int k = 0; k < n; ++k) {
       // The corners are sampled too: they are where Gregory and boundary logic differ most.
@@ -225,12 +229,14 @@ inline Deviation compareWithReference(const PatchSet& set, const OsdReference& r
       const SurfacePoint ours = evaluatePatch(set, p, si, ti);
       ++d.samples;
       const double ep = glm::length(ours.position - theirs.position);
-      const double ed = std::max(glm::length(ours.du - theirs.du), glm::length(ours.dv - theirs.dv));
+      const double ed =
+          std::max(glm::length(ours.du - theirs.du), glm::length(ours.dv - theirs.dv));
       if (ep > d.position || ed > d.derivative)
-        d.worst = "patch " + std::to_string(p) + " (face " + std::to_string(set.params[p].GetFaceId()) +
-                  ", depth " + std::to_string(set.params[p].GetDepth()) + ", boundary " +
-                  std::to_string(set.params[p].GetBoundary()) + ") at (" + std::to_string(si) + ", " +
-                  std::to_string(ti) + ")";
+        d.worst = "patch " + std::to_string(p) + " (face " +
+                  std::to_string(set.params[p].GetFaceId()) + ", depth " +
+                  std::to_string(set.params[p].GetDepth()) + ", boundary " +
+                  std::to_string(set.params[p].GetBoundary()) + ") at (" + std::to_string(si) +
+                  ", " + std::to_string(ti) + ")";
       d.position = std::max(d.position, ep);
       d.derivative = std::max(d.derivative, ed);
     }
@@ -253,7 +259,8 @@ inline double maxRowSumError(const PatchPointMatrix& m) {
 }
 
 /// The cage with every vertex moved by a random offset of up to `amount` per axis.
-inline std::vector<glm::dvec3> jitter(const std::vector<glm::dvec3>& cage, double amount, uint32_t seed) {
+inline std::vector<glm::dvec3> jitter(const std::vector<glm::dvec3>& cage, double amount,
+                                      uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uni(-amount, amount);
   std::vector<glm::dvec3> out = cage;

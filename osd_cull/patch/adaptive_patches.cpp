@@ -19,13 +19,16 @@ double msSince(Clock::time_point start) {
 
 void checkScheme(const Far::TopologyRefiner& refiner) {
   switch (refiner.GetSchemeType()) {
-    case OpenSubdiv::Sdc::SCHEME_CATMARK: return;
+    case OpenSubdiv::Sdc::SCHEME_CATMARK:
+      return;
     case OpenSubdiv::Sdc::SCHEME_LOOP:
-      throw Error("Loop patches are not extracted yet: osd_cull draws Bézier and Gregory quad patches; "
-                  "use a Catmull-Clark mesh (catmark)");
+      throw Error(
+          "Loop patches are not extracted yet: osd_cull draws Bézier and Gregory quad patches; "
+          "use a Catmull-Clark mesh (catmark)");
     case OpenSubdiv::Sdc::SCHEME_BILINEAR:
-      throw Error("bilinear patches are not extracted yet: osd_cull draws Bézier and Gregory quad patches; "
-                  "use a Catmull-Clark mesh (catmark)");
+      throw Error(
+          "bilinear patches are not extracted yet: osd_cull draws Bézier and Gregory quad patches; "
+          "use a Catmull-Clark mesh (catmark)");
   }
   throw Error("unknown subdivision scheme; only Catmull-Clark patches are extracted");
 }
@@ -48,14 +51,16 @@ void checkPatchOptions(const PatchOptions& options) {
   if (options.secondaryLevel &&
       (*options.secondaryLevel < 0 || *options.secondaryLevel > options.isolationLevel))
     throw Error("patch options: secondary level " + std::to_string(*options.secondaryLevel) +
-                " is out of range [0, isolation level " + std::to_string(options.isolationLevel) + "]");
+                " is out of range [0, isolation level " + std::to_string(options.isolationLevel) +
+                "]");
 }
 
 AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchOptions& options) {
   checkPatchOptions(options);
   checkScheme(refiner);
   if (refiner.GetMaxLevel() != 0 || refiner.GetNumLevels() != 1)
-    throw Error("buildAdaptivePatches: the refiner is already refined; pass a fresh base-level refiner");
+    throw Error(
+        "buildAdaptivePatches: the refiner is already refined; pass a fresh base-level refiner");
   if (options.isolationLevel == 0) checkLevelZeroFaces(refiner);
 
   Far::PatchTableFactory::Options patchOptions(static_cast<unsigned>(options.isolationLevel));
@@ -86,7 +91,7 @@ AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchO
   StencilFactory::Options stencilOptions;
   stencilOptions.interpolationMode = StencilFactory::INTERPOLATE_VERTEX;
   stencilOptions.generateOffsets = true;
-  stencilOptions.generateControlVerts = true;       // rows for level-0 vertices too
+  stencilOptions.generateControlVerts = true;        // rows for level-0 vertices too
   stencilOptions.generateIntermediateLevels = true;  // adaptive patches use every level
   stencilOptions.factorizeIntermediateLevels = true;
   out.refinedStencils.reset(StencilFactory::Create(refiner, stencilOptions));
@@ -103,12 +108,12 @@ AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchO
       throw Error("buildAdaptivePatches: OpenSubdiv built single-precision local-point stencils");
     out.localPointStencils = out.patchTable->GetLocalPointStencilTable<double>();
     if (!out.localPointStencils || out.localPointStencils->GetNumStencils() != out.localPointCount)
-      throw Error("buildAdaptivePatches: the patch table has " + std::to_string(out.localPointCount) +
-                  " local points but no stencil for each");
+      throw Error("buildAdaptivePatches: the patch table has " +
+                  std::to_string(out.localPointCount) + " local points but no stencil for each");
     for (int index : out.localPointStencils->GetControlIndices())
       if (index < 0 || index >= out.refinedVertexCount)
-        throw Error("buildAdaptivePatches: a local-point stencil uses point " + std::to_string(index) +
-                    ", not a refined vertex");
+        throw Error("buildAdaptivePatches: a local-point stencil uses point " +
+                    std::to_string(index) + ", not a refined vertex");
   }
   return out;
 }

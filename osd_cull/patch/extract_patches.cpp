@@ -30,9 +30,12 @@ struct PatchRef {
 PatchOrigin bsplinePatchOrigin(const Far::PatchParam& param) {
   if (!param.IsRegular()) return PatchOrigin::BSplineEndCap;
   switch (std::popcount(static_cast<unsigned>(param.GetBoundary()) & 15u)) {
-    case 0: return PatchOrigin::Regular;
-    case 1: return PatchOrigin::Boundary;
-    default: return PatchOrigin::Corner;
+    case 0:
+      return PatchOrigin::Regular;
+    case 1:
+      return PatchOrigin::Boundary;
+    default:
+      return PatchOrigin::Corner;
   }
 }
 
@@ -78,7 +81,8 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
                                   : type == Far::PatchDescriptor::GREGORY_BASIS ? &gregory
                                                                                 : nullptr;
     if (!list)
-      throw Error(where + ": OpenSubdiv produced patches of type " + std::to_string(static_cast<int>(type)) +
+      throw Error(where + ": OpenSubdiv produced patches of type " +
+                  std::to_string(static_cast<int>(type)) +
                   "; only REGULAR and GREGORY_BASIS patches are extracted");
     for (int p = 0; p < table.GetNumPatches(a); ++p) list->push_back({a, p});
   }
@@ -95,7 +99,8 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
   MatrixComposer rows(adaptive, cageVertices);
   for (const PatchRef& ref : bezier) {
     const Far::PatchParam param = table.GetPatchParam(ref.array, ref.index);
-    rows.addBezierPatch(table.GetPatchVertices(ref.array, ref.index), bsplineToBezierWeights(param.GetBoundary()));
+    rows.addBezierPatch(table.GetPatchVertices(ref.array, ref.index),
+                        bsplineToBezierWeights(param.GetBoundary()));
     set.params.push_back(param);
     set.origins.push_back(bsplinePatchOrigin(param));
   }
@@ -114,12 +119,23 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
 
   for (PatchOrigin origin : set.origins) {
     switch (origin) {
-      case PatchOrigin::Regular: ++stats.regular; break;
-      case PatchOrigin::Boundary: ++stats.boundary; break;
-      case PatchOrigin::Corner: ++stats.corner; break;
-      case PatchOrigin::Gregory: ++stats.gregory; break;
-      case PatchOrigin::BSplineEndCap: ++stats.bsplineEndCaps; break;
-      case PatchOrigin::Input: break;
+      case PatchOrigin::Regular:
+        ++stats.regular;
+        break;
+      case PatchOrigin::Boundary:
+        ++stats.boundary;
+        break;
+      case PatchOrigin::Corner:
+        ++stats.corner;
+        break;
+      case PatchOrigin::Gregory:
+        ++stats.gregory;
+        break;
+      case PatchOrigin::BSplineEndCap:
+        ++stats.bsplineEndCaps;
+        break;
+      case PatchOrigin::Input:
+        break;
     }
   }
   stats.controlPoints = static_cast<uint32_t>(pointCount);

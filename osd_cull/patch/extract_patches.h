@@ -24,21 +24,21 @@ namespace osd_cull {
 
 /// \brief What an extraction produced and what it cost.
 struct ExtractionStats {
-  uint32_t regular = 0;        ///< PatchOrigin::Regular
-  uint32_t boundary = 0;       ///< PatchOrigin::Boundary
-  uint32_t corner = 0;         ///< PatchOrigin::Corner
-  uint32_t gregory = 0;        ///< PatchOrigin::Gregory
-  uint32_t bsplineEndCaps = 0; ///< PatchOrigin::BSplineEndCap
-  uint32_t controlPoints = 0;  ///< rows of the matrix, points of the PatchSet
+  uint32_t regular = 0;         ///< PatchOrigin::Regular
+  uint32_t boundary = 0;        ///< PatchOrigin::Boundary
+  uint32_t corner = 0;          ///< PatchOrigin::Corner
+  uint32_t gregory = 0;         ///< PatchOrigin::Gregory
+  uint32_t bsplineEndCaps = 0;  ///< PatchOrigin::BSplineEndCap
+  uint32_t controlPoints = 0;   ///< rows of the matrix, points of the PatchSet
   std::size_t matrixNonZeros = 0;
   int cageVertices = 0;
-  int refinedVertices = 0;     ///< vertices of all refinement levels
-  int localPoints = 0;         ///< OpenSubdiv end-cap points
-  double topologyMs = 0.0;     ///< cage → Far::TopologyRefiner
-  double refineMs = 0.0;       ///< adaptive refinement
-  double patchTableMs = 0.0;   ///< Far::PatchTable
-  double stencilMs = 0.0;      ///< refinement and local-point stencils
-  double matrixMs = 0.0;       ///< composing the matrix and the points
+  int refinedVertices = 0;    ///< vertices of all refinement levels
+  int localPoints = 0;        ///< OpenSubdiv end-cap points
+  double topologyMs = 0.0;    ///< cage → Far::TopologyRefiner
+  double refineMs = 0.0;      ///< adaptive refinement
+  double patchTableMs = 0.0;  ///< Far::PatchTable
+  double stencilMs = 0.0;     ///< refinement and local-point stencils
+  double matrixMs = 0.0;      ///< composing the matrix and the points
   double totalMs = 0.0;
 
   uint32_t patches() const { return regular + boundary + corner + gregory + bsplineEndCaps; }

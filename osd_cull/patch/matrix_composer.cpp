@@ -29,7 +29,10 @@ MatrixComposer::MatrixComposer(const AdaptivePatches& patches, int cageVertices)
       slot_(static_cast<std::size_t>(cageVertices), 0),
       emitted_(static_cast<std::size_t>(patches.refinedVertexCount + patches.localPointCount)) {
   if (!patches.refinedStencils) throw Error("MatrixComposer: no refinement stencils");
-  const std::size_t expectedRows = patches.patchTable ? static_cast<std::size_t>(patches.patchTable->GetNumControlVerticesTotal()) : 0;
+  const std::size_t expectedRows =
+      patches.patchTable
+          ? static_cast<std::size_t>(patches.patchTable->GetNumControlVerticesTotal())
+          : 0;
   sizes_.reserve(expectedRows);
   // Rows of typical meshes hold about 13 cage vertices; reserving avoids regrowing tens of MB.
   indices_.reserve(expectedRows * 14);
@@ -69,7 +72,8 @@ void MatrixComposer::collectSupport(const int* points, int count) {
     });
   std::sort(support_.begin(), support_.end());
   const std::size_t n = support_.size();
-  for (std::size_t i = 0; i < n; ++i) slot_[static_cast<std::size_t>(support_[i])] = static_cast<int>(i);
+  for (std::size_t i = 0; i < n; ++i)
+    slot_[static_cast<std::size_t>(support_[i])] = static_cast<int>(i);
   expanded_.assign(static_cast<std::size_t>(count) * n, 0.0);
   for (int k = 0; k < count; ++k) {
     double* row = expanded_.data() + static_cast<std::size_t>(k) * n;
@@ -88,9 +92,11 @@ void MatrixComposer::emitRow(const double* sums) {
   sizes_.push_back(size);
 }
 
-void MatrixComposer::addBezierPatch(const Far::ConstIndexArray& cvs, const PatchConversion& conversion) {
+void MatrixComposer::addBezierPatch(const Far::ConstIndexArray& cvs,
+                                    const PatchConversion& conversion) {
   if (cvs.size() != 16)
-    throw Error("MatrixComposer: a regular patch has " + std::to_string(cvs.size()) + " points, expected 16");
+    throw Error("MatrixComposer: a regular patch has " + std::to_string(cvs.size()) +
+                " points, expected 16");
   collectSupport(&cvs[0], 16);
   const std::size_t n = support_.size();
   sums_.resize(n);
@@ -110,7 +116,8 @@ void MatrixComposer::addPoints(const Far::ConstIndexArray& points) {
   for (int k = 0; k < points.size(); ++k) {
     Emitted& first = emitted_[static_cast<std::size_t>(points[k])];
     if (first.size >= 0) {
-      for (std::size_t e = first.begin; e < first.begin + static_cast<std::size_t>(first.size); ++e) {
+      for (std::size_t e = first.begin; e < first.begin + static_cast<std::size_t>(first.size);
+           ++e) {
         indices_.push_back(indices_[e]);
         weights_.push_back(weights_[e]);
       }
@@ -125,7 +132,8 @@ void MatrixComposer::addPoints(const Far::ConstIndexArray& points) {
 }
 
 PatchPointMatrix MatrixComposer::finish() {
-  return PatchPointMatrix(cageVertices_, std::move(sizes_), std::move(indices_), std::move(weights_));
+  return PatchPointMatrix(cageVertices_, std::move(sizes_), std::move(indices_),
+                          std::move(weights_));
 }
 
 }  // namespace osd_cull

@@ -61,10 +61,10 @@ class MatrixComposer {
   std::vector<uint32_t> stamp_;  // per cage vertex: the block that last used it
   std::vector<int> slot_;        // per cage vertex: its position in support_
   uint32_t block_ = 0;
-  std::vector<int> support_;     // sorted cage vertices of the current block
-  std::vector<double> expanded_; // points x support: the block's points over its support
+  std::vector<int> support_;      // sorted cage vertices of the current block
+  std::vector<double> expanded_;  // points x support: the block's points over its support
   std::vector<double> sums_;
-  std::vector<Emitted> emitted_; // per patch point, for shared Gregory points
+  std::vector<Emitted> emitted_;  // per patch point, for shared Gregory points
   std::vector<int> sizes_;
   std::vector<int> indices_;
   std::vector<double> weights_;

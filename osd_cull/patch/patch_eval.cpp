@@ -61,10 +61,10 @@ std::array<glm::dvec3, kBezierPoints> gregoryToBezierAt(
   const double uc = 1.0 - u;
   const double vc = 1.0 - v;
   auto inv = [](double d) { return d <= 0.0 ? 1.0 : 1.0 / d; };
-  const double g0 = u * inv(u + v);    // corner (0,0): Fp (3) weight
-  const double g1 = v * inv(uc + v);   // corner (1,0): Fp (8) weight
-  const double g2 = uc * inv(uc + vc); // corner (1,1): Fp (13) weight
-  const double g3 = vc * inv(u + vc);  // corner (0,1): Fp (18) weight
+  const double g0 = u * inv(u + v);     // corner (0,0): Fp (3) weight
+  const double g1 = v * inv(uc + v);    // corner (1,0): Fp (8) weight
+  const double g2 = uc * inv(uc + vc);  // corner (1,1): Fp (13) weight
+  const double g3 = vc * inv(u + vc);   // corner (0,1): Fp (18) weight
   b[4 * 1 + 1] = g0 * p[3] + (1.0 - g0) * p[4];
   b[4 * 1 + 2] = g1 * p[8] + (1.0 - g1) * p[9];
   b[4 * 2 + 2] = g2 * p[13] + (1.0 - g2) * p[14];
@@ -72,7 +72,8 @@ std::array<glm::dvec3, kBezierPoints> gregoryToBezierAt(
   return b;
 }
 
-SurfacePoint evaluateGregory(std::span<const glm::dvec3, kGregoryPoints> points, double u, double v) {
+SurfacePoint evaluateGregory(std::span<const glm::dvec3, kGregoryPoints> points, double u,
+                             double v) {
   const std::array<glm::dvec3, kBezierPoints> frozen = gregoryToBezierAt(points, u, v);
   return evaluateBezier(frozen, u, v);
 }
@@ -82,8 +83,7 @@ SurfacePoint evaluatePatch(const PatchSet& set, uint32_t patch, double u, double
     throw Error("evaluatePatch: patch " + std::to_string(patch) + " out of range [0, " +
                 std::to_string(set.patchCount()) + ")");
   const std::span<const glm::dvec3> cps = set.controlPoints(patch);
-  if (set.type(patch) == PatchType::Bezier)
-    return evaluateBezier(cps.first<kBezierPoints>(), u, v);
+  if (set.type(patch) == PatchType::Bezier) return evaluateBezier(cps.first<kBezierPoints>(), u, v);
   return evaluateGregory(cps.first<kGregoryPoints>(), u, v);
 }
 

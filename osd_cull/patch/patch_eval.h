@@ -34,7 +34,8 @@ SurfacePoint evaluateBezier(std::span<const glm::dvec3, kBezierPoints> points, d
 /// are the derivatives of the Bézier patch whose four interior points are the rational
 /// blends of the face points at (u, v) — the approximation of Loop et al. that OpenSubdiv's
 /// shaders use, not the derivative of the rational blend itself.
-SurfacePoint evaluateGregory(std::span<const glm::dvec3, kGregoryPoints> points, double u, double v);
+SurfacePoint evaluateGregory(std::span<const glm::dvec3, kGregoryPoints> points, double u,
+                             double v);
 
 /// \brief The 16 Bézier points of the Gregory patch frozen at (u, v): the boundary points
 /// and, for the interior, the rational blend of each corner's face points Fp and Fm.

@@ -28,8 +28,8 @@ class DoubleStencilTable : public Far::StencilTableReal<double> {
 
 }  // namespace
 
-PatchPointMatrix::PatchPointMatrix(int columnCount, std::vector<int> sizes, std::vector<int> indices,
-                                   std::vector<double> weights)
+PatchPointMatrix::PatchPointMatrix(int columnCount, std::vector<int> sizes,
+                                   std::vector<int> indices, std::vector<double> weights)
     : columnCount_(columnCount),
       sizes_(std::move(sizes)),
       indices_(std::move(indices)),
@@ -41,39 +41,44 @@ PatchPointMatrix::PatchPointMatrix(int columnCount, std::vector<int> sizes, std:
   offsets_.resize(sizes_.size());
   std::size_t offset = 0;
   for (std::size_t r = 0; r < sizes_.size(); ++r) {
-    if (sizes_[r] < 0) throw Error("PatchPointMatrix: row " + std::to_string(r) + " has a negative size");
+    if (sizes_[r] < 0)
+      throw Error("PatchPointMatrix: row " + std::to_string(r) + " has a negative size");
     offsets_[r] = static_cast<int>(offset);
     offset += static_cast<std::size_t>(sizes_[r]);
   }
   if (offset != indices_.size())
-    throw Error("PatchPointMatrix: row sizes add up to " + std::to_string(offset) + ", but there are " +
-                std::to_string(indices_.size()) + " entries");
+    throw Error("PatchPointMatrix: row sizes add up to " + std::to_string(offset) +
+                ", but there are " + std::to_string(indices_.size()) + " entries");
   for (std::size_t e = 0; e < indices_.size(); ++e)
     if (indices_[e] < 0 || indices_[e] >= columnCount_)
       throw Error("PatchPointMatrix: entry " + std::to_string(e) + " names column " +
-                  std::to_string(indices_[e]) + ", out of range [0, " + std::to_string(columnCount_) + ")");
+                  std::to_string(indices_[e]) + ", out of range [0, " +
+                  std::to_string(columnCount_) + ")");
   floatWeights_.assign(weights_.begin(), weights_.end());
 }
 
-void PatchPointMatrix::update(std::span<const glm::dvec3> cage, std::span<glm::dvec3> points) const {
+void PatchPointMatrix::update(std::span<const glm::dvec3> cage,
+                              std::span<glm::dvec3> points) const {
   if (cage.size() != static_cast<std::size_t>(columnCount_) || points.size() != sizes_.size())
-    throw Error("PatchPointMatrix::update: expected " + std::to_string(columnCount_) + " cage vertices and " +
-                std::to_string(sizes_.size()) + " points, got " + std::to_string(cage.size()) + " and " +
-                std::to_string(points.size()));
+    throw Error("PatchPointMatrix::update: expected " + std::to_string(columnCount_) +
+                " cage vertices and " + std::to_string(sizes_.size()) + " points, got " +
+                std::to_string(cage.size()) + " and " + std::to_string(points.size()));
   const int* index = indices_.data();
   const double* weight = weights_.data();
   for (std::size_t r = 0; r < sizes_.size(); ++r) {
     glm::dvec3 sum(0.0);
-    for (const int* end = index + sizes_[r]; index != end; ++index, ++weight) sum += *weight * cage[*index];
+    for (const int* end = index + sizes_[r]; index != end; ++index, ++weight)
+      sum += *weight * cage[*index];
     points[r] = sum;
   }
 }
 
 void PatchPointMatrix::update(std::span<const float> cageXyz, std::span<float> pointsXyz) const {
-  if (cageXyz.size() != 3 * static_cast<std::size_t>(columnCount_) || pointsXyz.size() != 3 * sizes_.size())
-    throw Error("PatchPointMatrix::update: expected " + std::to_string(3 * columnCount_) + " cage floats and " +
-                std::to_string(3 * sizes_.size()) + " point floats, got " + std::to_string(cageXyz.size()) +
-                " and " + std::to_string(pointsXyz.size()));
+  if (cageXyz.size() != 3 * static_cast<std::size_t>(columnCount_) ||
+      pointsXyz.size() != 3 * sizes_.size())
+    throw Error("PatchPointMatrix::update: expected " + std::to_string(3 * columnCount_) +
+                " cage floats and " + std::to_string(3 * sizes_.size()) + " point floats, got " +
+                std::to_string(cageXyz.size()) + " and " + std::to_string(pointsXyz.size()));
   // Float weights and float sums: converting every cage coordinate to double costs ~1.5x
   // here, and the result is stored as float anyway.
   const int* index = indices_.data();
@@ -95,10 +100,12 @@ void PatchPointMatrix::update(std::span<const float> cageXyz, std::span<float> p
 }
 
 std::unique_ptr<OpenSubdiv::Far::StencilTable> PatchPointMatrix::toFarStencilTable() const {
-  return std::make_unique<FloatStencilTable>(columnCount_, offsets_, sizes_, indices_, floatWeights_);
+  return std::make_unique<FloatStencilTable>(columnCount_, offsets_, sizes_, indices_,
+                                             floatWeights_);
 }
 
-std::unique_ptr<OpenSubdiv::Far::StencilTableReal<double>> PatchPointMatrix::toFarStencilTableDouble() const {
+std::unique_ptr<OpenSubdiv::Far::StencilTableReal<double>>
+PatchPointMatrix::toFarStencilTableDouble() const {
   return std::make_unique<DoubleStencilTable>(columnCount_, offsets_, sizes_, indices_, weights_);
 }
 

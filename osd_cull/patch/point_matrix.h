@@ -9,8 +9,8 @@
 /// a compute shader reading sizes/offsets/indices/weights) runs it unchanged; the
 /// toFarStencilTable() copies are real Far stencil tables for OpenSubdiv's own evaluators.
 
-#include <glm/vec3.hpp>
 #include <opensubdiv/far/stencilTable.h>
+#include <glm/vec3.hpp>
 
 #include <cstddef>
 #include <memory>
@@ -37,9 +37,9 @@ class PatchPointMatrix {
   /// \brief Number of stored (non-zero) weights.
   std::size_t nonZeroCount() const { return weights_.size(); }
 
-  std::span<const int> sizes() const { return sizes_; }      ///< entries per row
-  std::span<const int> offsets() const { return offsets_; }  ///< first entry of each row
-  std::span<const int> indices() const { return indices_; }  ///< cage vertex of each entry
+  std::span<const int> sizes() const { return sizes_; }         ///< entries per row
+  std::span<const int> offsets() const { return offsets_; }     ///< first entry of each row
+  std::span<const int> indices() const { return indices_; }     ///< cage vertex of each entry
   std::span<const double> weights() const { return weights_; }  ///< weight of each entry
   /// \brief The weights rounded to float (for float evaluators and GPU buffers).
   std::span<const float> floatWeights() const { return floatWeights_; }
