@@ -1,0 +1,26 @@
+#pragma once
+/// \file openmesh_reader.h
+/// \brief PLY, STL (ASCII and binary) and binary OFF through OpenMesh's readers (internal).
+///
+/// OpenMesh's readers parse the files; instead of OpenMesh's mesh kernel (which refuses
+/// non-manifold faces and faces that repeat a vertex, and splits such faces off onto copied
+/// vertices), a small importer records the vertex and face lists exactly as the reader
+/// delivers them, so non-manifold input reaches OpenSubdiv unchanged. Before OpenMesh sees
+/// a file, its header is checked against the file size, so a header claiming 10^12 items
+/// is an error instead of an allocation or a long loop.
+
+#include "osd_cull/patch/cage_mesh.h"
+
+#include <filesystem>
+#include <string_view>
+
+namespace osd_cull::adapters::detail {
+
+/// \brief True when this build reads PLY, STL and binary OFF (OpenMesh was found).
+bool haveOpenMesh();
+
+/// \brief Reads `path` (whose bytes are `bytes`) with OpenMesh; the format comes from the
+/// extension (.ply, .stl, .off). \throws osd_cull::Error naming the file and the problem.
+CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view bytes, Scheme scheme);
+
+}  // namespace osd_cull::adapters::detail
