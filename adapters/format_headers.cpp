@@ -142,19 +142,4 @@ StlInfo checkStl(std::string_view bytes, const std::string& file) {
                     std::to_string(bytes.size()) + " (truncated file or wrong header)");
 }
 
-void checkBinaryOffHeader(std::string_view bytes, const std::string& file) {
-  const size_t eol = bytes.find('\n');
-  if (eol == std::string_view::npos || bytes.size() < eol + 1 + 12)
-    fail(file, 0, "binary OFF file ends inside its header");
-  const uint32_t nv = readU32(bytes, eol + 1, /*bigEndian=*/true);
-  const uint32_t nf = readU32(bytes, eol + 5, true);
-  // A vertex is three 4-byte floats; a face at least a count, three indices and a colour count.
-  const uint64_t needed = 12 + 12 * uint64_t{nv} + 20 * uint64_t{nf};
-  if (needed > bytes.size() - eol - 1)
-    fail(file, 0, "the binary OFF header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
-                      " faces, needing at least " + std::to_string(needed) + " bytes, but " +
-                      std::to_string(bytes.size() - eol - 1) + " follow (truncated file or wrong header)");
-  if (nv == 0 || nf == 0) fail(file, 0, "the binary OFF header declares no vertices or no faces: the mesh is empty");
-}
-
 }  // namespace osd_cull::adapters::detail

@@ -1,6 +1,6 @@
 #pragma once
 /// \file format_headers.h
-/// \brief Checks the headers of PLY, STL and binary OFF files against the file size before
+/// \brief Checks the headers of PLY and STL files against the file size before
 /// a reader trusts them (internal to adapters/).
 ///
 /// A header that claims more items than the remaining bytes can hold is a truncated file
@@ -34,9 +34,5 @@ struct StlInfo {
 /// exactly) or ASCII (starts with "solid"); checks binary coordinates are finite.
 /// \throws osd_cull::Error naming the file when it is neither, or truncated.
 StlInfo checkStl(std::string_view bytes, const std::string& file);
-
-/// \brief Checks a binary OFF header ("OFF BINARY", then big-endian int32 counts) against
-/// the file size. \throws osd_cull::Error naming the file.
-void checkBinaryOffHeader(std::string_view bytes, const std::string& file);
 
 }  // namespace osd_cull::adapters::detail

@@ -44,7 +44,8 @@ CageMesh loadCage(const std::filesystem::path& path, const LoadOptions& options)
   const std::string bytes = detail::readFileBytes(path);
   CageMesh mesh;
   if (ext == ".obj") mesh = detail::readObj(bytes, path, scheme, options.leftHanded);
-  else if (ext == ".off" && !detail::isBinaryOff(bytes)) mesh = detail::readOff(bytes, file, scheme);
+  else if (ext == ".off") mesh = detail::isBinaryOff(bytes) ? detail::readBinaryOff(bytes, file, scheme)
+                                                             : detail::readOff(bytes, file, scheme);
   else mesh = detail::readWithOpenMesh(path, bytes, scheme);
 
   validate(mesh);  // the readers check as they go; this is the library's own contract

@@ -4,9 +4,9 @@
 ///
 /// Formats: OBJ with OpenSubdiv tag lines (`t crease`, `t corner`, `t interpolateboundary`,
 /// `t hole`, `t smoothtriangles`, `t creasemethod`, `t facevaryinginterpolateboundary`; see
-/// obj_tags.h for their meaning); ASCII OFF (own reader, exact face lists and line numbers);
-/// PLY, STL (ASCII and binary) and binary OFF through OpenMesh's readers; BPT Bézier patch
-/// files. Errors are osd_cull::Error with "FILE:LINE: problem" ("FILE: problem" where the
+/// obj_tags.h for their meaning); OFF, ASCII and binary (own reader: exact face lists and
+/// line numbers); PLY and STL, ASCII and binary, through OpenMesh's readers; BPT Bézier
+/// patch files. Errors are osd_cull::Error with "FILE:LINE: problem" ("FILE: problem" where the
 /// format has no lines); a reader never crashes, hangs or allocates what a header claims
 /// before checking it against the file size.
 ///

@@ -2,6 +2,7 @@
 
 #include "adapters/text_input.h"
 
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <vector>
@@ -120,6 +121,98 @@ CageMesh readOff(std::string_view text, const std::string& file, Scheme scheme) 
   if (nextContentLine(lines, tokens))
     mesh.notes.push_back(file + ":" + std::to_string(lines.lineNumber()) +
                          ": content after the last face was ignored");
+  return mesh;
+}
+
+}  // namespace osd_cull::adapters::detail
+
+namespace osd_cull::adapters::detail {
+namespace {
+
+// Reads 32-bit words of a binary OFF body in one byte order, failing at the end of data.
+class WordReader {
+ public:
+  WordReader(std::string_view bytes, size_t start, bool bigEndian, const std::string& file)
+      : bytes_(bytes), pos_(start), bigEndian_(bigEndian), file_(file) {}
+
+  uint32_t word(const std::string& what) {
+    if (bytes_.size() - pos_ < 4)
+      fail(file_, 0, "the file ends at byte " + std::to_string(pos_) + " while reading " + what + " (truncated)");
+    const auto* b = reinterpret_cast<const unsigned char*>(bytes_.data() + pos_);
+    pos_ += 4;
+    return bigEndian_ ? (uint32_t{b[0]} << 24 | uint32_t{b[1]} << 16 | uint32_t{b[2]} << 8 | b[3])
+                      : (uint32_t{b[3]} << 24 | uint32_t{b[2]} << 16 | uint32_t{b[1]} << 8 | b[0]);
+  }
+  int64_t integer(const std::string& what) { return static_cast<int32_t>(word(what)); }
+  float real(const std::string& what) { return std::bit_cast<float>(word(what)); }
+  size_t position() const { return pos_; }
+  size_t remainingWords() const { return (bytes_.size() - pos_) / 4; }
+
+ private:
+  std::string_view bytes_;
+  size_t pos_;
+  bool bigEndian_;
+  const std::string& file_;
+};
+
+}  // namespace
+
+CageMesh readBinaryOff(std::string_view bytes, const std::string& file, Scheme scheme) {
+  const size_t eol = bytes.find('\n');
+  if (eol == std::string_view::npos) fail(file, 0, "binary OFF file ends inside its header line");
+  // A vertex is 3 words, a face at least 5 (count, three indices, colour count). Counts that
+  // cannot fit the rest of the file are the wrong byte order, a bad header or a truncation.
+  auto fits = [&](bool bigEndian) {
+    WordReader r(bytes, eol + 1, bigEndian, file);
+    if (r.remainingWords() < 3) return false;
+    const int64_t nv = r.integer("the counts"), nf = r.integer("the counts");
+    return nv > 0 && nf > 0 && 3 + 3 * nv + 5 * nf <= static_cast<int64_t>(r.remainingWords()) + 3;
+  };
+  const bool bigEndian = fits(true);
+  if (!bigEndian && !fits(false)) {
+    WordReader r(bytes, eol + 1, true, file);
+    const int64_t nv = r.integer("the counts"), nf = r.integer("the counts");
+    fail(file, 0, "the binary OFF header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+                      " faces, which do not fit the " + std::to_string(bytes.size() - eol - 1) +
+                      " bytes that follow in either byte order (empty, truncated or wrong header)");
+  }
+  WordReader in(bytes, eol + 1, bigEndian, file);
+  const int64_t nv = in.integer("the counts"), nf = in.integer("the counts");
+  in.integer("the counts");  // edges: unused
+
+  CageMesh mesh;
+  mesh.source = file;
+  mesh.scheme = scheme;
+  mesh.positions.reserve(static_cast<size_t>(nv));
+  for (int64_t v = 0; v < nv; ++v) {
+    const std::string what = "vertex " + std::to_string(v);
+    const size_t at = in.position();
+    const double x = in.real(what), y = in.real(what), z = in.real(what);
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+      fail(file, 0, what + " has a NaN or Inf coordinate (at byte " + std::to_string(at) + ")");
+    mesh.positions.emplace_back(x, y, z);
+  }
+  for (int64_t f = 0; f < nf; ++f) {
+    const std::string what = "face " + std::to_string(f);
+    const size_t at = in.position();
+    const int64_t n = in.integer(what);
+    if (n < 3) fail(file, 0, what + " has " + std::to_string(n) + " vertices; a face needs at least 3 (at byte " + std::to_string(at) + ")");
+    if (n > static_cast<int64_t>(in.remainingWords()))
+      fail(file, 0, what + " declares " + std::to_string(n) + " vertices, more than the file holds (at byte " + std::to_string(at) + ")");
+    if (scheme == Scheme::Loop && n != 3)
+      fail(file, 0, what + " has " + std::to_string(n) + " vertices, but the Loop scheme needs triangles");
+    for (int64_t k = 0; k < n; ++k) {
+      const int64_t index = in.integer(what);
+      if (index < 0 || index >= nv)
+        fail(file, 0, what + " uses vertex index " + std::to_string(index) + ", out of range [0, " + std::to_string(nv) + ")");
+      mesh.faceVertices.push_back(static_cast<int>(index));
+    }
+    mesh.faceSizes.push_back(static_cast<int>(n));
+    const int64_t colours = in.integer(what + "'s colour count");
+    if (colours < 0 || colours > 4) fail(file, 0, what + " has a colour count of " + std::to_string(colours) + "; expected 0 to 4");
+    for (int64_t c = 0; c < colours; ++c) in.real(what + "'s colour");
+  }
+  if (!bigEndian) mesh.notes.push_back("binary OFF in little-endian byte order (the specification says big-endian)");
   return mesh;
 }
 

@@ -133,8 +133,6 @@ CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view by
     expectedFaces = header.faces;
   } else if (ext == ".stl") {
     triangles = checkStl(bytes, file).triangles;
-  } else if (ext == ".off") {
-    checkBinaryOffHeader(bytes, file);
   } else {
     fail(file, 0, "OpenMesh is not used for " + quote(ext) + " files");
   }

@@ -1,6 +1,6 @@
 #pragma once
 /// \file openmesh_reader.h
-/// \brief PLY, STL (ASCII and binary) and binary OFF through OpenMesh's readers (internal).
+/// \brief PLY and STL (ASCII and binary) through OpenMesh's readers (internal).
 ///
 /// OpenMesh's readers parse the files; instead of OpenMesh's mesh kernel (which refuses
 /// non-manifold faces and faces that repeat a vertex, and splits such faces off onto copied
@@ -16,11 +16,11 @@
 
 namespace osd_cull::adapters::detail {
 
-/// \brief True when this build reads PLY, STL and binary OFF (OpenMesh was found).
+/// \brief True when this build reads PLY and STL (OpenMesh was found).
 bool haveOpenMesh();
 
 /// \brief Reads `path` (whose bytes are `bytes`) with OpenMesh; the format comes from the
-/// extension (.ply, .stl, .off). \throws osd_cull::Error naming the file and the problem.
+/// extension (.ply, .stl). \throws osd_cull::Error naming the file and the problem.
 CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view bytes, Scheme scheme);
 
 }  // namespace osd_cull::adapters::detail
