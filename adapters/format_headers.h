@@ -1,10 +1,14 @@
 #pragma once
 /// \file format_headers.h
-/// \brief Checks the headers of PLY and STL files against the file size before
-/// a reader trusts them (internal to adapters/).
+/// \brief Structural checks of PLY and STL files before OpenMesh's readers see them
+/// (internal to adapters/).
 ///
-/// A header that claims more items than the remaining bytes can hold is a truncated file
-/// or garbage; refusing it here keeps readers from allocating or looping on its counts.
+/// OpenMesh's readers trust their input: its PLY reader loops on header counts and reads
+/// uninitialised values once a token fails to parse (a PLY with "inf" or garbage after the
+/// header made it spin for minutes), its ASCII STL reader takes whatever three lines follow
+/// "outer loop" as corners and turns unparsable numbers into 0. These checks walk the file
+/// exactly as the reader will, so a file that passes is read as written, and a file that
+/// fails gets an error naming the line (ASCII) or byte offset (binary) and the problem.
 
 #include <cstdint>
 #include <string>
@@ -12,27 +16,31 @@
 
 namespace osd_cull::adapters::detail {
 
-/// \brief What a valid PLY header declares.
-struct PlyHeader {
+/// \brief What a checked PLY file declares.
+struct PlyInfo {
   bool ascii = true;
   int64_t vertices = 0;  ///< count of element "vertex"
   int64_t faces = 0;     ///< count of element "face"
+  int64_t trailing = 0;  ///< lines (ASCII) or bytes (binary) after the last element
 };
 
-/// \brief Parses and checks a PLY header: magic, format, elements and properties, a vertex
-/// element with x, y, z, a face element with a list property, and counts that fit the
-/// file. \throws osd_cull::Error "FILE:LINE: problem" (header lines are numbered).
-PlyHeader checkPlyHeader(std::string_view bytes, const std::string& file);
+/// \brief Checks a whole PLY file: magic, format, elements and properties (a vertex element
+/// with x, y, z; a face element with a vertex_indices list), counts that fit the file, and
+/// every element: numbers that parse (finite coordinates), lists of at least three vertex
+/// indices in range. \throws osd_cull::Error "FILE:LINE: problem" or "FILE: problem at
+/// byte N".
+PlyInfo checkPly(std::string_view bytes, const std::string& file);
 
-/// \brief What an STL file looks like.
+/// \brief What a checked STL file looks like.
 struct StlInfo {
   bool binary = false;
-  int64_t triangles = 0;  ///< from the binary header, or the count of "facet" lines
+  int64_t triangles = 0;  ///< triangles in the file
 };
 
 /// \brief Classifies STL as binary (84-byte header, 50 bytes per triangle, size matching
-/// exactly) or ASCII (starts with "solid"); checks binary coordinates are finite.
-/// \throws osd_cull::Error naming the file when it is neither, or truncated.
+/// exactly) or ASCII (starts with "solid") and checks it: finite coordinates; in ASCII,
+/// facets of "outer loop", three "vertex x y z" lines and "endloop".
+/// \throws osd_cull::Error naming the file (and line) when it is neither, or malformed.
 StlInfo checkStl(std::string_view bytes, const std::string& file);
 
 }  // namespace osd_cull::adapters::detail

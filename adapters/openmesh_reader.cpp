@@ -126,20 +126,23 @@ bool haveOpenMesh() { return true; }
 CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view bytes, Scheme scheme) {
   const std::string file = path.string();
   const std::string ext = lowerExtension(path);
+  CageMesh mesh;
+  mesh.source = file;
+  mesh.scheme = scheme;
   int64_t expectedVertices = -1, expectedFaces = -1, triangles = -1;
   if (ext == ".ply") {
-    const PlyHeader header = checkPlyHeader(bytes, file);
-    expectedVertices = header.vertices;
-    expectedFaces = header.faces;
+    const PlyInfo ply = checkPly(bytes, file);
+    expectedVertices = ply.vertices;
+    expectedFaces = ply.faces;
+    if (ply.trailing > 0)
+      mesh.notes.push_back(std::to_string(ply.trailing) + (ply.ascii ? " line(s)" : " byte(s)") +
+                           " after the last PLY element were ignored");
   } else if (ext == ".stl") {
     triangles = checkStl(bytes, file).triangles;
   } else {
     fail(file, 0, "OpenMesh is not used for " + quote(ext) + " files");
   }
 
-  CageMesh mesh;
-  mesh.source = file;
-  mesh.scheme = scheme;
   FaceListImporter importer(mesh);
   OM::IO::Options options;
   bool ok = false;

@@ -6,8 +6,11 @@
 /// non-manifold faces and faces that repeat a vertex, and splits such faces off onto copied
 /// vertices), a small importer records the vertex and face lists exactly as the reader
 /// delivers them, so non-manifold input reaches OpenSubdiv unchanged. Before OpenMesh sees
-/// a file, its header is checked against the file size, so a header claiming 10^12 items
-/// is an error instead of an allocation or a long loop.
+/// a file, checkPly()/checkStl() (format_headers.h) walk it the way the reader will: a
+/// header claiming 10^12 items, a truncated body, an unparsable number or an index out of
+/// range is an error naming the line or byte, instead of an allocation, a hang or a
+/// silently wrong mesh inside OpenMesh. STL corners are merged by OpenMesh's reader (equal
+/// float positions become one vertex) and triangles that collapse are dropped (noted).
 
 #include "osd_cull/patch/cage_mesh.h"
 
