@@ -47,11 +47,15 @@ class FaceListImporter final : public BaseImporter {
     for (OM::VertexHandle v : vertices) mesh_.faceVertices.push_back(v.idx());
     return OM::FaceHandle(mesh_.faceCount() - 1);
   }
-  OM::HalfedgeHandle add_edge(OM::VertexHandle, OM::VertexHandle) override { return OM::HalfedgeHandle(); }
+  OM::HalfedgeHandle add_edge(OM::VertexHandle, OM::VertexHandle) override {
+    return OM::HalfedgeHandle();
+  }
   OM::FaceHandle add_face(OM::HalfedgeHandle) override { return OM::FaceHandle(); }
 
-  void add_face_texcoords(OM::FaceHandle, OM::VertexHandle, const std::vector<OM::Vec2f>&) override {}
-  void add_face_texcoords(OM::FaceHandle, OM::VertexHandle, const std::vector<OM::Vec3f>&) override {}
+  void add_face_texcoords(OM::FaceHandle, OM::VertexHandle,
+                          const std::vector<OM::Vec2f>&) override {}
+  void add_face_texcoords(OM::FaceHandle, OM::VertexHandle,
+                          const std::vector<OM::Vec3f>&) override {}
   void set_face_texindex(OM::FaceHandle, int) override {}
   void set_halfedge(OM::VertexHandle, OM::HalfedgeHandle) override {}
   void set_normal(OM::VertexHandle, const OM::Vec3f&) override {}
@@ -95,7 +99,10 @@ class FaceListImporter final : public BaseImporter {
 // into a string (for the error message) instead of stderr.
 class CapturedOmErr {
  public:
-  CapturedOmErr() { cerrWasConnected_ = ::omerr().disconnect(std::cerr); ::omerr().connect(text_); }
+  CapturedOmErr() {
+    cerrWasConnected_ = ::omerr().disconnect(std::cerr);
+    ::omerr().connect(text_);
+  }
   ~CapturedOmErr() {
     ::omerr().flush();
     ::omerr().disconnect(text_);
@@ -115,7 +122,8 @@ class CapturedOmErr {
 
 std::string lowerExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -123,7 +131,8 @@ std::string lowerExtension(const std::filesystem::path& path) {
 
 bool haveOpenMesh() { return true; }
 
-CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view bytes, Scheme scheme) {
+CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view bytes,
+                          Scheme scheme) {
   const std::string file = path.string();
   const std::string ext = lowerExtension(path);
   CageMesh mesh;
@@ -154,29 +163,41 @@ CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view by
     ok = OM::IO::IOManager().read(file, importer, options);
     messages = captured.text();
   }
-  if (!ok) fail(file, 0, "OpenMesh could not read the file" + (messages.empty() ? std::string() : ": " + messages));
+  if (!ok)
+    fail(file, 0,
+         "OpenMesh could not read the file" + (messages.empty() ? std::string() : ": " + messages));
   if (!messages.empty()) mesh.notes.push_back("OpenMesh reported: " + messages);
 
-  if (expectedVertices >= 0 && (mesh.vertexCount() != expectedVertices || mesh.faceCount() != expectedFaces))
-    fail(file, 0, "read " + std::to_string(mesh.vertexCount()) + " of " + std::to_string(expectedVertices) +
-                      " vertices and " + std::to_string(mesh.faceCount()) + " of " + std::to_string(expectedFaces) +
-                      " faces the header declares (truncated or malformed file)");
+  if (expectedVertices >= 0 &&
+      (mesh.vertexCount() != expectedVertices || mesh.faceCount() != expectedFaces))
+    fail(file, 0,
+         "read " + std::to_string(mesh.vertexCount()) + " of " + std::to_string(expectedVertices) +
+             " vertices and " + std::to_string(mesh.faceCount()) + " of " +
+             std::to_string(expectedFaces) +
+             " faces the header declares (truncated or malformed file)");
   if (triangles >= 0 && mesh.faceCount() < triangles)
-    mesh.notes.push_back(std::to_string(triangles - mesh.faceCount()) +
-                         " STL triangle(s) collapsed when OpenMesh merged equal corner points, and were dropped");
+    mesh.notes.push_back(
+        std::to_string(triangles - mesh.faceCount()) +
+        " STL triangle(s) collapsed when OpenMesh merged equal corner points, and were dropped");
   if (mesh.positions.empty()) fail(file, 0, "no vertices: the mesh is empty");
   if (mesh.faceSizes.empty()) fail(file, 0, "no faces: the mesh is empty");
   size_t offset = 0;
   for (int f = 0; f < mesh.faceCount(); ++f) {
     const int n = mesh.faceSizes[static_cast<size_t>(f)];
-    if (n < 3) fail(file, 0, "face " + std::to_string(f) + " has " + std::to_string(n) + " vertices; a face needs at least 3");
+    if (n < 3)
+      fail(file, 0,
+           "face " + std::to_string(f) + " has " + std::to_string(n) +
+               " vertices; a face needs at least 3");
     if (scheme == Scheme::Loop && n != 3)
-      fail(file, 0, "face " + std::to_string(f) + " has " + std::to_string(n) + " vertices, but the Loop scheme needs triangles");
+      fail(file, 0,
+           "face " + std::to_string(f) + " has " + std::to_string(n) +
+               " vertices, but the Loop scheme needs triangles");
     for (int k = 0; k < n; ++k) {
       const int v = mesh.faceVertices[offset + static_cast<size_t>(k)];
       if (v < 0 || v >= mesh.vertexCount())
-        fail(file, 0, "face " + std::to_string(f) + " uses vertex index " + std::to_string(v) + ", out of range [0, " +
-                          std::to_string(mesh.vertexCount()) + ")");
+        fail(file, 0,
+             "face " + std::to_string(f) + " uses vertex index " + std::to_string(v) +
+                 ", out of range [0, " + std::to_string(mesh.vertexCount()) + ")");
     }
     offset += static_cast<size_t>(n);
   }
@@ -188,7 +209,8 @@ CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view by
 bool haveOpenMesh() { return false; }
 
 CageMesh readWithOpenMesh(const std::filesystem::path& path, std::string_view, Scheme) {
-  fail(path.string(), 0, "reading this format needs OpenMesh, which this build was configured without");
+  fail(path.string(), 0,
+       "reading this format needs OpenMesh, which this build was configured without");
 }
 
 #endif

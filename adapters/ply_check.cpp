@@ -28,10 +28,16 @@ PlyType plyType(std::string_view t) {
 
 int byteSize(PlyType t) {
   switch (t) {
-    case PlyType::Int8: case PlyType::UInt8: return 1;
-    case PlyType::Int16: case PlyType::UInt16: return 2;
-    case PlyType::Float64: return 8;
-    default: return 4;
+    case PlyType::Int8:
+    case PlyType::UInt8:
+      return 1;
+    case PlyType::Int16:
+    case PlyType::UInt16:
+      return 2;
+    case PlyType::Float64:
+      return 8;
+    default:
+      return 4;
   }
 }
 
@@ -40,12 +46,18 @@ bool isFloat(PlyType t) { return t == PlyType::Float32 || t == PlyType::Float64;
 // The range of an integer type.
 std::pair<int64_t, int64_t> intRange(PlyType t) {
   switch (t) {
-    case PlyType::Int8: return {-128, 127};
-    case PlyType::UInt8: return {0, 255};
-    case PlyType::Int16: return {-32768, 32767};
-    case PlyType::UInt16: return {0, 65535};
-    case PlyType::Int32: return {std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max()};
-    default: return {0, std::numeric_limits<uint32_t>::max()};
+    case PlyType::Int8:
+      return {-128, 127};
+    case PlyType::UInt8:
+      return {0, 255};
+    case PlyType::Int16:
+      return {-32768, 32767};
+    case PlyType::UInt16:
+      return {0, 65535};
+    case PlyType::Int32:
+      return {std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max()};
+    default:
+      return {0, std::numeric_limits<uint32_t>::max()};
   }
 }
 
@@ -87,25 +99,32 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
       ended = true;
     } else if (tokens[0] == "format") {
       if (tokens.size() < 2) lines.fail("'format' needs a value");
-      if (tokens[1] == "ascii") h.info.ascii = true;
-      else if (tokens[1] == "binary_little_endian") h.info.ascii = false;
-      else if (tokens[1] == "binary_big_endian") h.info.ascii = false, h.bigEndian = true;
-      else lines.fail("unknown PLY format " + quote(tokens[1]));
+      if (tokens[1] == "ascii")
+        h.info.ascii = true;
+      else if (tokens[1] == "binary_little_endian")
+        h.info.ascii = false;
+      else if (tokens[1] == "binary_big_endian")
+        h.info.ascii = false, h.bigEndian = true;
+      else
+        lines.fail("unknown PLY format " + quote(tokens[1]));
       haveFormat = true;
     } else if (tokens[0] == "element") {
       if (tokens.size() != 3) lines.fail("expected 'element NAME COUNT'");
       const auto n = parseInt(tokens[2]);
-      if (!n || *n < 0) lines.fail("element count " + quote(tokens[2]) + " is not a non-negative integer");
+      if (!n || *n < 0)
+        lines.fail("element count " + quote(tokens[2]) + " is not a non-negative integer");
       h.elements.push_back({std::string(tokens[1]), *n, {}});
     } else if (tokens[0] == "property") {
       if (h.elements.empty()) lines.fail("'property' before any 'element'");
       PlyProperty p;
       p.list = tokens.size() >= 2 && tokens[1] == "list";
       if (tokens.size() != (p.list ? 5u : 3u))
-        lines.fail(p.list ? "expected 'property list COUNT-TYPE ITEM-TYPE NAME'" : "expected 'property TYPE NAME'");
+        lines.fail(p.list ? "expected 'property list COUNT-TYPE ITEM-TYPE NAME'"
+                          : "expected 'property TYPE NAME'");
       p.countType = p.list ? plyType(tokens[2]) : PlyType::Unknown;
       p.type = plyType(tokens[p.list ? 3 : 1]);
-      if (p.type == PlyType::Unknown || (p.list && (p.countType == PlyType::Unknown || isFloat(p.countType))))
+      if (p.type == PlyType::Unknown ||
+          (p.list && (p.countType == PlyType::Unknown || isFloat(p.countType))))
         lines.fail("unknown or unusable PLY property type in " + quote(lines.line()));
       p.name = std::string(tokens.back());
       h.elements.back().properties.push_back(p);
@@ -134,8 +153,10 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
     }
     perItem = std::max<int64_t>(perItem, 1);
     if (e.count > (available - needed) / perItem)
-      fail(file, 0, "the header declares " + std::to_string(e.count) + " '" + e.name + "' elements, more than the " +
-                        std::to_string(available) + " bytes after the header can hold (truncated file or wrong header)");
+      fail(file, 0,
+           "the header declares " + std::to_string(e.count) + " '" + e.name +
+               "' elements, more than the " + std::to_string(available) +
+               " bytes after the header can hold (truncated file or wrong header)");
     needed += e.count * perItem;
     if (e.name == "vertex") {
       if (!(x && y && z)) fail(file, 0, "the 'vertex' element lacks x, y or z");
@@ -147,7 +168,8 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
       haveFace = true;
     }
   }
-  if (!haveVertex || h.info.vertices == 0) fail(file, 0, "the PLY file has no vertices: the mesh is empty");
+  if (!haveVertex || h.info.vertices == 0)
+    fail(file, 0, "the PLY file has no vertices: the mesh is empty");
   if (!haveFace || h.info.faces == 0) fail(file, 0, "the PLY file has no faces: the mesh is empty");
   return h;
 }
@@ -160,7 +182,8 @@ void walkAscii(const Header& h, std::string_view bytes, const std::string& file,
   std::string where;
   auto take = [&]() -> std::string_view {
     while (next == tokens.size()) {
-      if (!lines.next()) fail(file, lines.lineNumber(), "the file ends inside " + where + " (truncated)");
+      if (!lines.next())
+        fail(file, lines.lineNumber(), "the file ends inside " + where + " (truncated)");
       tokens = splitTokens(lines.line());
       next = 0;
     }
@@ -172,7 +195,9 @@ void walkAscii(const Header& h, std::string_view bytes, const std::string& file,
     const std::string_view t = take();
     const auto v = parseInt(t);
     const auto [lo, hi] = intRange(type);
-    if (!v || *v < lo || *v > hi) lines.fail(what + " " + quote(t) + " is not an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if (!v || *v < lo || *v > hi)
+      lines.fail(what + " " + quote(t) + " is not an integer in [" + std::to_string(lo) + ", " +
+                 std::to_string(hi) + "]");
     return *v;
   };
   auto number = [&](PlyType type, const std::string& what, bool coordinate) {
@@ -180,26 +205,30 @@ void walkAscii(const Header& h, std::string_view bytes, const std::string& file,
     const std::string_view t = take();
     const auto v = parseDouble(t);
     if (!v) lines.fail(what + " " + quote(t) + " is not a number");
-    if (!std::isfinite(*v)) lines.fail(what + (coordinate ? " has a NaN or Inf coordinate " : " is NaN or Inf: ") + quote(t));
+    if (!std::isfinite(*v))
+      lines.fail(what + (coordinate ? " has a NaN or Inf coordinate " : " is NaN or Inf: ") +
+                 quote(t));
     return *v;
   };
   for (const PlyElement& e : h.elements)
     for (int64_t item = 0; item < e.count; ++item) {
       where = e.name + " " + std::to_string(item) + " of " + std::to_string(e.count);
       for (const PlyProperty& p : e.properties) {
-        const bool coordinate = e.name == "vertex" && (p.name == "x" || p.name == "y" || p.name == "z");
+        const bool coordinate =
+            e.name == "vertex" && (p.name == "x" || p.name == "y" || p.name == "z");
         if (!p.list) {
           number(p.type, where, coordinate);
           continue;
         }
         const int64_t n = integer(p.countType, where + " list length");
         const bool indices = e.isFaceIndexList(p);
-        if (indices && n < 3) lines.fail(where + " has " + std::to_string(n) + " vertices; a face needs at least 3");
+        if (indices && n < 3)
+          lines.fail(where + " has " + std::to_string(n) + " vertices; a face needs at least 3");
         for (int64_t k = 0; k < n; ++k) {
           const double v = number(p.type, where, false);
           if (indices && (v < 0 || v >= static_cast<double>(info.vertices)))
-            lines.fail(where + " uses vertex index " + std::to_string(static_cast<int64_t>(v)) + ", out of range [0, " +
-                       std::to_string(info.vertices) + ")");
+            lines.fail(where + " uses vertex index " + std::to_string(static_cast<int64_t>(v)) +
+                       ", out of range [0, " + std::to_string(info.vertices) + ")");
         }
       }
     }
@@ -212,7 +241,8 @@ void walkBinary(const Header& h, std::string_view bytes, const std::string& file
   auto read = [&](PlyType type) -> double {
     const int size = byteSize(type);
     if (bytes.size() - pos < static_cast<size_t>(size))
-      fail(file, 0, "the file ends at byte " + std::to_string(pos) + " inside " + where + " (truncated)");
+      fail(file, 0,
+           "the file ends at byte " + std::to_string(pos) + " inside " + where + " (truncated)");
     unsigned char b[8];
     std::memcpy(b, bytes.data() + pos, static_cast<size_t>(size));
     pos += static_cast<size_t>(size);
@@ -220,14 +250,22 @@ void walkBinary(const Header& h, std::string_view bytes, const std::string& file
     uint64_t u = 0;
     for (int i = size - 1; i >= 0; --i) u = (u << 8) | b[i];
     switch (type) {
-      case PlyType::Int8: return static_cast<int8_t>(u);
-      case PlyType::UInt8: return static_cast<uint8_t>(u);
-      case PlyType::Int16: return static_cast<int16_t>(u);
-      case PlyType::UInt16: return static_cast<uint16_t>(u);
-      case PlyType::Int32: return static_cast<int32_t>(u);
-      case PlyType::UInt32: return static_cast<uint32_t>(u);
-      case PlyType::Float32: return std::bit_cast<float>(static_cast<uint32_t>(u));
-      default: return std::bit_cast<double>(u);
+      case PlyType::Int8:
+        return static_cast<int8_t>(u);
+      case PlyType::UInt8:
+        return static_cast<uint8_t>(u);
+      case PlyType::Int16:
+        return static_cast<int16_t>(u);
+      case PlyType::UInt16:
+        return static_cast<uint16_t>(u);
+      case PlyType::Int32:
+        return static_cast<int32_t>(u);
+      case PlyType::UInt32:
+        return static_cast<uint32_t>(u);
+      case PlyType::Float32:
+        return std::bit_cast<float>(static_cast<uint32_t>(u));
+      default:
+        return std::bit_cast<double>(u);
     }
   };
   for (const PlyElement& e : h.elements)
@@ -237,20 +275,27 @@ void walkBinary(const Header& h, std::string_view bytes, const std::string& file
         const size_t at = pos;
         if (!p.list) {
           const double v = read(p.type);
-          if (e.name == "vertex" && (p.name == "x" || p.name == "y" || p.name == "z") && !std::isfinite(v))
-            fail(file, 0, where + " has a NaN or Inf coordinate (at byte " + std::to_string(at) + ")");
+          if (e.name == "vertex" && (p.name == "x" || p.name == "y" || p.name == "z") &&
+              !std::isfinite(v))
+            fail(file, 0,
+                 where + " has a NaN or Inf coordinate (at byte " + std::to_string(at) + ")");
           continue;
         }
         const double n = read(p.countType);
         const bool indices = e.isFaceIndexList(p);
-        if (n < 0) fail(file, 0, where + " has a negative list length (at byte " + std::to_string(at) + ")");
+        if (n < 0)
+          fail(file, 0, where + " has a negative list length (at byte " + std::to_string(at) + ")");
         if (indices && n < 3)
-          fail(file, 0, where + " has " + std::to_string(static_cast<int64_t>(n)) + " vertices; a face needs at least 3 (at byte " + std::to_string(at) + ")");
+          fail(file, 0,
+               where + " has " + std::to_string(static_cast<int64_t>(n)) +
+                   " vertices; a face needs at least 3 (at byte " + std::to_string(at) + ")");
         for (int64_t k = 0; k < static_cast<int64_t>(n); ++k) {
           const double v = read(p.type);
           if (indices && (v < 0 || v >= static_cast<double>(info.vertices)))
-            fail(file, 0, where + " uses vertex index " + std::to_string(static_cast<int64_t>(v)) + ", out of range [0, " +
-                              std::to_string(info.vertices) + ") (at byte " + std::to_string(at) + ")");
+            fail(file, 0,
+                 where + " uses vertex index " + std::to_string(static_cast<int64_t>(v)) +
+                     ", out of range [0, " + std::to_string(info.vertices) + ") (at byte " +
+                     std::to_string(at) + ")");
         }
       }
     }
@@ -262,8 +307,10 @@ void walkBinary(const Header& h, std::string_view bytes, const std::string& file
 PlyInfo checkPly(std::string_view bytes, const std::string& file) {
   const Header h = parseHeader(bytes, file);
   PlyInfo info = h.info;
-  if (info.ascii) walkAscii(h, bytes, file, info);
-  else walkBinary(h, bytes, file, info);
+  if (info.ascii)
+    walkAscii(h, bytes, file, info);
+  else
+    walkBinary(h, bytes, file, info);
   return info;
 }
 

@@ -21,7 +21,8 @@ uint32_t readU32le(std::string_view bytes, size_t at) {
 
 std::string lower(std::string_view s) {
   std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return out;
 }
 
@@ -30,8 +31,9 @@ StlInfo checkBinary(std::string_view bytes, const std::string& file, uint32_t tr
     for (size_t k = 3; k < 12; ++k) {  // skip the normal, check the three corners
       const size_t at = 84 + 50 * size_t{t} + 4 * k;
       if (!std::isfinite(std::bit_cast<float>(readU32le(bytes, at))))
-        fail(file, 0, "binary STL triangle " + std::to_string(t) + " has a NaN or Inf coordinate (at byte " +
-                          std::to_string(at) + ")");
+        fail(file, 0,
+             "binary STL triangle " + std::to_string(t) + " has a NaN or Inf coordinate (at byte " +
+                 std::to_string(at) + ")");
     }
   return {true, triangles};
 }
@@ -43,17 +45,22 @@ StlInfo checkAscii(std::string_view bytes, const std::string& file) {
   LineReader lines(bytes, file, /*joinContinuations=*/false);
   while (lines.next()) {
     const std::string_view line = lines.line();
-    if (line.find("outer") == std::string_view::npos && line.find("OUTER") == std::string_view::npos) {
+    if (line.find("outer") == std::string_view::npos &&
+        line.find("OUTER") == std::string_view::npos) {
       const auto tokens = splitTokens(line);
-      if (!tokens.empty() && lower(tokens[0]) == "vertex") lines.fail("'vertex' outside an 'outer loop'");
+      if (!tokens.empty() && lower(tokens[0]) == "vertex")
+        lines.fail("'vertex' outside an 'outer loop'");
       continue;
     }
     for (int corner = 0; corner < 3; ++corner) {
       if (!lines.next())
-        fail(file, lines.lineNumber(), "the file ends inside a facet after " + std::to_string(corner) + " of 3 vertices (truncated)");
+        fail(file, lines.lineNumber(),
+             "the file ends inside a facet after " + std::to_string(corner) +
+                 " of 3 vertices (truncated)");
       const auto tokens = splitTokens(lines.line());
       if (tokens.size() != 4 || lower(tokens[0]) != "vertex")
-        lines.fail("expected 'vertex x y z' (corner " + std::to_string(corner + 1) + " of 3), found " + quote(lines.line()));
+        lines.fail("expected 'vertex x y z' (corner " + std::to_string(corner + 1) +
+                   " of 3), found " + quote(lines.line()));
       for (size_t i = 1; i < 4; ++i) {
         const auto v = parseDouble(tokens[i]);
         if (!v) lines.fail("vertex coordinate " + quote(tokens[i]) + " is not a number");
@@ -78,12 +85,16 @@ StlInfo checkStl(std::string_view bytes, const std::string& file) {
     }
   }
   const size_t first = bytes.find_first_not_of(" \t\r\n");
-  if (first != std::string_view::npos && lower(bytes.substr(first, 5)) == "solid") return checkAscii(bytes, file);
-  if (bytes.size() < 84) fail(file, 0, "neither ASCII STL (no 'solid') nor binary STL (shorter than the 84-byte header)");
+  if (first != std::string_view::npos && lower(bytes.substr(first, 5)) == "solid")
+    return checkAscii(bytes, file);
+  if (bytes.size() < 84)
+    fail(file, 0,
+         "neither ASCII STL (no 'solid') nor binary STL (shorter than the 84-byte header)");
   const uint32_t n = readU32le(bytes, 80);
-  fail(file, 0, "neither ASCII STL (no 'solid') nor binary STL: the header declares " + std::to_string(n) +
-                    " triangles, " + std::to_string(84 + 50 * uint64_t{n}) + " bytes, but the file has " +
-                    std::to_string(bytes.size()) + " (truncated file or wrong header)");
+  fail(file, 0,
+       "neither ASCII STL (no 'solid') nor binary STL: the header declares " + std::to_string(n) +
+           " triangles, " + std::to_string(84 + 50 * uint64_t{n}) + " bytes, but the file has " +
+           std::to_string(bytes.size()) + " (truncated file or wrong header)");
 }
 
 }  // namespace osd_cull::adapters::detail

@@ -14,7 +14,8 @@ std::string readFileBytes(const std::filesystem::path& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) throw Error(name + ": file not found");
-  if (std::filesystem::is_directory(status)) throw Error(name + ": is a directory, not a mesh file");
+  if (std::filesystem::is_directory(status))
+    throw Error(name + ": is a directory, not a mesh file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(name + ": cannot open the file for reading");
   std::string bytes;
@@ -44,7 +45,8 @@ std::string_view LineReader::takePhysicalLine() {
       lineNumber_ = nextLine_;
       char hex[8];
       std::snprintf(hex, sizeof hex, "0x%02x", c);
-      fail(std::string("binary data (byte ") + hex + ") in a text file; the file is corrupt or not in this format");
+      fail(std::string("binary data (byte ") + hex +
+           ") in a text file; the file is corrupt or not in this format");
     }
   }
   ++nextLine_;
@@ -72,14 +74,19 @@ bool LineReader::next() {
 size_t LineReader::remainingLines() const {
   if (pos_ >= text_.size()) return 0;
   const std::string_view rest = text_.substr(pos_);
-  return static_cast<size_t>(std::count(rest.begin(), rest.end(), '\n')) + (rest.back() == '\n' ? 0 : 1);
+  return static_cast<size_t>(std::count(rest.begin(), rest.end(), '\n')) +
+         (rest.back() == '\n' ? 0 : 1);
 }
 
-void LineReader::fail(const std::string& problem) const { detail::fail(file_, lineNumber_, problem); }
+void LineReader::fail(const std::string& problem) const {
+  detail::fail(file_, lineNumber_, problem);
+}
 
 std::vector<std::string_view> splitTokens(std::string_view text) {
   std::vector<std::string_view> tokens;
-  auto isSpace = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; };
+  auto isSpace = [](char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+  };
   size_t i = 0;
   while (i < text.size()) {
     while (i < text.size() && isSpace(text[i])) ++i;

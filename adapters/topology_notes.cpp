@@ -49,7 +49,8 @@ TopologyFindings noteTopology(CageMesh& mesh) {
     std::sort(sorted.begin(), sorted.end());
     if (auto it = std::adjacent_find(sorted.begin(), sorted.end()); it != sorted.end()) {
       if (found.facesRepeatingAVertex++ == 0)
-        firstRepeat = "face " + std::to_string(f) + " uses vertex " + std::to_string(*it) + " twice";
+        firstRepeat =
+            "face " + std::to_string(f) + " uses vertex " + std::to_string(*it) + " twice";
     }
     // Count each distinct edge of a face once, however often the face repeats it.
     std::vector<uint64_t> seen;
@@ -94,12 +95,14 @@ TopologyFindings noteTopology(CageMesh& mesh) {
                          " used by no face (first: vertex " + std::to_string(firstUnused) + ")");
   if (found.edgesWithManyFaces)
     mesh.notes.push_back(plural(found.edgesWithManyFaces, "edge is", "edges are") +
-                         " shared by more than two faces (non-manifold; first: edge " + edgeName(firstManyFaces) +
-                         " with " + std::to_string(edges[firstManyFaces].faces) + " faces)");
+                         " shared by more than two faces (non-manifold; first: edge " +
+                         edgeName(firstManyFaces) + " with " +
+                         std::to_string(edges[firstManyFaces].faces) + " faces)");
   if (found.orientationConflicts)
-    mesh.notes.push_back(plural(found.orientationConflicts, "edge is", "edges are") +
-                         " traversed twice in the same direction (inconsistent orientation; first: edge " +
-                         edgeName(firstConflict) + ")");
+    mesh.notes.push_back(
+        plural(found.orientationConflicts, "edge is", "edges are") +
+        " traversed twice in the same direction (inconsistent orientation; first: edge " +
+        edgeName(firstConflict) + ")");
   return found;
 }
 

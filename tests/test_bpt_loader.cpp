@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace osd_cull {
@@ -86,10 +86,13 @@ TEST(BptTeapot, LidTopAndBottomPatchesHaveACollapsedEdge) {
   // point; find, for each, a boundary row or column of four equal points.
   auto hasCollapsedEdge = [&](uint32_t patch) {
     const auto cp = set.controlPoints(patch);
-    auto same = [&](int a, int b, int c, int d) { return cp[a] == cp[b] && cp[b] == cp[c] && cp[c] == cp[d]; };
+    auto same = [&](int a, int b, int c, int d) {
+      return cp[a] == cp[b] && cp[b] == cp[c] && cp[c] == cp[d];
+    };
     return same(0, 1, 2, 3) || same(12, 13, 14, 15) || same(0, 4, 8, 12) || same(3, 7, 11, 15);
   };
-  for (uint32_t p : {20u, 21u, 22u, 23u, 28u, 29u, 30u, 31u}) EXPECT_TRUE(hasCollapsedEdge(p)) << "patch " << p;
+  for (uint32_t p : {20u, 21u, 22u, 23u, 28u, 29u, 30u, 31u})
+    EXPECT_TRUE(hasCollapsedEdge(p)) << "patch " << p;
   for (uint32_t p : {0u, 4u, 12u, 16u}) EXPECT_FALSE(hasCollapsedEdge(p)) << "patch " << p;
 }
 
@@ -99,14 +102,16 @@ TEST(BptFile, PointsKeepRowMajorOrderWithUFastest) {
   for (int p = 0; p < 2; ++p) {
     text += "3 3\n";
     for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 4; ++i) text += std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(p) + "\r\n";
+      for (int i = 0; i < 4; ++i)
+        text += std::to_string(i) + " " + std::to_string(j) + " " + std::to_string(p) + "\r\n";
   }
   const PatchSet set = loadBezierPatches(dir.write("two.bpt", text + "\n"));
   ASSERT_EQ(set.patchCount(), 2u);
   for (uint32_t p = 0; p < 2; ++p)
     for (int j = 0; j < 4; ++j)
       for (int i = 0; i < 4; ++i)
-        EXPECT_EQ(set.points[set.firstPoint(p) + 4 * j + i], glm::dvec3(i, j, p)) << p << " " << i << " " << j;
+        EXPECT_EQ(set.points[set.firstPoint(p) + 4 * j + i], glm::dvec3(i, j, p))
+            << p << " " << i << " " << j;
   EXPECT_EQ(set.params[1].GetFaceId(), 1);
 }
 

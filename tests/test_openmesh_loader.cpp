@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <atomic>
 #include <bit>
 #include <cstdint>
@@ -13,7 +14,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace osd_cull {
@@ -43,17 +43,27 @@ class TempDir {
 // Little helpers to build binary files byte by byte.
 struct Bytes {
   std::string data;
-  Bytes& text(const std::string& s) { data += s; return *this; }
-  Bytes& u8(uint8_t v) { data += static_cast<char>(v); return *this; }
+  Bytes& text(const std::string& s) {
+    data += s;
+    return *this;
+  }
+  Bytes& u8(uint8_t v) {
+    data += static_cast<char>(v);
+    return *this;
+  }
   Bytes& u16le(uint16_t v) { return u8(v & 0xff).u8(v >> 8); }
   Bytes& u32le(uint32_t v) { return u16le(v & 0xffff).u16le(v >> 16); }
-  Bytes& u32be(uint32_t v) { return u8(v >> 24).u8((v >> 16) & 0xff).u8((v >> 8) & 0xff).u8(v & 0xff); }
+  Bytes& u32be(uint32_t v) {
+    return u8(v >> 24).u8((v >> 16) & 0xff).u8((v >> 8) & 0xff).u8(v & 0xff);
+  }
   Bytes& f32le(float f) { return u32le(std::bit_cast<uint32_t>(f)); }
   Bytes& f32be(float f) { return u32be(std::bit_cast<uint32_t>(f)); }
 };
 
-const double kCube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
-const int kCubeFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+const double kCube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+const int kCubeFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                              {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
 
 void expectClosedCube(const CageMesh& m) {
   ASSERT_EQ(m.vertexCount(), 8);
@@ -61,7 +71,8 @@ void expectClosedCube(const CageMesh& m) {
   for (int v = 0; v < 8; ++v)
     for (int k = 0; k < 3; ++k) EXPECT_EQ(m.positions[v][k], kCube[v][k]) << "vertex " << v;
   for (int f = 0; f < 6; ++f)
-    for (int k = 0; k < 4; ++k) EXPECT_EQ(m.faceVertices[f * 4 + k], kCubeFaces[f][k]) << "face " << f;
+    for (int k = 0; k < 4; ++k)
+      EXPECT_EQ(m.faceVertices[f * 4 + k], kCubeFaces[f][k]) << "face " << f;
   const TopologySummary s = summarize(*makeTopologyRefiner(m));
   EXPECT_TRUE(s.closed);
   EXPECT_EQ(s.edges, 12);
@@ -69,22 +80,28 @@ void expectClosedCube(const CageMesh& m) {
 }
 
 std::string asciiPlyCube() {
-  std::string s = "ply\nformat ascii 1.0\ncomment a cube\nelement vertex 8\nproperty float x\nproperty float y\n"
-                  "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n";
-  for (const auto& p : kCube) s += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
+  std::string s =
+      "ply\nformat ascii 1.0\ncomment a cube\nelement vertex 8\nproperty float x\nproperty float "
+      "y\n"
+      "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : kCube)
+    s += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
   for (const auto& f : kCubeFaces)
-    s += "4 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + " " + std::to_string(f[3]) + "\n";
+    s += "4 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) +
+         " " + std::to_string(f[3]) + "\n";
   return s;
 }
 
 TEST(OffReader, CubeWithCommentsColoursAndCountsOnTheKeywordLine) {
   TempDir dir;
   std::string off = "# exported\nCOFF 8 6 12\n";
-  for (const auto& p : kCube) off += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " 255 0 0 255\n";
+  for (const auto& p : kCube)
+    off += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) +
+           " 255 0 0 255\n";
   off += "\n";
   for (const auto& f : kCubeFaces)
-    off += "4 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + " " +
-           std::to_string(f[3]) + " 0.5 0.5 0.5  # a face\r\n";
+    off += "4 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) +
+           " " + std::to_string(f[3]) + " 0.5 0.5 0.5  # a face\r\n";
   expectClosedCube(loadCage(dir.write("cube.off", off)));
 }
 
@@ -109,8 +126,10 @@ TEST(OpenMeshFormats, AsciiPlyCube) {
 TEST(OpenMeshFormats, BinaryLittleEndianPlyCubeWithDoubleCoordinates) {
   TempDir dir;
   Bytes b;
-  b.text("ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty double x\nproperty double y\n"
-         "property double z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n");
+  b.text(
+      "ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty double x\nproperty double "
+      "y\n"
+      "property double z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n");
   for (const auto& p : kCube)
     for (double c : p) {
       const auto bits = std::bit_cast<uint64_t>(c);
@@ -128,7 +147,8 @@ TEST(OpenMeshFormats, PlyNonManifoldFacesReachOpenSubdivUnsplit) {
   // OpenMesh's own mesh kernel would refuse the third triangle on edge 0-1 and the face that
   // repeats vertex 4; the importer keeps both, as the file has them.
   const std::string ply =
-      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float "
+      "z\n"
       "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
       "0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n2 2 2\n3 0 1 2\n3 1 0 3\n3 0 1 4\n4 1 5 4 4\n";
   const CageMesh m = loadCage(dir.write("fin.ply", ply));
@@ -246,7 +266,8 @@ TEST(OpenMeshFormats, SchemeComesFromTheFileNameForEveryFormat) {
     loadCage(dir.write("loop_cube.ply", asciiPlyCube()));
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("Loop scheme needs triangles"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Loop scheme needs triangles"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -20,8 +20,10 @@ double signedVolume(const CageMesh& m) {
   for (int n : m.faceSizes) {
     const glm::dvec3& p0 = m.positions[static_cast<size_t>(m.faceVertices[o])];
     for (int k = 1; k + 1 < n; ++k)
-      volume += glm::dot(p0, glm::cross(m.positions[static_cast<size_t>(m.faceVertices[o + k])],
-                                        m.positions[static_cast<size_t>(m.faceVertices[o + k + 1])])) / 6.0;
+      volume +=
+          glm::dot(p0, glm::cross(m.positions[static_cast<size_t>(m.faceVertices[o + k])],
+                                  m.positions[static_cast<size_t>(m.faceVertices[o + k + 1])])) /
+          6.0;
     o += static_cast<size_t>(n);
   }
   return volume;
@@ -36,11 +38,13 @@ TopologySummary expectClosedManifold(const CageMesh& m) {
   EXPECT_EQ(s.nonManifoldVertices, 0) << m.source;
   EXPECT_EQ(s.unusedVertices, 0) << m.source;
   EXPECT_EQ(s.degenerateFaces, 0) << m.source;
-  EXPECT_EQ(s.vertices - s.edges + s.faces, 2 - 2 * (m.source == "built-in:torus")) << m.source;  // genus 0 or 1
+  EXPECT_EQ(s.vertices - s.edges + s.faces, 2 - 2 * (m.source == "built-in:torus"))
+      << m.source;  // genus 0 or 1
   CageMesh copy = m;
   const adapters::TopologyFindings found = adapters::noteTopology(copy);
   EXPECT_EQ(found.orientationConflicts, 0) << m.source;
-  EXPECT_GT(signedVolume(m), 0.0) << m.source << ": faces must wind counter-clockwise seen from outside";
+  EXPECT_GT(signedVolume(m), 0.0) << m.source
+                                  << ": faces must wind counter-clockwise seen from outside";
   return s;
 }
 
@@ -92,7 +96,8 @@ TEST(Procedural, PoleSphereHasTwoPolesOfTheChosenValence) {
       const auto& level = refiner->GetLevel(0);
       EXPECT_EQ(level.GetVertexEdges(0).size(), n);  // north pole
       EXPECT_EQ(level.GetVertexEdges(1).size(), n);  // south pole
-      for (int v = 2; v < s.vertices; ++v) ASSERT_EQ(level.GetVertexEdges(v).size(), 4) << "n " << n << " vertex " << v;
+      for (int v = 2; v < s.vertices; ++v)
+        ASSERT_EQ(level.GetVertexEdges(v).size(), 4) << "n " << n << " vertex " << v;
       EXPECT_EQ(s.maxValence, std::max(n, 4));
       EXPECT_EQ(s.extraordinaryVertices, n == 4 ? 0 : 2) << "n " << n;
       for (const glm::dvec3& p : m.positions) EXPECT_NEAR(glm::length(p), 1.0, 1e-12);
@@ -155,7 +160,8 @@ TEST(Procedural, DefaultMeshIsAClosedCreasedBlobWithEightExtraordinaryVertices) 
 }
 
 TEST(Procedural, BuiltInMeshByName) {
-  for (const char* name : {"cube", "torus", "creased-cube", "collapsed-face", "default", "pole-sphere-5"}) {
+  for (const char* name :
+       {"cube", "torus", "creased-cube", "collapsed-face", "default", "pole-sphere-5"}) {
     const auto m = scene::builtInMesh(name);
     ASSERT_TRUE(m.has_value()) << name;
     EXPECT_EQ(m->source, std::string("built-in:") + name);
@@ -163,7 +169,8 @@ TEST(Procedural, BuiltInMeshByName) {
     EXPECT_TRUE(scene::builtInMesh(m->source).has_value()) << m->source;
   }
   EXPECT_EQ(scene::builtInMesh("pole-sphere-9")->vertexCount(), 2 + 3 * 9);
-  for (const char* bad : {"", "sphere", "pole-sphere-2", "pole-sphere-", "pole-sphere-5x", "built-in:"})
+  for (const char* bad :
+       {"", "sphere", "pole-sphere-2", "pole-sphere-", "pole-sphere-5x", "built-in:"})
     EXPECT_FALSE(scene::builtInMesh(bad).has_value()) << bad;
   EXPECT_EQ(scene::builtInMeshNames().size(), 6u);
 }

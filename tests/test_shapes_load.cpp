@@ -105,7 +105,7 @@ struct FileTags {
   std::map<std::pair<int, int>, float> creases;  // last tag wins, as in OpenSubdiv
   std::map<int, float> corners;
   std::set<int> holes;
-  std::map<std::string, int> lines;  // tag name → number of tag lines
+  std::map<std::string, int> lines;          // tag name → number of tag lines
   std::map<std::string, std::string> value;  // option tags → last argument
 };
 
@@ -177,7 +177,8 @@ TEST_P(ShapeIndex, LoadsAndMatchesEveryIndexColumn) {
   EXPECT_EQ(toString(mesh.scheme), row.col.at("scheme"));
   EXPECT_EQ(s.vertices, row.num("vertices"));
   EXPECT_EQ(s.faces, row.num("faces"));
-  EXPECT_EQ(*std::max_element(mesh.faceSizes.begin(), mesh.faceSizes.end()), row.num("max_face_valence"));
+  EXPECT_EQ(*std::max_element(mesh.faceSizes.begin(), mesh.faceSizes.end()),
+            row.num("max_face_valence"));
   EXPECT_EQ(s.triangles, row.num("tris"));
   EXPECT_EQ(s.quads, row.num("quads"));
   EXPECT_EQ(s.otherFaces, row.num("ngons"));
@@ -185,8 +186,10 @@ TEST_P(ShapeIndex, LoadsAndMatchesEveryIndexColumn) {
   EXPECT_EQ(s.unusedVertices, row.num("unused_verts"));
   EXPECT_EQ(s.degenerateFaces, row.num("degenerate_faces"));
 
-  OsdView osd{row.num("nonmanifold_edges"), row.num("nonmanifold_verts"), row.num("max_vertex_valence")};
-  if (auto it = osdExceptions().find(row.col.at("name")); it != osdExceptions().end()) osd = it->second;
+  OsdView osd{row.num("nonmanifold_edges"), row.num("nonmanifold_verts"),
+              row.num("max_vertex_valence")};
+  if (auto it = osdExceptions().find(row.col.at("name")); it != osdExceptions().end())
+    osd = it->second;
   EXPECT_EQ(s.nonManifoldEdges, osd.nonManifoldEdges);
   EXPECT_EQ(s.nonManifoldVertices, osd.nonManifoldVertices);
   EXPECT_EQ(s.maxValence, osd.maxValence);
@@ -207,8 +210,9 @@ TEST_P(ShapeIndex, LoadsAndMatchesEveryIndexColumn) {
   EXPECT_EQ(found.unusedVertices, row.num("unused_verts"));
   EXPECT_EQ(found.edgesWithManyFaces, row.num("nonmanifold_edges"));
   EXPECT_EQ(found.orientationConflicts == 0, row.yes("orientation_consistent"));
-  EXPECT_EQ(copy.notes.empty(), found.facesRepeatingAVertex + found.unusedVertices + found.edgesWithManyFaces +
-                                    found.orientationConflicts == 0);
+  EXPECT_EQ(copy.notes.empty(), found.facesRepeatingAVertex + found.unusedVertices +
+                                        found.edgesWithManyFaces + found.orientationConflicts ==
+                                    0);
 
   EXPECT_EQ(faceComponents(mesh), row.num("components"));
   EXPECT_EQ(indexEulerCharacteristic(mesh), row.num("euler_char"));
@@ -220,14 +224,16 @@ TEST_P(ShapeIndex, LoadsAndMatchesEveryIndexColumn) {
   EXPECT_EQ(row.yes("has_crease_tags"), !mesh.creases.empty() || !mesh.corners.empty());
   const Far::TopologyLevel& level = refiner->GetLevel(0);
   std::map<std::pair<int, int>, float> loadedCreases;
-  for (const CreaseEdge& c : mesh.creases) loadedCreases[{std::min(c.v0, c.v1), std::max(c.v0, c.v1)}] = c.sharpness;
+  for (const CreaseEdge& c : mesh.creases)
+    loadedCreases[{std::min(c.v0, c.v1), std::max(c.v0, c.v1)}] = c.sharpness;
   EXPECT_EQ(loadedCreases, tags.creases);
   for (const auto& [edge, sharpness] : tags.creases) {
     const int e = level.FindEdge(edge.first, edge.second);
     ASSERT_NE(e, OpenSubdiv::Far::INDEX_INVALID);
     // OpenSubdiv makes boundary and non-manifold edges infinitely sharp whatever the tag.
     if (level.GetEdgeFaces(e).size() == 2 && !level.IsEdgeNonManifold(e)) {
-      EXPECT_FLOAT_EQ(level.GetEdgeSharpness(e), sharpness) << "edge " << edge.first << "-" << edge.second;
+      EXPECT_FLOAT_EQ(level.GetEdgeSharpness(e), sharpness)
+          << "edge " << edge.first << "-" << edge.second;
     }
   }
   ASSERT_EQ(mesh.corners.size(), tags.corners.size());
@@ -244,24 +250,28 @@ TEST_P(ShapeIndex, LoadsAndMatchesEveryIndexColumn) {
   Options::VtxBoundaryInterpolation boundary = Options::VTX_BOUNDARY_EDGE_ONLY;  // harness default
   if (tags.value.contains("interpolateboundary")) {
     const int v = std::stoi(tags.value.at("interpolateboundary"));
-    boundary = v == 0 ? Options::VTX_BOUNDARY_NONE
-                      : v == 1 ? Options::VTX_BOUNDARY_EDGE_AND_CORNER : Options::VTX_BOUNDARY_EDGE_ONLY;
+    boundary = v == 0   ? Options::VTX_BOUNDARY_NONE
+               : v == 1 ? Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                        : Options::VTX_BOUNDARY_EDGE_ONLY;
   }
   EXPECT_EQ(options.GetVtxBoundaryInterpolation(), boundary);
-  EXPECT_EQ(options.GetFVarLinearInterpolation(), tags.value.contains("facevaryinginterpolateboundary")
-                                                      ? Options::FVAR_LINEAR_CORNERS_ONLY  // all shapes say 1
-                                                      : Options::FVAR_LINEAR_ALL);
-  EXPECT_EQ(options.GetCreasingMethod(), tags.value.contains("creasemethod") &&
-                                                 tags.value.at("creasemethod") == "chaikin"
-                                             ? Options::CREASE_CHAIKIN
-                                             : Options::CREASE_UNIFORM);
-  EXPECT_EQ(options.GetTriangleSubdivision(), tags.value.contains("smoothtriangles") &&
-                                                      tags.value.at("smoothtriangles") == "smooth"
-                                                  ? Options::TRI_SUB_SMOOTH
-                                                  : Options::TRI_SUB_CATMARK);
+  EXPECT_EQ(options.GetFVarLinearInterpolation(),
+            tags.value.contains("facevaryinginterpolateboundary")
+                ? Options::FVAR_LINEAR_CORNERS_ONLY  // all shapes say 1
+                : Options::FVAR_LINEAR_ALL);
+  EXPECT_EQ(options.GetCreasingMethod(),
+            tags.value.contains("creasemethod") && tags.value.at("creasemethod") == "chaikin"
+                ? Options::CREASE_CHAIKIN
+                : Options::CREASE_UNIFORM);
+  EXPECT_EQ(options.GetTriangleSubdivision(),
+            tags.value.contains("smoothtriangles") && tags.value.at("smoothtriangles") == "smooth"
+                ? Options::TRI_SUB_SMOOTH
+                : Options::TRI_SUB_CATMARK);
 }
 
-std::string rowName(const ::testing::TestParamInfo<IndexRow>& info) { return info.param.col.at("name"); }
+std::string rowName(const ::testing::TestParamInfo<IndexRow>& info) {
+  return info.param.col.at("name");
+}
 
 INSTANTIATE_TEST_SUITE_P(SharedData, ShapeIndex, ::testing::ValuesIn(allRows()), rowName);
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ShapeIndex);
@@ -281,8 +291,10 @@ TEST(ShapeIndexFiles, FileNamePrefixChoosesTheSchemeAndAnOptionOverridesIt) {
   OSD_CULL_REQUIRE_DATA();
   const fs::path loopCube = test::dataDir() / "shapes" / "loop_cube.obj";
   EXPECT_EQ(adapters::loadCage(loopCube).scheme, Scheme::Loop);
-  EXPECT_EQ(adapters::loadCage(test::dataDir() / "shapes" / "bilinear_cube.obj").scheme, Scheme::Bilinear);
-  EXPECT_EQ(adapters::loadCage(test::dataDir() / "characters" / "bigguy.obj").scheme, Scheme::CatmullClark);
+  EXPECT_EQ(adapters::loadCage(test::dataDir() / "shapes" / "bilinear_cube.obj").scheme,
+            Scheme::Bilinear);
+  EXPECT_EQ(adapters::loadCage(test::dataDir() / "characters" / "bigguy.obj").scheme,
+            Scheme::CatmullClark);
   adapters::LoadOptions bilinear;
   bilinear.scheme = Scheme::Bilinear;
   EXPECT_EQ(adapters::loadCage(loopCube, bilinear).scheme, Scheme::Bilinear);
