@@ -184,21 +184,26 @@ void ObjTags::apply(CageMesh& mesh, const std::string& file) const {
                std::to_string(vertices) + ") (tag indices are 0-based)");
   };
 
-  std::unordered_set<uint64_t> edges;
-  edges.reserve(mesh.faceVertices.size());
-  for (size_t f = 0, offset = 0; f < mesh.faceSizes.size();
-       offset += static_cast<size_t>(mesh.faceSizes[f++])) {
-    const int n = mesh.faceSizes[f];
-    for (int k = 0; k < n; ++k)
-      edges.insert(edgeKey(mesh.faceVertices[offset + static_cast<size_t>(k)],
-                           mesh.faceVertices[offset + static_cast<size_t>((k + 1) % n)]));
-  }
+  // The crease edges some face actually has (a scan of the faces, only when there are creases).
+  std::unordered_set<uint64_t> wanted, found;
   for (const Crease& c : creases_) {
     checkVertex(c.v0, c.line, "tag 'crease'");
     checkVertex(c.v1, c.line, "tag 'crease'");
+    wanted.insert(edgeKey(static_cast<int>(c.v0), static_cast<int>(c.v1)));
+  }
+  for (size_t f = 0, offset = 0; !wanted.empty() && f < mesh.faceSizes.size();
+       offset += static_cast<size_t>(mesh.faceSizes[f++])) {
+    const int n = mesh.faceSizes[f];
+    for (int k = 0; k < n; ++k) {
+      const uint64_t key = edgeKey(mesh.faceVertices[offset + static_cast<size_t>(k)],
+                                   mesh.faceVertices[offset + static_cast<size_t>((k + 1) % n)]);
+      if (wanted.contains(key)) found.insert(key);
+    }
+  }
+  for (const Crease& c : creases_) {
     // OpenSubdiv refuses the whole mesh when a crease names a pair of vertices that no face
     // connects; say which pair.
-    if (!edges.contains(edgeKey(static_cast<int>(c.v0), static_cast<int>(c.v1))))
+    if (!found.contains(edgeKey(static_cast<int>(c.v0), static_cast<int>(c.v1))))
       fail(file, c.line,
            "tag 'crease': vertices " + std::to_string(c.v0) + " and " + std::to_string(c.v1) +
                " are not joined by an edge of any face");

@@ -3,16 +3,17 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace osd_cull::adapters {
 namespace {
 
+// One traversal of an edge by a face; sorting these groups the uses of each edge.
 struct EdgeUse {
-  int faces = 0;     // faces that have this edge
-  int forward = 0;   // traversals from the smaller to the larger vertex index
-  int backward = 0;  // traversals from the larger to the smaller
+  uint64_t key;  // (larger vertex << 32) | smaller vertex
+  int face;
+  bool forward;  // traversed from the smaller to the larger vertex index
+  auto operator<=>(const EdgeUse&) const = default;
 };
 
 uint64_t edgeKey(int a, int b) {
@@ -34,8 +35,8 @@ std::string plural(int n, const char* one, const char* many) {
 TopologyFindings noteTopology(CageMesh& mesh) {
   TopologyFindings found;
   std::vector<char> used(mesh.positions.size(), 0);
-  std::unordered_map<uint64_t, EdgeUse> edges;
-  edges.reserve(mesh.faceVertices.size());
+  std::vector<EdgeUse> uses;
+  uses.reserve(mesh.faceVertices.size());
   std::string firstRepeat;
 
   size_t offset = 0;
@@ -52,36 +53,35 @@ TopologyFindings noteTopology(CageMesh& mesh) {
         firstRepeat =
             "face " + std::to_string(f) + " uses vertex " + std::to_string(*it) + " twice";
     }
-    // Count each distinct edge of a face once, however often the face repeats it.
-    std::vector<uint64_t> seen;
     for (int k = 0; k < n; ++k) {
       const int a = fv[k];
       const int b = fv[(k + 1) % n];
       used[static_cast<size_t>(a)] = 1;
       if (a == b) continue;  // a collapsed edge of a face that repeats a vertex
-      const uint64_t key = edgeKey(a, b);
-      EdgeUse& use = edges[key];
-      (a < b ? use.forward : use.backward) += 1;
-      if (std::find(seen.begin(), seen.end(), key) == seen.end()) {
-        seen.push_back(key);
-        ++use.faces;
-      }
+      uses.push_back({edgeKey(a, b), f, a < b});
     }
   }
 
-  // The example named is the smallest edge key, so notes do not depend on hash order.
+  // Walk the uses edge by edge (in key order, so the example named is the smallest edge).
+  std::sort(uses.begin(), uses.end());
   uint64_t firstManyFaces = UINT64_MAX, firstConflict = UINT64_MAX;
-  for (const auto& [key, use] : edges) {
-    if (use.faces > 2) {
-      ++found.edgesWithManyFaces;
-      firstManyFaces = std::min(firstManyFaces, key);
+  int firstManyFacesCount = 0;
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i;
+    int faces = 0, forward = 0, backward = 0;
+    for (; j < uses.size() && uses[j].key == uses[i].key; ++j) {
+      faces += j == i || uses[j].face != uses[j - 1].face;  // a face counts once per edge
+      (uses[j].forward ? forward : backward) += 1;
+    }
+    if (faces > 2 && found.edgesWithManyFaces++ == 0) {
+      firstManyFaces = uses[i].key;
+      firstManyFacesCount = faces;
     }
     // Orientation is only defined across a manifold edge: its two faces must traverse it in
     // opposite directions.
-    if (use.faces == 2 && (use.forward > 1 || use.backward > 1)) {
-      ++found.orientationConflicts;
-      firstConflict = std::min(firstConflict, key);
-    }
+    if (faces == 2 && (forward > 1 || backward > 1) && found.orientationConflicts++ == 0)
+      firstConflict = uses[i].key;
+    i = j;
   }
   int firstUnused = -1;
   for (size_t v = 0; v < used.size(); ++v)
@@ -96,8 +96,8 @@ TopologyFindings noteTopology(CageMesh& mesh) {
   if (found.edgesWithManyFaces)
     mesh.notes.push_back(plural(found.edgesWithManyFaces, "edge is", "edges are") +
                          " shared by more than two faces (non-manifold; first: edge " +
-                         edgeName(firstManyFaces) + " with " +
-                         std::to_string(edges[firstManyFaces].faces) + " faces)");
+                         edgeName(firstManyFaces) + " with " + std::to_string(firstManyFacesCount) +
+                         " faces)");
   if (found.orientationConflicts)
     mesh.notes.push_back(
         plural(found.orientationConflicts, "edge is", "edges are") +
