@@ -108,11 +108,21 @@ class CapturedOmErr {
     ::omerr().disconnect(text_);
     if (cerrWasConnected_) ::omerr().connect(std::cerr);
   }
+  /// The distinct lines OpenMesh wrote (it checks a file before reading it, and repeats
+  /// itself), joined with "; ".
   std::string text() {
     ::omerr().flush();
-    std::string t = text_.str();
-    while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.pop_back();
-    return t;
+    std::istringstream in(text_.str());
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);) {
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+        line.pop_back();
+      if (!line.empty() && std::find(lines.begin(), lines.end(), line) == lines.end())
+        lines.push_back(line);
+    }
+    std::string joined;
+    for (const std::string& line : lines) joined += (joined.empty() ? "" : "; ") + line;
+    return joined;
   }
 
  private:

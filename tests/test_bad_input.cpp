@@ -79,6 +79,10 @@ TEST(BadInput, MissingFileAndDirectory) {
   expectError(dir.path() / "nothing.bpt", 0, {"file not found"});
   fs::create_directories(dir.path() / "folder.obj");
   expectError(dir.path() / "folder.obj", 0, {"is a directory"});
+  if (fs::exists("/dev/zero")) {  // a device that never ends must not be read
+    fs::create_symlink("/dev/zero", dir.path() / "zero.obj");
+    expectError(dir.path() / "zero.obj", 0, {"not a regular file"});
+  }
 }
 
 TEST(BadInput, UnknownExtensionAndBptAsCage) {

@@ -142,6 +142,41 @@ TEST(OpenMeshFormats, BinaryLittleEndianPlyCubeWithDoubleCoordinates) {
   expectClosedCube(loadCage(dir.write("cube.ply", b.data)));
 }
 
+TEST(OpenMeshFormats, PlyExtraPropertiesAndElementsAreSkipped) {
+  TempDir dir;
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float "
+      "z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float confidence\n"
+      "element face 2\nproperty list uchar int vertex_indices\nproperty int flags\n"
+      "element edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n"
+      "0 0 0 255 0 0 0.5\n1 0 0 0 255 0 0.5\n1 1 0 0 0 255 0.5\n0 1 0 9 9 9 0.25\n"
+      "3 0 1 2 7\n3 0 2 3 8\n0 1\n";
+  const CageMesh m = loadCage(dir.write("extra.ply", ply));
+  ASSERT_EQ(m.vertexCount(), 4);
+  EXPECT_EQ(m.positions[2], glm::dvec3(1, 1, 0));
+  EXPECT_EQ(m.positions[3], glm::dvec3(0, 1, 0));
+  EXPECT_EQ(m.faceVertices, (std::vector<int>{0, 1, 2, 0, 2, 3}));
+  // OpenMesh's complaint about the element it does not know becomes one note.
+  ASSERT_EQ(m.notes.size(), 1u) << ::testing::PrintToString(m.notes);
+  EXPECT_EQ(m.notes[0], "OpenMesh reported: PLY header unsupported element type: edge");
+}
+
+TEST(OpenMeshFormats, BinaryBigEndianPly) {
+  TempDir dir;
+  Bytes b;
+  b.text(
+      "ply\nformat binary_big_endian 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n");
+  for (const auto& p : kCube)
+    for (double c : p) b.f32be(static_cast<float>(c));
+  for (const auto& f : kCubeFaces) {
+    b.u8(4);
+    for (int v : f) b.u32be(static_cast<uint32_t>(v));
+  }
+  expectClosedCube(loadCage(dir.write("cube.ply", b.data)));
+}
+
 TEST(OpenMeshFormats, PlyNonManifoldFacesReachOpenSubdivUnsplit) {
   TempDir dir;
   // OpenMesh's own mesh kernel would refuse the third triangle on edge 0-1 and the face that
