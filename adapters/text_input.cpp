@@ -16,6 +16,8 @@ std::string readFileBytes(const std::filesystem::path& path) {
   if (ec || !std::filesystem::exists(status)) throw Error(name + ": file not found");
   if (std::filesystem::is_directory(status))
     throw Error(name + ": is a directory, not a mesh file");
+  // Devices and pipes may never end (/dev/zero): only regular files are read.
+  if (!std::filesystem::is_regular_file(status)) throw Error(name + ": is not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(name + ": cannot open the file for reading");
   std::string bytes;
