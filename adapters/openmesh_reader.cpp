@@ -100,6 +100,9 @@ class FaceListImporter final : public BaseImporter {
 class CapturedOmErr {
  public:
   CapturedOmErr() {
+    // omlog() chatters about every header token it skips; silence it while reading.
+    logWasEnabled_ = ::omlog().is_enabled();
+    ::omlog().disable();
     cerrWasConnected_ = ::omerr().disconnect(std::cerr);
     ::omerr().connect(text_);
   }
@@ -107,6 +110,7 @@ class CapturedOmErr {
     ::omerr().flush();
     ::omerr().disconnect(text_);
     if (cerrWasConnected_) ::omerr().connect(std::cerr);
+    if (logWasEnabled_) ::omlog().enable();
   }
   /// The distinct lines OpenMesh wrote (it checks a file before reading it, and repeats
   /// itself), joined with "; ".
@@ -128,6 +132,7 @@ class CapturedOmErr {
  private:
   std::ostringstream text_;
   bool cerrWasConnected_ = false;
+  bool logWasEnabled_ = false;
 };
 
 std::string lowerExtension(const std::filesystem::path& path) {

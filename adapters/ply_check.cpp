@@ -85,6 +85,11 @@ struct Header {
   std::vector<PlyElement> elements;
 };
 
+// The header grammar OpenMesh's PLYReader::can_u_read reads with `istream >>` (a token that
+// fails to parse leaves the stream failed and its loop spinning, so every token is checked):
+// "format TYPE VERSION" right after "ply"; "element NAME COUNT" with COUNT an unsigned int;
+// list count types uint8, uchar, uint16 or int; in "face", vertex_indices first (OpenMesh
+// drops properties declared before it, and would read their values as indices).
 Header parseHeader(std::string_view bytes, const std::string& file) {
   if (!bytes.starts_with("ply\n") && !bytes.starts_with("ply\r\n"))
     fail(file, 1, "not a PLY file (it does not start with the line 'ply')");
@@ -94,11 +99,24 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
   lines.next();  // "ply"
   while (!ended && lines.next()) {
     const auto tokens = splitTokens(lines.line());
-    if (tokens.empty() || tokens[0] == "comment" || tokens[0] == "obj_info") continue;
+    if (tokens.empty()) continue;
+    if (!haveFormat && tokens[0] != "format")
+      lines.fail("expected 'format TYPE VERSION' right after 'ply', found " + quote(tokens[0]));
+    if (tokens[0] == "comment") continue;
+    if (tokens[0] == "obj_info") {
+      for (std::string_view t : tokens)
+        if (t == "comment" || t == "element" || t == "property" || t == "end_header" ||
+            t == "format")
+          lines.fail("'obj_info' text containing the header keyword " + quote(t));
+      continue;
+    }
     if (tokens[0] == "end_header") {
+      if (tokens.size() != 1) lines.fail("text after 'end_header'");
       ended = true;
     } else if (tokens[0] == "format") {
-      if (tokens.size() < 2) lines.fail("'format' needs a value");
+      if (haveFormat) lines.fail("a second 'format' line");
+      if (tokens.size() != 3 || !parseDouble(tokens[2]))
+        lines.fail("expected 'format TYPE VERSION' (e.g. 'format ascii 1.0')");
       if (tokens[1] == "ascii")
         h.info.ascii = true;
       else if (tokens[1] == "binary_little_endian")
@@ -111,11 +129,12 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
     } else if (tokens[0] == "element") {
       if (tokens.size() != 3) lines.fail("expected 'element NAME COUNT'");
       const auto n = parseInt(tokens[2]);
-      if (!n || *n < 0)
-        lines.fail("element count " + quote(tokens[2]) + " is not a non-negative integer");
+      if (!n || *n < 0 || *n > std::numeric_limits<uint32_t>::max())
+        lines.fail("element count " + quote(tokens[2]) + " is not an integer in [0, 2^32)");
       h.elements.push_back({std::string(tokens[1]), *n, {}});
     } else if (tokens[0] == "property") {
       if (h.elements.empty()) lines.fail("'property' before any 'element'");
+      PlyElement& e = h.elements.back();
       PlyProperty p;
       p.list = tokens.size() >= 2 && tokens[1] == "list";
       if (tokens.size() != (p.list ? 5u : 3u))
@@ -123,11 +142,20 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
                           : "expected 'property TYPE NAME'");
       p.countType = p.list ? plyType(tokens[2]) : PlyType::Unknown;
       p.type = plyType(tokens[p.list ? 3 : 1]);
-      if (p.type == PlyType::Unknown ||
-          (p.list && (p.countType == PlyType::Unknown || isFloat(p.countType))))
-        lines.fail("unknown or unusable PLY property type in " + quote(lines.line()));
       p.name = std::string(tokens.back());
-      h.elements.back().properties.push_back(p);
+      if (p.type == PlyType::Unknown)
+        lines.fail("unknown PLY property type in " + quote(lines.line()));
+      if (p.list) {
+        const std::string_view ct = tokens[2];
+        if (ct != "uchar" && ct != "uint8" && ct != "uint16" && ct != "int")
+          lines.fail("list count type " + quote(ct) +
+                     " is not supported (uchar, uint8, uint16 or int)");
+        if (e.name != "face")
+          lines.fail("list properties are only supported in the 'face' element");
+        if (e.isFaceIndexList(p) && !e.properties.empty())
+          lines.fail("'" + p.name + "' must be the first property of 'face'");
+      }
+      e.properties.push_back(p);
     } else {
       lines.fail("unknown PLY header keyword " + quote(tokens[0]));
     }
@@ -137,6 +165,19 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
   h.lines = lines.lineNumber();
   h.dataStart = 0;
   for (int i = 0; i < h.lines; ++i) h.dataStart = bytes.find('\n', h.dataStart) + 1;
+  if (!h.info.ascii) {
+    // OpenMesh finds binary data 12 bytes (14 after "\r\n") past the end of the token before
+    // "end_header"; anything else there (trailing blanks, a comment line) shifts every value.
+    const size_t endHeaderLine = bytes.rfind("end_header", h.dataStart);
+    size_t p = bytes.find_last_not_of(" \t\r\n", endHeaderLine - 1) + 1;
+    const size_t lineStart = bytes.rfind('\n', p - 1) + 1;
+    if (splitTokens(bytes.substr(lineStart, p - lineStart))[0] == "comment") p = endHeaderLine;
+    const size_t openMeshStart = p + (bytes.substr(p, 2) == "\r\n" ? 14 : 12);
+    if (openMeshStart != h.dataStart)
+      fail(file, h.lines,
+           "binary PLY with blanks or a comment just before 'end_header', or blanks "
+           "after it: OpenMesh would read the data from the wrong byte");
+  }
 
   // Counts must fit the bytes that follow (an ASCII value takes at least two bytes), so a
   // header claiming 10^12 elements is refused before anything is read.
