@@ -100,6 +100,19 @@ struct OsdPath {
           conversion[mask][r][k] = static_cast<float>(bsplineToBezierWeights(mask)[r][k]);
   }
 
+  // Bytes of the tables one frame reads: stencil sizes, indices and float weights,
+  // local-point stencils, patch point indices and boundary masks.
+  double tableMegabytes() const {
+    auto stencilBytes = [](const Far::StencilTable& t) {
+      return 4.0 * t.GetNumStencils() + 8.0 * static_cast<double>(t.GetControlIndices().size());
+    };
+    double bytes = stencilBytes(*stencils);
+    if (const Far::StencilTable* local = table->GetLocalPointStencilTable())
+      bytes += stencilBytes(*local);
+    bytes += 4.0 * table->GetNumControlVerticesTotal() + 8.0 * table->GetNumPatchesTotal();
+    return bytes / 1e6;
+  }
+
   // One frame: cage xyz in, all patch control points out (Bézier first, then Gregory).
   void update(const std::vector<float>& cage, std::vector<float>& out) {
     const int coarse = refiner->GetLevel(0).GetNumVertices();
@@ -143,12 +156,21 @@ struct Row {
   double oursSetupMs = 0, osdSetupMs = 0;
   double oursFloatMs = 0, oursDoubleMs = 0, osdFrameMs = 0;
   double maxDiff = 0;  // |ours - OpenSubdiv| / bounding-box diagonal, float path
+  double oursTableMb = 0, osdTableMb = 0;  // tables read per frame (float weights)
 };
 
 std::string fmt(double v, int digits = 2) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", digits, v);
   return buf;
+}
+
+// The 1-minute load average (other processes share this machine's cores and caches).
+std::string loadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string first;
+  in >> first;
+  return first.empty() ? std::string("unknown") : first;
 }
 
 std::string machineNote() {
@@ -212,6 +234,7 @@ int main(int argc, char** argv) {
     }
     const double diag = glm::length(hi - lo);
     const int setupRepeats = std::max(1, repeats / 6);
+    const std::string loadBefore = loadAverage();
 
     std::vector<Row> rows;
     for (int level = 1; level <= maxLevel; ++level) {
@@ -239,6 +262,9 @@ int main(int argc, char** argv) {
       row.oursFloatMs = frame[0];
       row.oursDoubleMs = frame[1];
       row.osdFrameMs = frame[2];
+      row.oursTableMb =
+          (4.0 * ex.matrix.rowCount() + 8.0 * static_cast<double>(ex.matrix.nonZeroCount())) / 1e6;
+      row.osdTableMb = osd->tableMegabytes();
       for (size_t i = 0; i < ours.size(); ++i)
         row.maxDiff = std::max(row.maxDiff, double(std::abs(ours[i] - theirs[i])));
       row.maxDiff /= diag;
@@ -251,8 +277,8 @@ int main(int argc, char** argv) {
              "| set-up ms, ours | set-up ms, OpenSubdiv | ratio "
              "| per frame ms, ours (float) | per frame ms, ours (double) | per frame ms, "
              "OpenSubdiv (float) | ratio (float) "
-             "| max diff / diag |\n";
-    table << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+             "| tables MB, ours / OpenSubdiv | max diff / diag |\n";
+    table << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const Row& r : rows) {
       const uint32_t bezier =
           r.stats.regular + r.stats.boundary + r.stats.corner + r.stats.bsplineEndCaps;
@@ -263,9 +289,11 @@ int main(int argc, char** argv) {
             << " | " << fmt(r.oursSetupMs) << " | " << fmt(r.osdSetupMs) << " | "
             << fmt(r.oursSetupMs / r.osdSetupMs) << " | " << fmt(r.oursFloatMs, 3) << " | "
             << fmt(r.oursDoubleMs, 3) << " | " << fmt(r.osdFrameMs, 3) << " | "
-            << fmt(r.oursFloatMs / r.osdFrameMs) << " | " << diff << " |\n";
+            << fmt(r.oursFloatMs / r.osdFrameMs) << " | " << fmt(r.oursTableMb, 1) << " / "
+            << fmt(r.osdTableMb, 1) << " | " << diff << " |\n";
     }
     std::cout << table.str();
+    const std::string loadAfter = loadAverage();
 
     if (!writePath.empty()) {
       std::ofstream out(writePath);
@@ -275,7 +303,7 @@ int main(int argc, char** argv) {
           << " cage vertices, " << cage.faceCount()
           << " faces), Gregory-basis end caps, infinitely sharp patches on.\n"
           << "Medians of " << setupRepeats << " set-ups and " << repeats
-          << " per-frame updates, both sides in the same run.\n\n"
+          << " per-frame updates, both sides in the same run, interleaved round by round.\n\n"
           << table.str() << "\n"
           << "- *set-up, ours*: `extractPatches` — topology refiner, adaptive refinement, "
              "`Far::PatchTable`, "
@@ -294,10 +322,18 @@ int main(int argc, char** argv) {
              "per Gregory "
              "patch a gather of its 20 points, into the same layout.\n"
           << "- *ratio* = ours / OpenSubdiv (below 1: ours is faster).\n"
+          << "- *tables MB*: what one frame reads besides the cage and the output: for ours the "
+             "row "
+             "sizes, column indices and float weights of the matrix; for OpenSubdiv the refinement "
+             "and local-point stencil tables, patch point indices and patch params. The composed "
+             "matrix saves the intermediate refined vertices and the per-patch conversion "
+             "arithmetic, but it reads more memory, so its per-frame time suffers more when "
+             "other processes compete for the caches (see the load average below).\n"
           << "- *max diff / diag*: largest coordinate difference between the two float outputs, "
              "relative to "
              "the bounding-box diagonal.\n\n"
-          << "Machine: " << machineNote()
+          << "Machine: " << machineNote() << " Load average (1 min) " << loadBefore
+          << " before and " << loadAfter << " after the run."
           << " Run-to-run variation on this VM is up to 1.5x; compare "
              "within a run.\n\n"
           << "Command (from the build directory):\n\n"
