@@ -190,8 +190,13 @@ sh::CullConstants CullPass::constants(const Camera& camera,
   sh::CullConstants c{};
   c.viewProjection = glm::mat4(viewProj);
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  c.eye = view.eye ? glm::vec4(glm::vec3(*view.eye), float(view.eyeSign))
-                   : glm::vec4(nan, nan, nan, 0.0f);
+  c.eye = glm::vec4(nan, nan, nan, 0.0f);
+  if (view.eye) {
+    // The scale between world-space and clip-space tangent-plane coefficients
+    // (shaders/cull/tangent_plane_common.glsl); eyePosition() exists only when e.w != 0.
+    const double invEw = 1.0 / std::abs(bound::homogeneousEye(viewProj).w);
+    c.eye = glm::vec4(glm::vec3(*view.eye), static_cast<float>(invEw));
+  }
   c.viewport = glm::vec4(float(camera.width), float(camera.height), 0.0f, 0.0f);
   c.patchCount = gpu_.patchCount();
   c.bezierCount = gpu_.bezierCount();

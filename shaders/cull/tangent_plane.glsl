@@ -1,42 +1,43 @@
 // Back-patch stage "tangent-plane": the parametric tangent-plane test with one thread per
 // patch, the serial algorithm of Loop, Niessner, Eisenacher section 5 over the table in the
-// serial order (cull_layout.h kCullBindingTable), in clip space, z components only (section
-// 4.1). fp32 mirror of bound::tangentPlaneTest. Gregory patches: the Gregory TCONE (cone_of_normals.glsl).
+// serial order (cull_layout.h kCullBindingTable), coefficients e . t_i evaluated in world
+// space with eye-relative differences (tangent_plane_common.glsl says why). fp32 mirror of
+// bound::tangentPlaneTest. Gregory patches: the Gregory TCONE (cone_of_normals.glsl).
 //
-// Rounding: each control plane z_i comes with a bound m_i of the magnitudes summed into it;
-// a plane counts as possibly positive unless sigma z_i + kCullRelativeMargin m_i <= 0. Terms
-// whose world-space points are equal (collapsed edges) are exactly zero and are skipped, so
-// their planes stay exactly 0 with bound 0 and Pcnt classifies the patch as the reference.
+// Terms whose points are equal (collapsed edges) are exactly zero and skipped, so the
+// coefficients along a collapsed edge are exactly 0 with bounds 0 and the Pcnt rule
+// classifies the patch as the reference does.
 #include "tangent_plane_common.glsl"
 
 uint tangentPlaneVerdict(uint patchIndex) {
   uint first = firstPoint(patchIndex);
-  vec3 p[16];
-  vec4 c[16], m[16];
+  TangentPlanePoint p[16];
   bool finite = matrixIsFinite();
   for (uint k = 0u; k < 16u; ++k) {
-    p[k] = controlPoint(first + k);
-    c[k] = clipPoint(p[k]);
-    m[k] = absClipPoint(p[k]);
-    finite = finite && isFiniteF(p[k]);
+    vec3 b = controlPoint(first + k);
+    finite = finite && isFiniteF(b);
+    p[k] = tangentPlanePoint(b);
   }
   if (!finite) return kVerdictNonFinite;
   if (pc.eye.w == 0.0) return kVerdictNoFiniteEye;
-  float z[64], bound[64];
-  for (uint i = 0u; i < 64u; ++i) z[i] = bound[i] = 0.0;
+  if (!isFiniteF(pc.eye.xyz)) return kVerdictNonFinite;
+  // The serial table is sorted by target: sum one coefficient at a time and count its
+  // signs when the target changes (no indexed array of 64 sums).
+  uvec3 counts = uvec3(0u);
+  vec4 sums = vec4(0.0);
+  uint target = 0u;
   for (uint k = 0u; k < kTangentPlaneTermCount; ++k) {
     uvec4 t = tangentPlaneTerm(k);
-    if (p[t.y] == p[t.z] || p[t.z] == p[t.w] || p[t.y] == p[t.w]) continue;
-    float w = tangentPlaneWeight(k);
-    z[t.x] += w * cross4Z(c[t.y], c[t.z], c[t.w]);
-    bound[t.x] += abs(w) * cross4ZBound(m[t.y], m[t.z], m[t.w]);
+    if (t.x != target) {
+      counts += tangentPlaneCounts(sums);
+      sums = vec4(0.0);
+      target = t.x;
+    }
+    if (p[t.y].b == p[t.z].b || p[t.z].b == p[t.w].b || p[t.y].b == p[t.w].b) continue;
+    addTangentPlaneTerm(sums, tangentPlaneWeight(k), p[t.y], p[t.z], p[t.w]);
   }
-  uvec2 counts = uvec2(0u);
-  for (uint i = 0u; i < 64u; ++i) {
-    finite = finite && isFiniteF(z[i]) && isFiniteF(bound[i]);
-    counts += planeSignCounts(z[i], bound[i]);
-  }
-  return classifyTangentPlane(finite, counts.x, counts.y);
+  counts += tangentPlaneCounts(sums);
+  return classifyTangentPlane(counts.z == 0u, counts.x, counts.y);
 }
 
 uint backPatchVerdict(uint patchIndex, uint lane, uint slot, bool run) {

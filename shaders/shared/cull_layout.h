@@ -51,7 +51,8 @@ OSD_CULL_CONST uint kStageBackPatch = 2u;
 OSD_CULL_CONST uint kStageOcclusion = 3u;
 
 // Back-patch verdicts: the values of bound::BackPatchVerdict (static_assert in
-// osd_cull/bound/cull_reference.cpp). Every stage's verdict 0 means "culled".
+// osd_cull/bound/cull_reference.cpp). For the back-patch and occlusion stages verdict 0
+// means "culled"; the frustum field holds the plane that culled (0..5) or a reason to keep.
 OSD_CULL_CONST uint kVerdictBackFacing = 0u;
 OSD_CULL_CONST uint kVerdictFrontFacing = 1u;
 OSD_CULL_CONST uint kVerdictSilhouette = 2u;
@@ -71,21 +72,30 @@ OSD_CULL_CONST uint kResultShiftOcclusion = 16u;
 // Every field "not run", stage none: what a patch starts with.
 OSD_CULL_CONST uint kResultInitial = 0x00FFFFF0u;
 
-// The fp32 margin: a GPU quantity counts as having a sign only when its magnitude exceeds
-// kCullRelativeMargin times an upper bound of the magnitudes it is summed from (the double
-// reference uses bound::kRelativeMargin = 1e-12). fp32 rounding, including rounding the
-// inputs to float, stays below 60 * 2^-24 < 3.6e-6 of that bound (docs/algorithms/
-// cull-kernel.md), so every GPU cull is a cull of the double reference.
+// fp32 margins, each derived in docs/algorithms/cull-kernel.md so that every GPU cull is
+// a cull of the double reference (bound/, margin bound::kRelativeMargin = 1e-12):
+// - frustum and cone tests: a quantity counts as having a sign only beyond
+//   kCullRelativeMargin times an upper bound of the magnitudes it is computed from (their
+//   fp32 error, including rounding the inputs to float, is below 15 * 2^-24 of that bound);
+// - tangent plane (shaders/cull/tangent_plane_common.glsl): arithmetic error < 35 * 2^-24 ma,
+//   input rounding < 4 * 2^-24 mb, and the reference's own margin < 1.32e-11 mr / |e.w|.
 #ifdef __cplusplus
 inline constexpr float kCullRelativeMargin = 1e-5f;
+inline constexpr float kTpArithmeticMargin = 1e-5f;
+inline constexpr float kTpInputMargin = 9.5367431640625e-7f;  // 2^-20 = 16 * 2^-24
+inline constexpr float kTpReferenceMargin = 2.4e-11f;
 #else
 const float kCullRelativeMargin = 1e-5;
+const float kTpArithmeticMargin = 1e-5;
+const float kTpInputMargin = 9.5367431640625e-7;
+const float kTpReferenceMargin = 2.4e-11;
 #endif
 
 struct CullConstants {
   mat4 viewProjection;  // world to clip space
-  vec4 eye;             // xyz: eye (world), NaN when the projection has no finite eye;
-                        // w: sigma = bound::clipSpaceEyeSign (+1, -1, or 0: no finite eye)
+  vec4 eye;             // xyz: eye (world, bound::eyePosition), NaN when the projection has
+                        // no finite eye; w: 1 / |e.w| of the homogeneous eye
+                        // (bound::homogeneousEye), 0 when there is no finite eye
   vec4 viewport;        // xy: width, height in pixels; zw: free for the occlusion stage
   uint patchCount;      // patches [0, bezierCount) are Bezier, the rest Gregory
   uint bezierCount;
