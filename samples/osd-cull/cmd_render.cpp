@@ -1,8 +1,12 @@
 // osd-cull render: draws a mesh (or the built-in scene) with the tessellation pipeline,
 // writes PNG images and prints per-frame statistics.
 #include "command.h"
+#include "cull_options.h"
+#include "mesh_patches.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/frame/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/png_io.h"
 #include "osd_cull/frame/renderer.h"
@@ -19,13 +23,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kUsage = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
+const char* kUsageHead = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
 
 Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
 triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
-and fragment-shader invocations (pipeline statistics).
+and fragment-shader invocations (pipeline statistics), and with --cull how many patches
+each test culled.
 
+MESH      OBJ (with OpenSubdiv tags), OFF, PLY, STL, or BPT (Bezier patches)
 Options:
   --out FILE.png         image of the last frame (required)
   --width W --height H   image size (default 640 x 480)
@@ -42,29 +48,36 @@ Options:
   --device X             Vulkan device: index or name substring (default $OSD_CULL_DEVICE,
                          else lavapipe)
   --validate             enable the Vulkan validation layers
+  --level N              adaptive isolation level of MESH, 0..10 (default 2)
+  --scheme S             override the subdivision scheme of MESH
 )";
+
+std::string usage() { return std::string(kUsageHead) + kCullOptionsUsage; }
 
 struct Scene {
   PatchSet patches;
   std::vector<frame::TriangleMesh> occluders;
   glm::dvec3 up{0, 0, 1};
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
+  bound::BackPatchValidity backPatch;
 };
 
-Scene loadScene(const std::vector<std::string>& positional) {
-  if (positional.size() > 1) throw Error("render takes at most one MESH argument");
-  if (positional.empty()) {
+Scene loadScene(const MeshSource& source, const PatchOptions& options) {
+  if (!source.path) {
     frame::DemoScene demo = frame::defaultDemoScene();
-    return {std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection};
+    // Tori and sphere are closed surfaces with outward normals by construction (the
+    // triangle walls are occluders, not patches).
+    return {std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection,
+            {true, "built-in scene: closed tori and sphere, normals outward by construction"}};
   }
-  const fs::path path = positional[0];
-  if (!fs::exists(path)) throw Error(path.string() + ": no such file");
-  // Mesh files become patches through adapters::loadCage / loadBezierPatches and the
-  // Bézier/Gregory extraction of osd_cull/patch; neither is in this build yet.
-  throw Error(path.string() +
-              ": loading meshes needs the mesh loaders (adapters/) and patch extraction "
-              "(osd_cull/patch/) that are not merged into this build yet; run `osd-cull render` "
-              "without MESH for the built-in scene");
+  if (!fs::exists(*source.path)) throw Error(*source.path + ": no such file");
+  MeshPatches mesh = meshPatches(loadMeshSource(source), options);
+  Scene scene;
+  scene.patches = std::move(mesh.patches);
+  scene.backPatch = mesh.backPatch;
+  scene.up = {0, 1, 0};  // OBJ convention: y up
+  scene.viewDirection = {0.45, 0.35, 1.0};
+  return scene;
 }
 
 std::vector<double> parseNumbers(const std::string& text, size_t count, const std::string& option) {
@@ -102,11 +115,15 @@ int run(Args& args) {
   const bool debugColors = args.flag("debug-colors");
   const bool validate = args.flag("validate");
   const auto device = args.value("device");
+  PatchOptions patchOptions;
+  patchOptions.isolationLevel = static_cast<int>(args.integer("level", 0, 10).value_or(2));
+  const CullChoice cull = cullChoiceFromArgs(args);
+  const MeshSource source = meshSourceFromArgs(args);
   args.finish();
   if (!out) throw Error("--out FILE.png is required");
   if (tess && adaptive) throw Error("--tess and --adaptive exclude each other");
 
-  const Scene scene = loadScene(args.positional());
+  const Scene scene = loadScene(source, patchOptions);
   vk::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
@@ -154,17 +171,35 @@ int run(Args& args) {
 
   frame::RenderTarget target(context, width, height);
   frame::Renderer renderer(context);
+  std::unique_ptr<frame::CullPass> pass;
+  if (cull.enabled()) {
+    pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches,
+                                             cullSettings(cull, scene.backPatch));
+    std::cout << "cull: " << cull.mode;
+    for (const frame::CullMethod* m : pass->stages()) std::cout << (m == pass->stages().front() ? " (" : ", ") << m->name;
+    std::cout << (pass->stages().empty() ? "" : ")") << "\n";
+    if (!pass->backPatchNote().empty()) std::cout << "note: " << pass->backPatchNote() << "\n";
+  }
   if (outDir) fs::create_directories(*outDir);
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
   for (uint32_t f = 0; f < frames; ++f) {
     const frame::Camera view = frame::orbit(camera, pivot, up, orbitDegrees * f);
-    const frame::FrameStats stats = renderer.render(target, view, {&draw, 1}, occluders, options);
+    const frame::FrameStats stats =
+        pass ? frame::renderCulled(renderer, target, view, *pass, occluders, options)
+             : renderer.render(target, view, {&draw, 1}, occluders, options);
     std::printf(
         "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
         "fragment invocations %llu\n",
         f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
         static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
         static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+    if (pass) {
+      uint32_t byStage[4] = {0, 0, 0, 0};
+      for (uint32_t code : pass->results()) ++byStage[bound::CullCode{code}.stage() & 3u];
+      std::printf("  culled %u of %u: frustum %u, back-patch %u\n",
+                  scene.patches.patchCount() - stats.patchesDrawn, scene.patches.patchCount(),
+                  byStage[1], byStage[2]);
+    }
     const bool last = f + 1 == frames;
     if (!outDir && !last) continue;
     const auto color = frame::colorImage(width, height, target.readColor(context));
@@ -195,8 +230,8 @@ int run(Args& args) {
 
 const Registration kRegistration(
     {"render",
-     "draw a mesh or the built-in scene to PNG, print frame statistics",
-     kUsage,
+     "draw a mesh or the built-in scene to PNG (optionally culled), print frame statistics",
+     usage(),
      {"ids", "debug-colors", "validate"},
      run});
 
