@@ -149,6 +149,7 @@ void CullVerifier::verifyView(const Camera& camera) {
         t.oracleInvisible += counts.pixels[p] == 0;
         t.culledOnOracleViews += culled;
         t.falseCulls += culled && counts.pixels[p] > 0;
+        if (culled) t.falseCullPixels += counts.pixels[p];
       }
     }
     if (!samples_.empty()) checkSampling(*m, camera, results);

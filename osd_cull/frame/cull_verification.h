@@ -59,6 +59,7 @@ struct MethodTotals {
   uint64_t oraclePatchViews = 0;
   uint64_t oracleInvisible = 0;   ///< patch-views with zero pixels
   uint64_t falseCulls = 0;        ///< culled patch-views with pixels: must be 0
+  uint64_t falseCullPixels = 0;   ///< their pixels
   uint64_t culledOnOracleViews = 0;
   /// Sampling.
   uint64_t sampledCulls = 0;

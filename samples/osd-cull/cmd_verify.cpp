@@ -79,6 +79,7 @@ nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCo
   m["cull_rate_gregory"] = t.gregoryViews ? double(t.culledGregory) / double(t.gregoryViews) : 0.0;
   m["culled_per_view"] = t.views ? double(t.culled) / double(t.views) : 0.0;
   m["false_culls"] = oracle ? nlohmann::ordered_json(t.falseCulls) : nlohmann::ordered_json();
+  m["false_cull_pixels"] = oracle ? nlohmann::ordered_json(t.falseCullPixels) : nlohmann::ordered_json();
   m["oracle_invisible_rate"] =
       oracle ? nlohmann::ordered_json(t.oracleInvisibleRate()) : nlohmann::ordered_json();
   m["ns_per_patch"] = t.nsPerPatch(patchCount);
@@ -189,10 +190,11 @@ int run(Args& args) {
          t.pixelsLost == 0;
   }
   if (sample > 0 || imageCheck) {
-    std::printf("\n%-17s %12s %12s %12s %14s\n", "method", "sampled", "sample-viol", "pixels-lost",
-                "pixels-changed");
+    std::printf("\n%-17s %12s %12s %12s %12s %14s\n", "method", "false-pixels", "sampled",
+                "sample-viol", "pixels-lost", "pixels-changed");
     for (const auto& t : verifier.totals())
-      std::printf("%-17s %12llu %12llu %12llu %14llu\n", t.name.c_str(),
+      std::printf("%-17s %12llu %12llu %12llu %12llu %14llu\n", t.name.c_str(),
+                  static_cast<unsigned long long>(t.falseCullPixels),
                   static_cast<unsigned long long>(t.sampledCulls),
                   static_cast<unsigned long long>(t.samplingViolations),
                   static_cast<unsigned long long>(t.pixelsLost),
