@@ -40,9 +40,9 @@ TEST_F(CullDrawTest, CulledFrameDrawsTheSameImageWithFewerTessellatedVertices) {
   options.tessellation.uniformLevel = 6;
   const frame::Bounds bounds = frame::boundsOf(scene.patches.points);
   for (double angle : {0.0, 70.0, 160.0, 250.0}) {
-    const frame::Camera camera = frame::orbit(
-        frame::frameBounds(bounds, scene.viewDirection, scene.up, 35.0, 160, 120),
-        bounds.center() + glm::dvec3(0.8, 0.0, 0.0), scene.up, angle);
+    const frame::Camera camera =
+        frame::orbit(frame::frameBounds(bounds, scene.viewDirection, scene.up, 35.0, 160, 120),
+                     bounds.center() + glm::dvec3(0.8, 0.0, 0.0), scene.up, angle);
     const frame::PatchDraw draw{&gpu, &scene.patches, 0};
     const auto a = renderer.render(full, camera, {&draw, 1}, occluders, options);
     const auto b = frame::renderCulled(renderer, culled, camera, pass, occluders, options);
@@ -72,8 +72,8 @@ TEST_F(CullDrawTest, IndirectDrawsOfSurvivorsStayWithinTheBatchLimitsAtHighLevel
   frame::RenderTarget full(context(), 128, 128), culled(context(), 128, 128);
   frame::RenderOptions options;
   options.tessellation.uniformLevel = 24;
-  const auto camera = frame::frameBounds(frame::boundsOf(set.points), {0.3, -1, 0.6}, {0, 0, 1},
-                                         40.0, 128, 128);
+  const auto camera =
+      frame::frameBounds(frame::boundsOf(set.points), {0.3, -1, 0.6}, {0, 0, 1}, 40.0, 128, 128);
   renderer.render(full, camera, gpu, &set, options);
   const auto stats = frame::renderCulled(renderer, culled, camera, pass, {}, options);
   EXPECT_EQ(stats.patchesDrawn, set.patchCount());
@@ -89,8 +89,8 @@ TEST_F(CullDrawTest, DrawsNeedTheTessellationTheCommandsWereWrittenFor) {
   frame::CullPass pass(context(), gpu, set, {});
   frame::Renderer renderer(context());
   frame::RenderTarget target(context(), 32, 32);
-  const auto camera = frame::frameBounds(frame::boundsOf(set.points), {1, 0, 0}, {0, 0, 1}, 40.0,
-                                         32, 32);
+  const auto camera =
+      frame::frameBounds(frame::boundsOf(set.points), {1, 0, 0}, {0, 0, 1}, 40.0, 32, 32);
   frame::TessellationOptions low;
   low.uniformLevel = 2;
   pass.run(camera, low);
@@ -136,7 +136,8 @@ TEST(CullCommands, VerifyWritesJsonWithEveryApplicableMethod) {
   const fs::path json = dir / "verify.json";
   const auto r = test::runCommand(test::osdCullProgram().string() +
                                   " verify --views 6 --width 64 --height 64 --tess 3 --sample 4 "
-                                  "--image-check --json " + json.string());
+                                  "--image-check --json " +
+                                  json.string());
   ASSERT_EQ(r.exitCode(), 0) << r.output;
   EXPECT_NE(r.output.find("verify: 6/6 views"), std::string::npos) << r.output;  // progress
   std::ifstream in(json);
@@ -162,7 +163,8 @@ TEST(CullCommands, VerifySkipsBackPatchMethodsOnOpenMeshesWithTheReason) {
   REQUIRE_PROGRAM();
   const fs::path obj = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "cull_cli" / "open.obj";
   fs::create_directories(obj.parent_path());
-  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6 3\n";
+  std::ofstream(obj)
+      << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6 3\n";
   const auto r = test::runCommand(test::osdCullProgram().string() + " verify " + obj.string() +
                                   " --views 3 --width 32 --height 32 --methods frustum,ncone");
   ASSERT_EQ(r.exitCode(), 0) << r.output;

@@ -17,9 +17,9 @@
 
 #include <shared/cull_layout.h>
 
+#include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
-#include <gtest/gtest.h>
 
 #include <random>
 
@@ -115,7 +115,8 @@ TEST_F(CullHardCasesTest, CatmarkPole64) {
   // Bézier patches are classified; the thin Gregory patches around the pole never fit a
   // Gregory TCONE narrower than 90 degrees (kept: WideCone), which is conservative.
   for (const std::string m : {"tcone", "ncone", "tangent-plane", "tangent-plane-16"})
-    EXPECT_GT(test::totalsOf(forced, m).culledBezier, test::totalsOf(forced, m).bezierViews / 5) << m;
+    EXPECT_GT(test::totalsOf(forced, m).culledBezier, test::totalsOf(forced, m).bezierViews / 5)
+        << m;
 }
 
 // Cameras just outside the surface of BigGuy (1e-3 to 3e-2 of its radius along the
@@ -139,8 +140,8 @@ TEST_F(CullHardCasesTest, CameraInsideTheBoundingBoxCloseToTheSurface) {
     if (glm::any(glm::lessThan(eye, box.lo)) || glm::any(glm::greaterThan(eye, box.hi))) continue;
     glm::dvec3 dir(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
     if (cameras.size() % 3 == 0) dir = -n + 0.3 * dir;  // towards the surface
-    cameras.push_back(frame::Camera::lookAt(eye, eye + dir, glm::dvec3(0.1, 1, 0.2), 70.0, 96,
-                                            96, 0.2 * d, 4.0 * r));
+    cameras.push_back(frame::Camera::lookAt(eye, eye + dir, glm::dvec3(0.1, 1, 0.2), 70.0, 96, 96,
+                                            0.2 * d, 4.0 * r));
   }
   frame::VerifyOptions options;
   options.tessellation.uniformLevel = 3;

@@ -109,8 +109,8 @@ TEST_F(CullKernelTest, SurvivorListAndIndirectCommandsMatchTheResultCodes) {
   settings.frustum = true;
   CullPass pass(context(), gpu, set, settings);
   // Looking at the sphere from close by with a narrow view: frustum and back-patch culls.
-  const auto camera = frame::Camera::lookAt({0.2, -4.0, 0.3}, {0.9, -0.1, 0.3}, {0, 0, 1}, 30.0,
-                                            64, 64, 0.5, 20.0);
+  const auto camera =
+      frame::Camera::lookAt({0.2, -4.0, 0.3}, {0.9, -0.1, 0.3}, {0, 0, 1}, 30.0, 64, 64, 0.5, 20.0);
   frame::TessellationOptions tess;
   tess.uniformLevel = 16;  // 33^2 vertices per patch at transitions: 60 patches per draw
   pass.run(camera, tess);
@@ -164,8 +164,8 @@ TEST_F(CullKernelTest, BackPatchStageIsLeftOutWithTheReasonOnAnInvalidMesh) {
   CullPass pass(context(), gpu, set, settings);
   EXPECT_FALSE(pass.backPatchEnabled());
   EXPECT_NE(pass.backPatchNote().find("12 boundary edges"), std::string::npos);
-  const auto camera = frame::frameBounds(frame::boundsOf(set.points), {1, 0.3, 0.2}, {0, 0, 1},
-                                         40.0, 64, 64);
+  const auto camera =
+      frame::frameBounds(frame::boundsOf(set.points), {1, 0.3, 0.2}, {0, 0, 1}, 40.0, 64, 64);
   pass.run(camera);
   for (uint32_t r : pass.results()) EXPECT_EQ(r, sh::kResultInitial);
   EXPECT_EQ(pass.counts().survivors(), set.patchCount());

@@ -119,7 +119,8 @@ TEST_F(CullViewsTest, EveryCatmarkShapeNeverCullsWhatTheReferenceOrTheOracleKeep
     // Open shapes: back-patch culling is off, only the frustum test runs.
     EXPECT_EQ(verifier.skipped().size(), mesh.validity.enabled ? 0u : 4u) << mesh.name;
     std::vector<frame::Camera> cameras = views(mesh.patches, ViewSet::Sphere, 40, 31, 64);
-    for (const auto& c : views(mesh.patches, ViewSet::WholeObject, 40, 32, 64)) cameras.push_back(c);
+    for (const auto& c : views(mesh.patches, ViewSet::WholeObject, 40, 32, 64))
+      cameras.push_back(c);
     for (const auto& c : closeViews(mesh.patches, 40, 33, 64)) cameras.push_back(c);
     for (const auto& camera : cameras) verifier.verifyView(camera);
     test::expectNoViolations(verifier, mesh.name);

@@ -18,8 +18,7 @@ namespace sh = osd_cull::shader;
 static_assert(sh::kVerdictBackFacing == uint32_t(BackPatchVerdict::BackFacing));
 static_assert(sh::kVerdictFrontFacing == uint32_t(BackPatchVerdict::FrontFacing));
 static_assert(sh::kVerdictSilhouette == uint32_t(BackPatchVerdict::Silhouette));
-static_assert(sh::kVerdictEyeOutsideBackRegion ==
-              uint32_t(BackPatchVerdict::EyeOutsideBackRegion));
+static_assert(sh::kVerdictEyeOutsideBackRegion == uint32_t(BackPatchVerdict::EyeOutsideBackRegion));
 static_assert(sh::kVerdictNonFinite == uint32_t(BackPatchVerdict::NonFinite));
 static_assert(sh::kVerdictNoNormal == uint32_t(BackPatchVerdict::NoNormal));
 static_assert(sh::kVerdictWideCone == uint32_t(BackPatchVerdict::WideCone));
@@ -66,8 +65,8 @@ uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullVie
                           BackPatchMethod method, std::span<const ConeOfNormals> cones) {
   const bool bezier = patches.type(patch) == PatchType::Bezier;
   if (bezier && method == BackPatchMethod::TangentPlane)
-    return uint32_t(tangentPlaneTest(patches.controlPoints(patch), view.viewProj, view.eyeSign)
-                        .verdict);
+    return uint32_t(
+        tangentPlaneTest(patches.controlPoints(patch), view.viewProj, view.eyeSign).verdict);
   if (patch >= cones.size())
     throw Error(std::string(__FILE__) + ": referenceCullCode needs buildPatchCones(patches, " +
                 toString(method) + ") with one cone per patch, got " +
@@ -91,7 +90,9 @@ uint32_t referenceCullCode(const PatchSet& patches, uint32_t patch, const CullVi
   uint32_t code = sh::kResultInitial;
   if (tests.frustum) {
     const FrustumResult f = frustumTest(patches.controlPoints(patch), view.viewProj);
-    const uint32_t field = !f.finite ? sh::kFrustumNonFinite : f.culled ? f.plane : sh::kFrustumInside;
+    const uint32_t field = !f.finite  ? sh::kFrustumNonFinite
+                           : f.culled ? f.plane
+                                      : sh::kFrustumInside;
     code = withField(code, sh::kResultShiftFrustum, 4, field);
     if (f.culled) return withField(code, 0, 4, sh::kStageFrustum);
   }

@@ -18,7 +18,7 @@ const char* toString(CullStage stage) {
 
 std::span<const CullMethod> cullMethods() {
   static const std::vector<CullMethod> methods = {
-      frustumCullMethod(),      tconeCullMethod(),         nconeCullMethod(),
+      frustumCullMethod(),      tconeCullMethod(),          nconeCullMethod(),
       tangentPlaneCullMethod(), tangentPlane16CullMethod(),
   };
   return methods;

@@ -30,10 +30,10 @@ const char* toString(CullStage stage);
 
 /// \brief One cull method: what the kernel includes and what the host prepares for it.
 struct CullMethod {
-  std::string name;     ///< command-line name, e.g. "tangent-plane-16"
+  std::string name;  ///< command-line name, e.g. "tangent-plane-16"
   CullStage stage = CullStage::BackPatch;
-  std::string summary;  ///< one line for help texts and reports
-  std::string glslFile; ///< embedded file (relative to shaders/) with the stage function
+  std::string summary;   ///< one line for help texts and reports
+  std::string glslFile;  ///< embedded file (relative to shaders/) with the stage function
   /// Threads per patch of the kernel variant (1, or 16 for the section 6 scheme).
   uint32_t lanesPerPatch = 1;
   /// GLSL declarations placed before the stage file (e.g. the size of a generated table);

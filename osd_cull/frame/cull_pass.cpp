@@ -57,7 +57,8 @@ void packCone(const bound::ConeOfNormals& c, float* out) {
 // then the main (shaders/cull/cull_main.glsl explains the macros).
 std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes) {
   auto has = [&](CullStage s) {
-    return std::any_of(stages.begin(), stages.end(), [&](const CullMethod* m) { return m->stage == s; });
+    return std::any_of(stages.begin(), stages.end(),
+                       [&](const CullMethod* m) { return m->stage == s; });
   };
   std::string text = "#version 450\n";
   text += "#define CULL_LANES " + std::to_string(lanes) + "\n";
@@ -97,8 +98,8 @@ CullPass::CullPass(vk::Context& context, GpuPatchSet& gpu, const PatchSet& host,
   auto add = [&](const std::string& name, CullStage stage) {
     const CullMethod& m = cullMethod(name);
     if (m.stage != stage)
-      throw Error("CullPass: method '" + name + "' is a " + toString(m.stage) +
-                  " method, not a " + toString(stage) + " method");
+      throw Error("CullPass: method '" + name + "' is a " + toString(m.stage) + " method, not a " +
+                  toString(stage) + " method");
     stages_.push_back(&m);
     lanes_ = std::max(lanes_, m.lanesPerPatch);
   };
@@ -108,8 +109,8 @@ CullPass::CullPass(vk::Context& context, GpuPatchSet& gpu, const PatchSet& host,
       add(settings.backPatch, CullStage::BackPatch);
     } else {
       cullMethod(settings.backPatch);  // still reject unknown names
-      backPatchNote_ = "back-patch culling off for " + host.source + ": " +
-                       settings.backPatchValidity.reason;
+      backPatchNote_ =
+          "back-patch culling off for " + host.source + ": " + settings.backPatchValidity.reason;
     }
   }
   if (!settings.occlusion.empty()) add(settings.occlusion, CullStage::Occlusion);
@@ -155,8 +156,8 @@ void CullPass::buildPipelines(vk::Context& context) {
   const vk::Spirv cull = vk::compileGlsl(composeKernel(stages_, lanes_), "cull/cull_kernel.comp",
                                          VK_SHADER_STAGE_COMPUTE_BIT);
   cullPipeline_ = vk::createComputePipeline(context, layout_.get(), cull);
-  drawsPipeline_ = vk::createComputePipeline(
-      context, layout_.get(), vk::compileShader({"cull/write_draws.comp", {}}));
+  drawsPipeline_ = vk::createComputePipeline(context, layout_.get(),
+                                             vk::compileShader({"cull/write_draws.comp", {}}));
   pool_ = std::make_unique<vk::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(setLayout_.get());
   vk::DescriptorWriter()
@@ -222,8 +223,8 @@ void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
                           nullptr);
   if (stageSet != VK_NULL_HANDLE)
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 1, 1, &stageSet,
-                            0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 1, 1, &stageSet, 0,
+                            nullptr);
   vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
@@ -231,8 +232,8 @@ void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
     vkCmdDispatch(cmd, vk::groupCount(n, sh::kCullGroupSize / lanes_), 1, 1);
   }
   vk::memoryBarrier(cmd, vk::scope::kComputeReadWrite, vk::scope::kComputeReadWrite);
-  const uint32_t commandCount = maxDraws(gpu_.bezierCount(), chunkBezier_) +
-                                maxDraws(gpu_.gregoryCount(), chunkGregory_);
+  const uint32_t commandCount =
+      maxDraws(gpu_.bezierCount(), chunkBezier_) + maxDraws(gpu_.gregoryCount(), chunkGregory_);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, drawsPipeline_.get());
   vkCmdDispatch(cmd, std::max(1u, vk::groupCount(commandCount, sh::kDrawsGroupSize)), 1, 1);
   vk::memoryBarrier(cmd, vk::scope::kComputeWrite, kAfterCull);
@@ -267,7 +268,8 @@ std::vector<uint32_t> CullPass::survivors(vk::Context& context) const {
 
 uint32_t CullPass::recordDraws(VkCommandBuffer cmd, Renderer& renderer, const Camera& camera,
                                const RenderOptions& options, uint32_t itemBase) {
-  const uint32_t chunkB = indirectDrawChunk(options.tessellation, kBezierPoints, gpu_.bezierCount());
+  const uint32_t chunkB =
+      indirectDrawChunk(options.tessellation, kBezierPoints, gpu_.bezierCount());
   const uint32_t chunkG =
       indirectDrawChunk(options.tessellation, kGregoryPoints, gpu_.gregoryCount());
   if (chunkB != chunkBezier_ || chunkG != chunkGregory_)

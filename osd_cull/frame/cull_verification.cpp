@@ -99,8 +99,7 @@ void CullVerifier::checkSampling(Method& m, const Camera& camera,
 
 void CullVerifier::verifyView(const Camera& camera) {
   const uint32_t n = host_.patchCount();
-  const bool reference =
-      options_.referenceStride > 0 && viewIndex_ % options_.referenceStride == 0;
+  const bool reference = options_.referenceStride > 0 && viewIndex_ % options_.referenceStride == 0;
   ++viewIndex_;
   if (!target_ || target_->width() != camera.width || target_->height() != camera.height)
     target_ = std::make_unique<RenderTarget>(context_, camera.width, camera.height);

@@ -52,14 +52,14 @@ struct MethodTotals {
   uint64_t referenceViews = 0;
   uint64_t referencePatchViews = 0;
   uint64_t referenceCulled = 0;
-  uint64_t agreements = 0;        ///< same culled/kept decision as the reference
-  uint64_t notInReference = 0;    ///< GPU culled, reference kept: must be 0
+  uint64_t agreements = 0;      ///< same culled/kept decision as the reference
+  uint64_t notInReference = 0;  ///< GPU culled, reference kept: must be 0
   /// Oracle.
   uint64_t oracleViews = 0;
   uint64_t oraclePatchViews = 0;
-  uint64_t oracleInvisible = 0;   ///< patch-views with zero pixels
-  uint64_t falseCulls = 0;        ///< culled patch-views with pixels: must be 0
-  uint64_t falseCullPixels = 0;   ///< their pixels
+  uint64_t oracleInvisible = 0;  ///< patch-views with zero pixels
+  uint64_t falseCulls = 0;       ///< culled patch-views with pixels: must be 0
+  uint64_t falseCullPixels = 0;  ///< their pixels
   uint64_t culledOnOracleViews = 0;
   /// Sampling.
   uint64_t sampledCulls = 0;

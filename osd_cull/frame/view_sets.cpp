@@ -12,9 +12,7 @@
 
 namespace osd_cull::frame {
 
-const char* toString(ViewSet set) {
-  return set == ViewSet::Sphere ? "sphere" : "whole-object";
-}
+const char* toString(ViewSet set) { return set == ViewSet::Sphere ? "sphere" : "whole-object"; }
 
 ViewSet parseViewSet(std::string_view name) {
   if (name == "sphere") return ViewSet::Sphere;

@@ -4,8 +4,8 @@
 #include "cull_options.h"
 #include "mesh_patches.h"
 
-#include "osd_cull/error.h"
 #include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/error.h"
 #include "osd_cull/frame/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/png_io.h"
@@ -67,7 +67,10 @@ Scene loadScene(const MeshSource& source, const PatchOptions& options) {
     frame::DemoScene demo = frame::defaultDemoScene();
     // Tori and sphere are closed surfaces with outward normals by construction (the
     // triangle walls are occluders, not patches).
-    return {std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection,
+    return {std::move(demo.patches),
+            std::move(demo.occluders),
+            demo.up,
+            demo.viewDirection,
             {true, "built-in scene: closed tori and sphere, normals outward by construction"}};
   }
   if (!fs::exists(*source.path)) throw Error(*source.path + ": no such file");
@@ -176,7 +179,8 @@ int run(Args& args) {
     pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches,
                                              cullSettings(cull, scene.backPatch));
     std::cout << "cull: " << cull.mode;
-    for (const frame::CullMethod* m : pass->stages()) std::cout << (m == pass->stages().front() ? " (" : ", ") << m->name;
+    for (const frame::CullMethod* m : pass->stages())
+      std::cout << (m == pass->stages().front() ? " (" : ", ") << m->name;
     std::cout << (pass->stages().empty() ? "" : ")") << "\n";
     if (!pass->backPatchNote().empty()) std::cout << "note: " << pass->backPatchNote() << "\n";
   }

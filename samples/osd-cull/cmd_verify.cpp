@@ -69,8 +69,7 @@ std::vector<std::string> splitList(const std::string& text) {
 
 double percent(uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; }
 
-nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCount,
-                                  bool oracle) {
+nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCount, bool oracle) {
   nlohmann::ordered_json m;
   m["name"] = t.name;
   m["stage"] = frame::toString(t.stage);
@@ -79,7 +78,8 @@ nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCo
   m["cull_rate_gregory"] = t.gregoryViews ? double(t.culledGregory) / double(t.gregoryViews) : 0.0;
   m["culled_per_view"] = t.views ? double(t.culled) / double(t.views) : 0.0;
   m["false_culls"] = oracle ? nlohmann::ordered_json(t.falseCulls) : nlohmann::ordered_json();
-  m["false_cull_pixels"] = oracle ? nlohmann::ordered_json(t.falseCullPixels) : nlohmann::ordered_json();
+  m["false_cull_pixels"] =
+      oracle ? nlohmann::ordered_json(t.falseCullPixels) : nlohmann::ordered_json();
   m["oracle_invisible_rate"] =
       oracle ? nlohmann::ordered_json(t.oracleInvisibleRate()) : nlohmann::ordered_json();
   m["ns_per_patch"] = t.nsPerPatch(patchCount);
@@ -116,7 +116,8 @@ int run(Args& args) {
   const bool validate = args.flag("validate");
   const MeshSource source = meshSourceFromArgs(args);
   args.finish();
-  if (imageCheck && noOracle) throw Error("--image-check compares with the oracle's draw; drop --no-oracle");
+  if (imageCheck && noOracle)
+    throw Error("--image-check compares with the oracle's draw; drop --no-oracle");
 
   std::vector<std::string> methods;
   if (methodsText) {
@@ -201,10 +202,11 @@ int run(Args& args) {
     }
   }
   if (silhouetteViews > 0)
-    std::printf("\nnote: %llu back-patch-culled patch-views have %llu oracle pixels (single "
-                "silhouette pixels of drawn chord triangles; see docs/algorithms/cull-kernel.md)\n",
-                static_cast<unsigned long long>(silhouetteViews),
-                static_cast<unsigned long long>(silhouettePixels));
+    std::printf(
+        "\nnote: %llu back-patch-culled patch-views have %llu oracle pixels (single "
+        "silhouette pixels of drawn chord triangles; see docs/algorithms/cull-kernel.md)\n",
+        static_cast<unsigned long long>(silhouetteViews),
+        static_cast<unsigned long long>(silhouettePixels));
   if (sample > 0 || imageCheck) {
     std::printf("\n%-17s %12s %12s %12s %12s %14s\n", "method", "false-pixels", "sampled",
                 "sample-viol", "pixels-lost", "pixels-changed");

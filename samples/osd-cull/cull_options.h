@@ -18,7 +18,7 @@ extern const char* const kCullOptionsUsage;
 
 /// \brief What the user asked to cull.
 struct CullChoice {
-  std::string mode = "none";               ///< none, frustum, backpatch, all
+  std::string mode = "none";                      ///< none, frustum, backpatch, all
   std::string backPatchMethod = "tangent-plane";  ///< a registered back-patch method
   bool enabled() const { return mode != "none"; }
 };
@@ -29,6 +29,7 @@ CullChoice cullChoiceFromArgs(Args& args);
 
 /// \brief The cull-pass settings of a choice on a mesh with the given validity (back-patch
 /// culling is left out with the reason where it is not valid).
-frame::CullSettings cullSettings(const CullChoice& choice, const bound::BackPatchValidity& validity);
+frame::CullSettings cullSettings(const CullChoice& choice,
+                                 const bound::BackPatchValidity& validity);
 
 }  // namespace osd_cull::cli

@@ -16,8 +16,8 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
     return out;
   }
   const CageMesh& cage = *mesh.cage;
-  out.backPatch = bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)),
-                                           bound::signedVolume(cage));
+  out.backPatch =
+      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
   out.patches = extractPatches(cage, options).patches;
   return out;
 }

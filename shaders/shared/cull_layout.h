@@ -35,8 +35,8 @@ OSD_CULL_CONST uint kCounterCount = 4u;
 // says why it never culls (NonFinite, NoNormal, WideCone).
 OSD_CULL_CONST uint kConeVec4s = 2u;
 
-OSD_CULL_CONST uint kCullGroupSize = 64u;    // invocations per workgroup, every variant
-OSD_CULL_CONST uint kDrawsGroupSize = 64u;   // write_draws.comp
+OSD_CULL_CONST uint kCullGroupSize = 64u;   // invocations per workgroup, every variant
+OSD_CULL_CONST uint kDrawsGroupSize = 64u;  // write_draws.comp
 
 // ---- Result code, one uint per patch --------------------------------------------------
 // bits 0-3   stage that culled the patch (kStage*), kStageNone when it survives;
@@ -99,11 +99,11 @@ struct CullConstants {
   vec4 viewport;        // xy: width, height in pixels; zw: free for the occlusion stage
   uint patchCount;      // patches [0, bezierCount) are Bezier, the rest Gregory
   uint bezierCount;
-  uint pointStride;     // floats between control points
-  uint pointOffset;     // float index of control point 0
-  uint drawChunkBezier;   // patches per indirect draw (draw_chunks.h batch limits)
+  uint pointStride;      // floats between control points
+  uint pointOffset;      // float index of control point 0
+  uint drawChunkBezier;  // patches per indirect draw (draw_chunks.h batch limits)
   uint drawChunkGregory;
-  uint stage0;          // free for the occlusion stage
+  uint stage0;  // free for the occlusion stage
   uint stage1;
 };
 

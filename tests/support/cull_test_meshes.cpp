@@ -12,8 +12,8 @@ CullMesh loadCullMesh(const std::filesystem::path& path, int level) {
   const CageMesh cage = adapters::loadCage(path);
   CullMesh m;
   m.name = path.filename().string();
-  m.validity = bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)),
-                                        bound::signedVolume(cage));
+  m.validity =
+      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
   PatchOptions options;
   options.isolationLevel = level;
   m.patches = extractPatches(cage, options).patches;
