@@ -1,6 +1,7 @@
 // `osd-cull render`: the built-in scene renders with validation on, writes the images and
 // prints a line per frame.
 #include "osd_cull/frame/png_io.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace osd_cull {
@@ -58,6 +60,27 @@ TEST(RenderCommand, DrawsTheBuiltInSceneAndWritesImages) {
   const auto b = frame::readPng(dir / "frames/frame_0001.png");
   EXPECT_NE(a.samples8, b.samples8);
   EXPECT_EQ(frame::readPng(dir / "scene.png").samples8, b.samples8);
+}
+
+TEST(RenderCommand, DrawsTheTeapotBezierPatchFile) {
+  OSD_CULL_REQUIRE_DATA();
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_teapot";
+  fs::create_directories(dir);
+  const Result r = runCommand(program().string() + " render " +
+                              (test::dataDir() / "bezier" / "teapot.bpt").string() + " --out " +
+                              (dir / "teapot.png").string() +
+                              " --width 96 --height 64 --adaptive 4 --ids --validate");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("32 Bezier + 0 Gregory"), std::string::npos) << r.output;
+  const auto ids = frame::readPng(dir / "teapot_ids.png");
+  std::set<uint32_t> patches;
+  for (size_t i = 0; i + 2 < ids.samples8.size(); i += 3) {
+    const uint32_t v = ids.samples8[i] | ids.samples8[i + 1] << 8 | ids.samples8[i + 2] << 16;
+    ASSERT_LE(v, 32u);
+    if (v) patches.insert(v - 1);
+  }
+  EXPECT_GE(patches.size(), 16u);  // rim, body, handle, spout and lid seen from above
 }
 
 TEST(RenderCommand, RejectsBadOptionsWithAClearMessage) {

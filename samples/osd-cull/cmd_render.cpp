@@ -2,6 +2,8 @@
 // writes PNG images and prints per-frame statistics.
 #include "command.h"
 
+#include "adapters/load_mesh.h"
+
 #include "osd_cull/error.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/png_io.h"
@@ -23,6 +25,8 @@ const char* kUsage = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
 
 Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
 triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
+MESH: a .bpt Bézier patch file (e.g. the Utah teapot). Cages (OBJ, OFF, PLY, STL) are read
+but need the patch extraction of osd_cull/patch, which is not in this build yet.
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
 and fragment-shader invocations (pipeline statistics).
 
@@ -59,12 +63,16 @@ Scene loadScene(const std::vector<std::string>& positional) {
   }
   const fs::path path = positional[0];
   if (!fs::exists(path)) throw Error(path.string() + ": no such file");
-  // Mesh files become patches through adapters::loadCage / loadBezierPatches and the
-  // Bézier/Gregory extraction of osd_cull/patch; neither is in this build yet.
-  throw Error(path.string() +
-              ": loading meshes needs the mesh loaders (adapters/) and patch extraction "
-              "(osd_cull/patch/) that are not merged into this build yet; run `osd-cull render` "
-              "without MESH for the built-in scene");
+  if (adapters::isBezierPatchFile(path)) {
+    // BPT files (the Utah teapot) are z-up.
+    return {adapters::loadBezierPatches(path), {}, {0, 0, 1}, {0.6, -1.0, 0.5}};
+  }
+  // Cages load, but turning them into Bézier/Gregory patches needs osd_cull/patch's
+  // extraction, which is not in this build yet.
+  const CageMesh cage = adapters::loadCage(path);
+  throw Error(path.string() + ": read a cage of " + std::to_string(cage.faceCount()) +
+              " faces, but patch extraction (osd_cull/patch) is not in this build yet; "
+              "render a .bpt file, or run without MESH for the built-in scene");
 }
 
 std::vector<double> parseNumbers(const std::string& text, size_t count, const std::string& option) {
