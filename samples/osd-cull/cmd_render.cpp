@@ -1,8 +1,10 @@
 // osd-cull render: draws a mesh (or the built-in scene) with the tessellation pipeline,
 // writes PNG images and prints per-frame statistics.
 #include "command.h"
+#include "mesh_source.h"
 
-#include "adapters/load_mesh.h"
+#include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/procedural.h"
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/demo_shapes.h"
@@ -25,12 +27,15 @@ const char* kUsage = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
 
 Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
 triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
-MESH: a .bpt Bézier patch file (e.g. the Utah teapot). Cages (OBJ, OFF, PLY, STL) are read
-but need the patch extraction of osd_cull/patch, which is not in this build yet.
+MESH: OBJ (with OpenSubdiv tags), OFF, PLY, STL (Catmull-Clark cages, refined adaptively
+into Bézier and Gregory patches) or BPT (Bézier patches, e.g. the Utah teapot).
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
 and fragment-shader invocations (pipeline statistics).
 
 Options:
+  --level N              adaptive isolation level, 0..10 (default 2)
+  --endcap gregory|bspline  end caps of irregular patches (default gregory)
+  --scheme catmark|loop|bilinear  override the scheme (default: file-name prefix)
   --out FILE.png         image of the last frame (required)
   --width W --height H   image size (default 640 x 480)
   --tess N               uniform tessellation, N segments per patch edge (default 4)
@@ -55,24 +60,36 @@ struct Scene {
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
 };
 
-Scene loadScene(const std::vector<std::string>& positional) {
-  if (positional.size() > 1) throw Error("render takes at most one MESH argument");
-  if (positional.empty()) {
-    frame::DemoScene demo = frame::defaultDemoScene();
-    return {std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection};
-  }
-  const fs::path path = positional[0];
-  if (!fs::exists(path)) throw Error(path.string() + ": no such file");
-  if (adapters::isBezierPatchFile(path)) {
-    // BPT files (the Utah teapot) are z-up.
-    return {adapters::loadBezierPatches(path), {}, {0, 0, 1}, {0.6, -1.0, 0.5}};
-  }
-  // Cages load, but turning them into Bézier/Gregory patches needs osd_cull/patch's
-  // extraction, which is not in this build yet.
-  const CageMesh cage = adapters::loadCage(path);
-  throw Error(path.string() + ": read a cage of " + std::to_string(cage.faceCount()) +
-              " faces, but patch extraction (osd_cull/patch) is not in this build yet; "
-              "render a .bpt file, or run without MESH for the built-in scene");
+PatchSet extract(CageMesh cage, const PatchOptions& options, const glm::dvec3& offset,
+                 double size) {
+  scene::scale(cage, size);
+  scene::translate(cage, offset);
+  return extractPatches(cage, options).patches;
+}
+
+// Several subdivision objects generated in code, a triangle wall and a ground slab (z up);
+// seen from the default direction some objects are partly hidden behind others.
+Scene builtInScene(const PatchOptions& options) {
+  Scene s;
+  s.patches = extract(scene::defaultMesh(), options, {0.0, 0.0, 0.0}, 1.0);
+  s.patches = frame::concatenate(
+      s.patches, extract(scene::torus(12, 8, 1.0, 0.4), options, {2.6, 0.6, -0.6}, 1.0));
+  s.patches =
+      frame::concatenate(s.patches, extract(scene::poleSphere(5), options, {-1.3, 2.8, 0.0}, 1.0));
+  s.patches =
+      frame::concatenate(s.patches, extract(scene::creasedCube(), options, {1.0, 2.4, -0.4}, 0.6));
+  s.patches.source = "built-in:scene (default mesh, torus, pole sphere, creased cube, wall)";
+  s.occluders.push_back(frame::boxMesh({-2.5, 1.45, -1.0}, {-0.2, 1.55, 0.8}));
+  s.occluders.push_back(frame::boxMesh({-3.5, -2.5, -1.15}, {4.2, 4.5, -1.0}));
+  return s;
+}
+
+Scene loadScene(const MeshSource& source, const PatchOptions& options) {
+  if (!source.path) return builtInScene(options);
+  LoadedMesh mesh = loadMeshSource(source);
+  if (mesh.bezier) return {std::move(*mesh.bezier), {}, {0, 0, 1}, {0.6, -1.0, 0.5}};  // BPT: z up
+  // OBJ and the other cage formats are mostly y up.
+  return {extractPatches(*mesh.cage, options).patches, {}, {0, 1, 0}, {0.45, 0.35, 1.0}};
 }
 
 std::vector<double> parseNumbers(const std::string& text, size_t count, const std::string& option) {
@@ -110,11 +127,23 @@ int run(Args& args) {
   const bool debugColors = args.flag("debug-colors");
   const bool validate = args.flag("validate");
   const auto device = args.value("device");
+  PatchOptions patchOptions;
+  if (auto level = args.integer("level", 0, 10))
+    patchOptions.isolationLevel = static_cast<int>(*level);
+  if (auto endcap = args.value("endcap")) {
+    if (*endcap == "gregory")
+      patchOptions.endCaps = EndCap::GregoryBasis;
+    else if (*endcap == "bspline")
+      patchOptions.endCaps = EndCap::BSplineBasis;
+    else
+      throw Error("option --endcap: '" + *endcap + "' is not one of gregory, bspline");
+  }
+  const MeshSource source = meshSourceFromArgs(args);
   args.finish();
   if (!out) throw Error("--out FILE.png is required");
   if (tess && adaptive) throw Error("--tess and --adaptive exclude each other");
 
-  const Scene scene = loadScene(args.positional());
+  const Scene scene = loadScene(source, patchOptions);
   vk::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
