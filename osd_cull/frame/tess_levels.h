@@ -36,9 +36,11 @@ struct PatchTessLevels {
   double inner(int i) const {
     return i == 0 ? 0.5 * (outer(1) + outer(3)) : 0.5 * (outer(0) + outer(2));
   }
-  /// \brief Vertices the tessellator can emit for these levels (equal spacing, quads):
-  /// (m + 1)^2 with m the largest level after rounding up.
-  uint32_t vertexBound() const;
+  /// \brief Vertices the tessellator emits for these levels (quads, equal spacing: levels
+  /// round up; an inner level of 1 becomes 2 unless all levels are 1):
+  /// (inner0 - 1)(inner1 - 1) + the four outer levels, 4 when all levels are 1. At most
+  /// (m + 1)^2 for the largest level m. Equals the TES invocations lavapipe reports.
+  uint32_t vertexCount() const;
 };
 
 /// \brief The boundary-curve point indices of each edge (same table as the shaders).
