@@ -134,8 +134,14 @@ int main(int argc, char** argv) {
       frame::RenderOptions options;
       options.tessellation.uniformLevel = level;
       const Row chunked = measure(renderer, oracle, target, camera, gpu, set, options, o.repeats);
-      std::printf("| %u | %u | %.1f | %.1f | %llu | %.0f | %llu | %u |", level, chunked.draws,
-                  chunked.wallMs, chunked.gpuMs, static_cast<unsigned long long>(chunked.tes),
+      const uint32_t used =
+          frame::effectiveOptions(options.tessellation, gpu.hasTransitionEdges()).uniformLevel;
+      const std::string levelText =
+          used == level ? std::to_string(level)
+                        : std::to_string(level) + " (clamped to " + std::to_string(used) + ")";
+      std::printf("| %s | %u | %.1f | %.1f | %llu | %.0f | %llu | %u |", levelText.c_str(),
+                  chunked.draws, chunked.wallMs, chunked.gpuMs,
+                  static_cast<unsigned long long>(chunked.tes),
                   double(chunked.tes) / set.patchCount(),
                   static_cast<unsigned long long>(chunked.fragments), chunked.visible);
       if (level <= o.maxOneDrawLevel) {

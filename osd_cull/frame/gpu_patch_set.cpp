@@ -1,6 +1,7 @@
 #include "osd_cull/frame/gpu_patch_set.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/tess_levels.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/transfer.h"
 
@@ -31,7 +32,8 @@ std::vector<float> packPoints(std::span<const glm::dvec3> points) {
 GpuPatchSet::GpuPatchSet(vk::Context& context, const PatchSet& patches)
     : bezierCount_(patches.bezierCount),
       gregoryCount_(patches.gregoryCount),
-      pointCount_(static_cast<uint32_t>(patches.points.size())) {
+      pointCount_(static_cast<uint32_t>(patches.points.size())),
+      transitionEdges_(frame::hasTransitionEdges(patches)) {
   const uint32_t n = patches.patchCount();
   const size_t expectedPoints =
       size_t{patches.bezierCount} * kBezierPoints + size_t{patches.gregoryCount} * kGregoryPoints;

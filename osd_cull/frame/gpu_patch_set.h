@@ -38,6 +38,8 @@ class GpuPatchSet {
   uint32_t gregoryCount() const { return gregoryCount_; }
   uint32_t patchCount() const { return bezierCount_ + gregoryCount_; }
   uint32_t pointCount() const { return pointCount_; }
+  /// \brief Whether any patch has a transition edge (see effectiveOptions()).
+  bool hasTransitionEdges() const { return transitionEdges_; }
   uint32_t pointStride() const { return 4; }
   uint32_t pointOffset() const { return 0; }
   /// \brief Draw-list slot of the first Gregory patch (== bezierCount()).
@@ -60,6 +62,7 @@ class GpuPatchSet {
   uint32_t bezierCount_ = 0;
   uint32_t gregoryCount_ = 0;
   uint32_t pointCount_ = 0;
+  bool transitionEdges_ = false;
   vk::Buffer points_;
   vk::Buffer params_;
   vk::Buffer drawList_;

@@ -46,6 +46,18 @@ uint32_t PatchTessLevels::vertexCount() const {
   return static_cast<uint32_t>((in[0] - 1.0) * (in[1] - 1.0) + o[0] + o[1] + o[2] + o[3]);
 }
 
+bool hasTransitionEdges(const PatchSet& patches) {
+  for (const auto& p : patches.params)
+    if (p.GetTransition() != 0) return true;
+  return false;
+}
+
+TessellationOptions effectiveOptions(const TessellationOptions& options, bool transitionEdges) {
+  TessellationOptions out = options;
+  if (transitionEdges) out.uniformLevel = std::min(out.uniformLevel, options.maxLevel / 2);
+  return out;
+}
+
 std::array<std::array<uint32_t, 4>, 4> edgeCurveIndices(PatchType type) {
   if (type == PatchType::Bezier)
     return {{{0, 4, 8, 12}, {0, 1, 2, 3}, {3, 7, 11, 15}, {12, 13, 14, 15}}};
@@ -87,7 +99,8 @@ PatchTessLevels patchTessLevels(const PatchSet& patches, uint32_t patch,
 
 std::vector<uint32_t> tessVertexBounds(const PatchSet& patches, const glm::dmat4& viewProjection,
                                        const glm::dvec2& viewport,
-                                       const TessellationOptions& options) {
+                                       const TessellationOptions& requested) {
+  const TessellationOptions options = effectiveOptions(requested, hasTransitionEdges(patches));
   std::vector<uint32_t> bounds(patches.patchCount());
   const bool adaptive = options.mode == TessellationOptions::Mode::Adaptive;
   for (uint32_t p = 0; p < patches.patchCount(); ++p) {
