@@ -72,8 +72,8 @@ TEST_F(VkTest, RawCsrWithDoubleWeightsMatchesADoubleReference) {
   srcBuffer.UpdateData(src.data(), 0, 700, &device);
   const BufferDescriptor desc(0, 3, 3);
   // No instance: the static form makes a temporary one, as OpenSubdiv's evaluators do.
-  ASSERT_TRUE(VkComputeEvaluator::EvalStencils(&srcBuffer, desc, &dstBuffer, desc, &table,
-                                               nullptr, &device));
+  ASSERT_TRUE(VkComputeEvaluator::EvalStencils(&srcBuffer, desc, &dstBuffer, desc, &table, nullptr,
+                                               &device));
   VkComputeEvaluator::Synchronize(&device);
   const std::vector<float> gpu = dstBuffer.readback();
 
@@ -208,7 +208,8 @@ TEST_F(VkTest, SynchronizeWaitsForEvaluationsButNotForLaterWork) {
 
   auto synchronized =
       std::async(std::launch::async, [&] { VkComputeEvaluator::Synchronize(&device); });
-  const bool returned = synchronized.wait_for(std::chrono::seconds(20)) == std::future_status::ready;
+  const bool returned =
+      synchronized.wait_for(std::chrono::seconds(20)) == std::future_status::ready;
   const bool blockedWasPending = !device.isComplete(blocked);
   vkSetEvent(context().device(), rawEvent);  // release the queue in every case
   synchronized.wait();
@@ -226,8 +227,9 @@ TEST_F(VkTest, EvaluatorRejectsWhatItCannotDo) {
   VkVertexBuffer src(device, 3, 10), smallDst(device, 3, 49), dst(device, 3, 50);
   const BufferDescriptor desc(0, 3, 3);
   // Destination too small for 50 stencils.
-  EXPECT_THROW(VkComputeEvaluator::EvalStencils(&src, desc, &smallDst, desc, &table, nullptr, &device),
-               Error);
+  EXPECT_THROW(
+      VkComputeEvaluator::EvalStencils(&src, desc, &smallDst, desc, &table, nullptr, &device),
+      Error);
   // Lengths differ.
   EXPECT_THROW(VkComputeEvaluator(device, desc, BufferDescriptor(0, 2, 3)), Error);
   // length > stride.

@@ -83,7 +83,8 @@ void checkMeshAgainstCpu(vk::Context& context, const CageMesh& cage) {
   std::vector<float> previous;
   for (int pose = 0; pose < 2; ++pose) {
     if (pose == 1)  // a non-rigid move: every vertex gets its own offset
-      for (size_t i = 0; i < xyz.size(); ++i) xyz[i] += 0.25f * std::sin(1.7f * static_cast<float>(i));
+      for (size_t i = 0; i < xyz.size(); ++i)
+        xyz[i] += 0.25f * std::sin(1.7f * static_cast<float>(i));
     mesh.UpdateVertexBuffer(xyz.data(), 0, cageVertices);
     mesh.Refine();
     mesh.Synchronize();
@@ -92,8 +93,7 @@ void checkMeshAgainstCpu(vk::Context& context, const CageMesh& cage) {
     ASSERT_EQ(gpu.size(), cpu.size()) << cage.source;
     const double diagonal = test::boxDiagonal(cpu);
     ASSERT_GT(diagonal, 1.0);
-    EXPECT_LE(test::maxAbsDifference(gpu, cpu), 1e-5 * diagonal)
-        << cage.source << " pose " << pose;
+    EXPECT_LE(test::maxAbsDifference(gpu, cpu), 1e-5 * diagonal) << cage.source << " pose " << pose;
     if (pose == 1) {  // the second Refine really recomputed the points
       EXPECT_GT(test::maxAbsDifference(gpu, previous), 1e-2) << cage.source;
     }
@@ -164,8 +164,8 @@ TEST_F(VkTest, PatchTableBuffersEqualFarArrays) {
   EXPECT_EQ(readArray<int>(context(), table.patchIndexBuffer(), farIndices.size()), farIndices);
 
   ASSERT_EQ(table.GetPatchParamSize(), static_cast<size_t>(far.GetNumPatchesTotal()));
-  const auto params = readArray<Osd::PatchParam>(context(), table.patchParamBuffer(),
-                                                 table.GetPatchParamSize());
+  const auto params =
+      readArray<Osd::PatchParam>(context(), table.patchParamBuffer(), table.GetPatchParamSize());
   const Far::PatchParamTable& farParams = far.GetPatchParamTable();
   for (size_t p = 0; p < params.size(); ++p) {
     EXPECT_EQ(params[p].field0, farParams[p].field0) << "patch " << p;

@@ -41,7 +41,8 @@ inline CageMesh openFan() {
   auto outer = [](int i) { return 13 + (i % 12); };
   for (int s = 0; s < kSpokes - 1; ++s) {  // five quads at the pole, one triangle
     m.faceSizes.push_back(4);
-    m.faceVertices.insert(m.faceVertices.end(), {0, inner(2 * s), inner(2 * s + 1), inner(2 * s + 2)});
+    m.faceVertices.insert(m.faceVertices.end(),
+                          {0, inner(2 * s), inner(2 * s + 1), inner(2 * s + 2)});
   }
   m.faceSizes.push_back(3);
   m.faceVertices.insert(m.faceVertices.end(), {0, inner(10), inner(12)});
@@ -58,7 +59,8 @@ inline CageMesh openFan() {
 inline std::vector<float> packedXyz(const CageMesh& m) {
   std::vector<float> out;
   for (const glm::dvec3& p : m.positions)
-    out.insert(out.end(), {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
+    out.insert(out.end(),
+               {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
   return out;
 }
 

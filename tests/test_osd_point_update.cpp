@@ -52,7 +52,8 @@ Csr refinedPointMatrix(const CageMesh& cage) {
   Far::PatchTableFactory::Options patchOptions(2);
   patchOptions.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
   patchOptions.SetPatchPrecision<double>();
-  std::unique_ptr<const Far::PatchTable> patches(Far::PatchTableFactory::Create(*refiner, patchOptions));
+  std::unique_ptr<const Far::PatchTable> patches(
+      Far::PatchTableFactory::Create(*refiner, patchOptions));
   if (patches->GetLocalPointStencilTable<double>()) {
     std::unique_ptr<const Far::StencilTableReal<double>> all(
         Far::StencilTableFactoryReal<double>::AppendLocalPointStencilTable(
@@ -80,7 +81,8 @@ void checkFrames(vk::Context& context, const CageMesh& cage, const Csr& matrix, 
   for (int frame = 0; frame < 3; ++frame) {
     std::vector<glm::dvec3> moved = cage.positions;
     for (size_t v = 0; v < moved.size(); ++v)  // a wave through the cage, different per frame
-      moved[v] += 0.2 * frame * glm::dvec3(std::sin(v + frame), std::cos(2.0 * v), std::sin(3.0 * v + frame));
+      moved[v] += 0.2 * frame *
+                  glm::dvec3(std::sin(v + frame), std::cos(2.0 * v), std::sin(3.0 * v + frame));
     update.update(moved);
     update.wait();
     const std::vector<float> gpu = update.readback();
@@ -97,7 +99,8 @@ void checkFrames(vk::Context& context, const CageMesh& cage, const Csr& matrix, 
     }
     EXPECT_LE(worst, tolerance) << cage.source << " frame " << frame;
     if (frame > 0) {
-      EXPECT_GT(test::maxAbsDifference(gpu, previous), 1e-2) << "frame " << frame << " did not move";
+      EXPECT_GT(test::maxAbsDifference(gpu, previous), 1e-2)
+          << "frame " << frame << " did not move";
     }
     previous = gpu;
   }
@@ -117,11 +120,12 @@ TEST_F(VkTest, PointUpdateRejectsMismatchedInput) {
   DeviceContext device(context());
   const Csr matrix = refinedPointMatrix(test::creasedCube());
   // The matrix reads vertex 7: a cage of 7 vertices is too small.
-  EXPECT_THROW(GpuPointUpdate(device, 7, matrix.sizes, matrix.offsets, matrix.indices, matrix.weights),
-               Error);
-  EXPECT_THROW(GpuPointUpdate(device, 8, matrix.sizes, matrix.offsets, matrix.indices,
-                              matrix.weights, {5}),
-               Error);
+  EXPECT_THROW(
+      GpuPointUpdate(device, 7, matrix.sizes, matrix.offsets, matrix.indices, matrix.weights),
+      Error);
+  EXPECT_THROW(
+      GpuPointUpdate(device, 8, matrix.sizes, matrix.offsets, matrix.indices, matrix.weights, {5}),
+      Error);
   GpuPointUpdate update(device, 8, matrix.sizes, matrix.offsets, matrix.indices, matrix.weights);
   const std::vector<float> tooShort(21, 0.0f);
   EXPECT_THROW(update.update(tooShort), Error);

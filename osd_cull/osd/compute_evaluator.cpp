@@ -63,8 +63,7 @@ void checkRange(const char* what, const VkComputeEvaluator::Binding& binding, in
     throw Error(std::string("VkComputeEvaluator: ") + what + " vertices [0, " +
                 std::to_string(count) + ") at offset " + std::to_string(binding.desc.offset) +
                 ", stride " + std::to_string(binding.desc.stride) + " need " +
-                std::to_string(last) + " floats; the buffer has " +
-                std::to_string(binding.floats));
+                std::to_string(last) + " floats; the buffer has " + std::to_string(binding.floats));
 }
 
 }  // namespace
@@ -82,12 +81,11 @@ VkComputeEvaluator* VkComputeEvaluator::Create(BufferDescriptor const& srcDesc,
 
 VkComputeEvaluator* VkComputeEvaluator::Create(
     BufferDescriptor const& srcDesc, BufferDescriptor const& dstDesc,
-    BufferDescriptor const& duDesc, BufferDescriptor const& dvDesc,
-    BufferDescriptor const& duuDesc, BufferDescriptor const& duvDesc,
-    BufferDescriptor const& dvvDesc, DeviceContext* deviceContext) {
+    BufferDescriptor const& duDesc, BufferDescriptor const& dvDesc, BufferDescriptor const& duuDesc,
+    BufferDescriptor const& duvDesc, BufferDescriptor const& dvvDesc,
+    DeviceContext* deviceContext) {
   if (duuDesc.length > 0 || duvDesc.length > 0 || dvvDesc.length > 0)
-    throw Error(
-        "VkComputeEvaluator::Create: second derivatives (duu, duv, dvv) are not supported");
+    throw Error("VkComputeEvaluator::Create: second derivatives (duu, duv, dvv) are not supported");
   return Create(srcDesc, dstDesc, duDesc, dvDesc, deviceContext);
 }
 
@@ -118,8 +116,8 @@ DeviceContext& VkComputeEvaluator::requireContext(DeviceContext* deviceContext) 
 }
 
 void VkComputeEvaluator::record(Batch& batch, const VkStencilTable& table, const Binding& src,
-                                const Binding& dst, const Binding& du, const Binding& dv,
-                                int start, int end) const {
+                                const Binding& dst, const Binding& du, const Binding& dv, int start,
+                                int end) const {
   if (&table.deviceContext() != &deviceContext_)
     throw Error("VkComputeEvaluator: the stencil table belongs to another DeviceContext");
   if (!src.buffer || !dst.buffer)
@@ -133,11 +131,13 @@ void VkComputeEvaluator::record(Batch& batch, const VkStencilTable& table, const
                 std::to_string(dst.desc.length));
   const bool wantDerivatives = du.buffer || dv.buffer;
   if (wantDerivatives && !derivatives_)
-    throw Error("VkComputeEvaluator: du/dv outputs requested from an instance created without "
-                "du/dv descriptors");
+    throw Error(
+        "VkComputeEvaluator: du/dv outputs requested from an instance created without "
+        "du/dv descriptors");
   if (wantDerivatives && !table.HasDerivatives())
-    throw Error("VkComputeEvaluator: du/dv outputs need a stencil table with du/dv weights "
-                "(built from a Far::LimitStencilTable)");
+    throw Error(
+        "VkComputeEvaluator: du/dv outputs need a stencil table with du/dv weights "
+        "(built from a Far::LimitStencilTable)");
   for (const auto& [name, d] : {std::pair{"du", &du}, std::pair{"dv", &dv}}) {
     if (!d->buffer) continue;
     checkDescriptor(name, d->desc);
@@ -225,9 +225,8 @@ void VkComputeEvaluator::record(Batch& batch, const VkStencilTable& table, const
 uint64_t VkComputeEvaluator::submit(const VkStencilTable& table, const Binding& src,
                                     const Binding& dst, const Binding& du,
                                     const Binding& dv) const {
-  return deviceContext_.submit([&](Batch& batch) {
-    record(batch, table, src, dst, du, dv, 0, table.GetNumStencils());
-  });
+  return deviceContext_.submit(
+      [&](Batch& batch) { record(batch, table, src, dst, du, dv, 0, table.GetNumStencils()); });
 }
 
 void VkComputeEvaluator::Synchronize(DeviceContext* deviceContext) {

@@ -53,15 +53,12 @@ class VkComputeEvaluator {
   /// deletes it). Its kernel is compiled once per DeviceContext and element count.
   /// \throws osd_cull::Error when deviceContext is null or a descriptor is unusable.
   static VkComputeEvaluator* Create(BufferDescriptor const& srcDesc,
-                                    BufferDescriptor const& dstDesc,
-                                    BufferDescriptor const& duDesc,
+                                    BufferDescriptor const& dstDesc, BufferDescriptor const& duDesc,
                                     BufferDescriptor const& dvDesc, DeviceContext* deviceContext);
   /// \brief As above; duu/duv/dvv must be empty (second derivatives are not supported).
   static VkComputeEvaluator* Create(BufferDescriptor const& srcDesc,
-                                    BufferDescriptor const& dstDesc,
-                                    BufferDescriptor const& duDesc,
-                                    BufferDescriptor const& dvDesc,
-                                    BufferDescriptor const& duuDesc,
+                                    BufferDescriptor const& dstDesc, BufferDescriptor const& duDesc,
+                                    BufferDescriptor const& dvDesc, BufferDescriptor const& duuDesc,
                                     BufferDescriptor const& duvDesc,
                                     BufferDescriptor const& dvvDesc, DeviceContext* deviceContext);
 
@@ -169,8 +166,8 @@ class VkComputeEvaluator {
                     BufferDescriptor const& duDesc, DST_BUFFER* dv,
                     BufferDescriptor const& dvDesc) const {
     if (!table) throw Error("VkComputeEvaluator::EvalStencils: the stencil table is null");
-    const uint64_t ticket = submit(*table, bind(src, srcDesc), bind(dst, dstDesc),
-                                   bind(du, duDesc), bind(dv, dvDesc));
+    const uint64_t ticket =
+        submit(*table, bind(src, srcDesc), bind(dst, dstDesc), bind(du, duDesc), bind(dv, dvDesc));
     markUsed(src, ticket);
     markUsed(dst, ticket);
     markUsed(du, ticket);

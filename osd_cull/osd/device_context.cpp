@@ -92,8 +92,9 @@ Batch::Slot& DeviceContext::acquireSlot() {
     return *slots_.back();
   }
   // Every slot is in flight: wait for the oldest submission.
-  auto oldest = std::min_element(slots_.begin(), slots_.end(),
-                                 [](const auto& a, const auto& b) { return a->ticket < b->ticket; });
+  auto oldest = std::min_element(slots_.begin(), slots_.end(), [](const auto& a, const auto& b) {
+    return a->ticket < b->ticket;
+  });
   wait((*oldest)->ticket);
   return **oldest;
 }
@@ -112,8 +113,10 @@ void DeviceContext::retireCompleted() {
   for (auto& slot : slots_) {
     if (!slot->pending) continue;
     const VkResult status = vkGetFenceStatus(device(), slot->fence.get());
-    if (status == VK_SUCCESS) retire(*slot);
-    else if (status != VK_NOT_READY) OSD_CULL_VK(status);
+    if (status == VK_SUCCESS)
+      retire(*slot);
+    else if (status != VK_NOT_READY)
+      OSD_CULL_VK(status);
   }
 }
 

@@ -56,9 +56,9 @@ uint64_t GpuPointUpdate::update(std::span<const float> cageXyz) {
                 " cage vertices), got " + std::to_string(cageXyz.size()));
   const EvaluatorBinding src{cage_.BindVBO(), 3 * static_cast<size_t>(cageVertexCount()),
                              BufferDescriptor(0, 3, 3)};
-  const EvaluatorBinding dst{
-      points_.BindVBO(), static_cast<size_t>(pointStride()) * static_cast<size_t>(pointCount()),
-      BufferDescriptor(0, 3, pointStride())};
+  const EvaluatorBinding dst{points_.BindVBO(),
+                             static_cast<size_t>(pointStride()) * static_cast<size_t>(pointCount()),
+                             BufferDescriptor(0, 3, pointStride())};
   lastTicket_ = deviceContext_.submit([&](Batch& batch) {
     cage_.recordUpdate(batch, cageXyz.data(), 0, cageVertexCount());
     evaluator_.record(batch, matrix_, src, dst, {}, {}, 0, matrix_.GetNumStencils());

@@ -66,10 +66,12 @@ VkPatchTable::VkPatchTable(DeviceContext& deviceContext,
     fvar.arrays.assign(fvarArrays.begin(), fvarArrays.end());
     fvar.indexCount = cpu.GetFVarPatchIndexSize(channel);
     fvar.paramCount = cpu.GetFVarPatchParamSize(channel);
-    fvar.indices = patchBuffer(context, arrayOf(cpu.GetFVarPatchIndexBuffer(channel), fvar.indexCount),
-                               "VkPatchTable face-varying indices");
-    fvar.params = patchBuffer(context, arrayOf(cpu.GetFVarPatchParamBuffer(channel), fvar.paramCount),
-                              "VkPatchTable face-varying patch params");
+    fvar.indices =
+        patchBuffer(context, arrayOf(cpu.GetFVarPatchIndexBuffer(channel), fvar.indexCount),
+                    "VkPatchTable face-varying indices");
+    fvar.params =
+        patchBuffer(context, arrayOf(cpu.GetFVarPatchParamBuffer(channel), fvar.paramCount),
+                    "VkPatchTable face-varying patch params");
     fvar_.push_back(std::move(fvar));
   }
 }

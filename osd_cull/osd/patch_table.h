@@ -41,9 +41,7 @@ class VkPatchTable {
   size_t GetPatchIndexSize() const { return patches_.indexCount; }
   size_t GetPatchParamSize() const { return patches_.paramCount; }
 
-  const OpenSubdiv::Osd::PatchArrayVector& GetVaryingPatchArrays() const {
-    return varying_.arrays;
-  }
+  const OpenSubdiv::Osd::PatchArrayVector& GetVaryingPatchArrays() const { return varying_.arrays; }
   VkBuffer GetVaryingPatchIndexBuffer() const { return varying_.indices.handle(); }
   size_t GetVaryingPatchIndexSize() const { return varying_.indexCount; }
 

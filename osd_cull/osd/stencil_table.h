@@ -69,8 +69,8 @@ class VkStencilTable {
   void markUsed(uint64_t ticket) const;
 
  private:
-  void load(std::span<const int> sizes, std::span<const int> offsets,
-            std::span<const int> indices, std::span<const float> weights);
+  void load(std::span<const int> sizes, std::span<const int> offsets, std::span<const int> indices,
+            std::span<const float> weights);
 
   DeviceContext& deviceContext_;
   int numStencils_ = 0;
