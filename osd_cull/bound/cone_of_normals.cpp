@@ -1,0 +1,318 @@
+#include "osd_cull/bound/cone_of_normals.h"
+
+#include "osd_cull/bound/clip_space.h"
+#include "osd_cull/bound/patch_eval.h"
+#include "osd_cull/error.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace osd_cull::bound {
+namespace {
+
+constexpr double kHalfPi = std::numbers::pi / 2.0;
+
+void requireSize(std::span<const glm::dvec3> points, size_t expected, const char* what) {
+  if (points.size() != expected)
+    throw Error(std::string(__FILE__) + ": a " + what + " patch has " + std::to_string(expected) +
+                " control points, got " + std::to_string(points.size()));
+}
+
+// Angle between unit vectors, accurate near 0 and pi (unlike acos of a dot product).
+double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+}
+
+// A cone of directions: every vector it was built from lies within `angle` of `axis`.
+struct DirectionCone {
+  glm::dvec3 axis{0.0};
+  double angle = 0.0;
+  bool valid = false;
+  BackPatchVerdict reason = BackPatchVerdict::NoNormal;
+};
+
+// Bounds the directions of `vectors`, each known up to an absolute error `errors[i]`
+// (|computed - exact| <= error): exact zeros are skipped (they add nothing to a
+// non-negative combination); a vector not longer than its error has an unknown direction.
+// The axis is the better of the normalized mean and a few Badoiu-Clarkson steps toward the
+// farthest direction (an approximate minimal enclosing cone).
+DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<const double> errors) {
+  std::vector<glm::dvec3> units;
+  std::vector<double> slack;  // angular uncertainty of each direction
+  units.reserve(vectors.size());
+  for (size_t i = 0; i < vectors.size(); ++i) {
+    const double len = glm::length(vectors[i]);
+    if (len == 0.0 && errors[i] == 0.0) continue;
+    if (!(len > errors[i])) return {glm::dvec3(0.0), 0.0, false, BackPatchVerdict::WideCone};
+    units.push_back(vectors[i] / len);
+    slack.push_back(std::asin(errors[i] / len));
+  }
+  if (units.empty()) return {};
+
+  auto widest = [&](const glm::dvec3& axis, size_t* farthest) {
+    double worst = 0.0;
+    for (size_t i = 0; i < units.size(); ++i) {
+      const double a = angleBetween(axis, units[i]) + slack[i];
+      if (a >= worst) worst = a, *farthest = i;
+    }
+    return worst;
+  };
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& u : units) sum += u;
+  if (!(glm::length(sum) > 0.0)) return {glm::dvec3(0.0), 0.0, false, BackPatchVerdict::WideCone};
+  glm::dvec3 axis = glm::normalize(sum);
+  size_t far = 0;
+  double angle = widest(axis, &far);
+  // Badoiu-Clarkson on the tips of the unit vectors: centre += (farthest - centre)/(k+1).
+  glm::dvec3 centre = axis;
+  for (int k = 1; k <= 8; ++k) {
+    size_t f = 0;
+    widest(glm::normalize(centre), &f);
+    centre += (units[f] - centre) / static_cast<double>(k + 1);
+    if (!(glm::length(centre) > 0.0)) break;
+    const glm::dvec3 candidate = glm::normalize(centre);
+    const double a = widest(candidate, &f);
+    if (a < angle) angle = a, axis = candidate;
+  }
+  angle += kConeAngleMargin;
+  if (!std::isfinite(angle) || angle >= kHalfPi)
+    return {axis, angle, false, BackPatchVerdict::WideCone};
+  return {axis, angle, true, BackPatchVerdict::BackFacing};
+}
+
+// Places the apex: l = c - t a with the smallest t such that every point P lies within
+// 90° - γ of the axis seen from l, i.e. h + t >= ρ tan γ for P - c = h a + r, |r| = ρ.
+// The points bound the patch (convex hull), so the whole patch lies in that cone.
+ConeOfNormals withApex(const glm::dvec3& axis, double gamma, std::span<const glm::dvec3> points) {
+  ConeOfNormals cone;
+  glm::dvec3 centre(0.0);
+  for (const glm::dvec3& p : points) centre += p;
+  centre /= static_cast<double>(points.size());
+  const double tanGamma = std::tan(gamma);
+  double t = -std::numeric_limits<double>::infinity();
+  double radius = 0.0;
+  for (const glm::dvec3& p : points) {
+    const glm::dvec3 d = p - centre;
+    const double h = glm::dot(d, axis);
+    const double rho = glm::length(d - h * axis);
+    t = std::max(t, rho * tanGamma - h);
+    radius = std::max(radius, glm::length(d));
+  }
+  // Rounding of d, h, rho is below a few ulps of |P| + |c|; widen by far more.
+  t += kRelativeMargin * (radius + glm::length(centre)) * (1.0 + tanGamma);
+  cone.apex = centre - t * axis;
+  cone.axis = axis;
+  cone.sinAngle = std::sin(gamma);
+  cone.valid = std::isfinite(cone.apex.x) && std::isfinite(cone.apex.y) &&
+               std::isfinite(cone.apex.z) && std::isfinite(cone.sinAngle);
+  cone.reason = cone.valid ? BackPatchVerdict::BackFacing : BackPatchVerdict::NonFinite;
+  return cone;
+}
+
+ConeOfNormals invalidCone(BackPatchVerdict reason) {
+  ConeOfNormals c;
+  c.valid = false;
+  c.reason = reason;
+  return c;
+}
+
+// Sederberg and Meyers: tangents within α of a and β of b have unit normals n with
+// |n·a| <= sin α and |n·b| <= sin β; writing n = p + z c (c = a x b / |a x b|, p in the
+// plane of a and b), the farthest corner of that parallelogram has
+// |p|² = (sin²α + 2 sinα sinβ |cos θ| + sin²β) / sin²θ = sin²γ. If it is below 1, t1 and t2
+// are never parallel and t1 x t2 stays on the side of c (docs/algorithms/back-patch.md).
+ConeOfNormals combineTangentCones(const DirectionCone& tu, const DirectionCone& tv,
+                                  std::span<const glm::dvec3> points) {
+  if (!tu.valid) return invalidCone(tu.reason);
+  if (!tv.valid) return invalidCone(tv.reason);
+  const glm::dvec3 c = glm::cross(tu.axis, tv.axis);
+  const double sinTheta = glm::length(c);
+  const double cosTheta = glm::dot(tu.axis, tv.axis);
+  if (!(sinTheta > 0.0)) return invalidCone(BackPatchVerdict::WideCone);
+  const double sa = std::sin(tu.angle), sb = std::sin(tv.angle);
+  const double sin2 =
+      (sa * sa + 2.0 * sa * sb * std::abs(cosTheta) + sb * sb) / (sinTheta * sinTheta);
+  if (!(sin2 < 1.0)) return invalidCone(BackPatchVerdict::WideCone);
+  const double gamma = std::asin(std::sqrt(sin2)) + kConeAngleMargin;
+  if (!(gamma < kHalfPi)) return invalidCone(BackPatchVerdict::WideCone);
+  return withApex(c / sinTheta, gamma, points);
+}
+
+// The tangent cone of a Gregory patch in one direction. With the Bézier net at (u,v),
+//   G_u = 3 Σ B2_i(u) B3_j(v) (q[i+1,j] - q[i,j])  +  Σ_m β_m(u,v) r_m,
+// where each q is a convex blend of its candidates, so the first sum divided by 3 is a
+// convex combination of the candidate differences d_k, and r_m are the four signed blend
+// derivative directions with weights β_m = B_i B_j |a_u b - a b_u| / (a + b)² >= 0. In the
+// corner's local coordinates (x, y) every β_m has the form 9 x y (1-x)² (1-y)² y / (x+y)²
+// (or with x in place of the last y) <= (9/4) y (1-y)² <= 1/3, so
+//   G_u / 3  lies in  conv{d_k} + ball(ρ),  ρ = Σ_m |r_m| / 9.
+// Two conservative cones, the narrower one is used:
+// (A) if every d_k has component >= h along an axis a with h > ρ, then G_u / 3 has
+//     component >= h - ρ along a and <= P + ρ across it (P = max perpendicular part of the
+//     d_k), so G_u is within atan((P + ρ) / (h - ρ)) of a;
+// (B) G_u is a non-negative combination of the d_k and r_m: the cone of their directions.
+DirectionCone gregoryTangentCone(const std::vector<glm::dvec3>& d,
+                                 const std::vector<glm::dvec3>& r) {
+  std::vector<glm::dvec3> all = d;
+  all.insert(all.end(), r.begin(), r.end());
+  const std::vector<double> zeros(all.size(), 0.0);
+  DirectionCone best = boundDirections(all, zeros);
+  const DirectionCone main = boundDirections(d, std::span<const double>(zeros).first(d.size()));
+  if (!main.valid) return best;
+  double rho = 0.0;
+  for (const glm::dvec3& v : r) rho += glm::length(v);
+  rho = rho / 9.0 * (1.0 + kRelativeMargin);
+  double h = std::numeric_limits<double>::infinity(), perp = 0.0, scale = 0.0;
+  for (const glm::dvec3& v : d) {
+    const double along = glm::dot(v, main.axis);
+    h = std::min(h, along);
+    perp = std::max(perp, glm::length(v - along * main.axis));
+    scale = std::max(scale, glm::length(v));
+  }
+  // Rounding of the dot products and lengths is far below kRelativeMargin * scale.
+  h -= kRelativeMargin * scale;
+  perp += kRelativeMargin * scale;
+  if (h > rho) {
+    const double angle = std::atan2(perp + rho, h - rho) + kConeAngleMargin;
+    if (angle < kHalfPi && (!best.valid || angle < best.angle))
+      best = {main.axis, angle, true, BackPatchVerdict::BackFacing};
+  }
+  return best;
+}
+
+}  // namespace
+
+std::array<glm::dvec3, 36> normalPatch(std::span<const glm::dvec3> bezier) {
+  requireSize(bezier, 16, "bicubic Bézier");
+  static constexpr double C2[3] = {1, 2, 1}, C3[4] = {1, 3, 3, 1}, C5[6] = {1, 5, 10, 10, 5, 1};
+  std::array<glm::dvec3, 36> n;
+  n.fill(glm::dvec3(0.0));
+  // Bu = Σ 3 (b[i+1,j] - b[i,j]) B2_i(u) B3_j(v); Bv = Σ 3 (b[k,l+1] - b[k,l]) B3_k(u) B2_l(v).
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const glm::dvec3 du = 3.0 * (bezier[4 * j + i + 1] - bezier[4 * j + i]);
+      for (int l = 0; l < 3; ++l)
+        for (int k = 0; k < 4; ++k) {
+          const glm::dvec3 dv = 3.0 * (bezier[4 * (l + 1) + k] - bezier[4 * l + k]);
+          const int p = i + k, q = j + l;
+          const double w = (C2[i] * C3[k] / C5[p]) * (C3[j] * C2[l] / C5[q]);
+          n[6 * q + p] += w * glm::cross(du, dv);
+        }
+    }
+  return n;
+}
+
+ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier) {
+  requireSize(bezier, 16, "bicubic Bézier");
+  if (!allFinite(bezier)) return invalidCone(BackPatchVerdict::NonFinite);
+  const std::array<glm::dvec3, 36> n = normalPatch(bezier);
+  // Error bound of each coefficient: kRelativeMargin times the sum of |w| |du| |dv| of its
+  // terms (the rounding error of the sum is below 100 ulps of that).
+  static constexpr double C2[3] = {1, 2, 1}, C3[4] = {1, 3, 3, 1}, C5[6] = {1, 5, 10, 10, 5, 1};
+  std::array<double, 36> err{};
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const double du = 3.0 * glm::length(bezier[4 * j + i + 1] - bezier[4 * j + i]);
+      for (int l = 0; l < 3; ++l)
+        for (int k = 0; k < 4; ++k) {
+          const double dv = 3.0 * glm::length(bezier[4 * (l + 1) + k] - bezier[4 * l + k]);
+          const int p = i + k, q = j + l;
+          err[6 * q + p] += (C2[i] * C3[k] / C5[p]) * (C3[j] * C2[l] / C5[q]) * du * dv;
+        }
+    }
+  for (double& e : err) e *= kRelativeMargin;
+  const DirectionCone cone = boundDirections(n, err);
+  if (!cone.valid) return invalidCone(cone.reason);
+  return withApex(cone.axis, cone.angle, bezier);
+}
+
+ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier) {
+  requireSize(bezier, 16, "bicubic Bézier");
+  if (!allFinite(bezier)) return invalidCone(BackPatchVerdict::NonFinite);
+  std::array<glm::dvec3, 12> du, dv;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i) {
+      du[3 * j + i] = bezier[4 * j + i + 1] - bezier[4 * j + i];    // tangent patch (§2, SM88)
+      dv[3 * j + i] = bezier[4 * (i + 1) + j] - bezier[4 * i + j];  // bitangent patch
+    }
+  // Differences of doubles are exact to an ulp: their directions are covered by the angle
+  // margin, so no per-vector error is needed.
+  const std::array<double, 12> zero{};
+  return combineTangentCones(boundDirections(du, zero), boundDirections(dv, zero), bezier);
+}
+
+ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> gregory) {
+  requireSize(gregory, 20, "Gregory");
+  if (!allFinite(gregory)) return invalidCone(BackPatchVerdict::NonFinite);
+  // Candidates of each 4x4 Bézier-net position: its boundary point, or both interior points.
+  auto candidates = [&](int i, int j, glm::dvec3 out[2]) {
+    const int k = 4 * j + i;
+    if (kGregoryBoundary[k] >= 0) {
+      out[0] = gregory[kGregoryBoundary[k]];
+      return 1;
+    }
+    for (const GregoryInterior& g : kGregoryInterior)
+      if (g.i == i && g.j == j) {
+        out[0] = gregory[g.a];
+        out[1] = gregory[g.b];
+        return 2;
+      }
+    return 0;
+  };
+  std::vector<glm::dvec3> du, dv;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i) {
+      glm::dvec3 hi[2], lo[2];
+      // u direction: net(i+1, j) - net(i, j), each a convex blend of its candidates.
+      int nh = candidates(i + 1, j, hi), nl = candidates(i, j, lo);
+      for (int x = 0; x < nh; ++x)
+        for (int y = 0; y < nl; ++y) du.push_back(hi[x] - lo[y]);
+      // v direction: net(j, i+1) - net(j, i) (i walks v here).
+      nh = candidates(j, i + 1, hi);
+      nl = candidates(j, i, lo);
+      for (int x = 0; x < nh; ++x)
+        for (int y = 0; y < nl; ++y) dv.push_back(hi[x] - lo[y]);
+    }
+  // Derivatives of the rational blends: d/du of (a A + b B)/(a + b) is
+  // (a_u b - a b_u)/(a + b)² (A - B); a_u b - a b_u is linear in (u, v), so its sign on
+  // the unit square is that of its four corner values.
+  std::vector<glm::dvec3> ru, rv;
+  auto addBlendDerivative = [&](const GregoryInterior& g, bool alongU,
+                                std::vector<glm::dvec3>& out) {
+    const glm::dvec3 diff = gregory[g.a] - gregory[g.b];
+    bool positive = false, negative = false;
+    for (int corner = 0; corner < 4; ++corner) {
+      const double s = corner & 1, t = corner >> 1;
+      const double a = g.a0 + g.as * s + g.at * t, b = g.b0 + g.bs * s + g.bt * t;
+      const double value = alongU ? g.as * b - a * g.bs : g.at * b - a * g.bt;
+      positive |= value > 0.0;
+      negative |= value < 0.0;
+    }
+    if (positive) out.push_back(diff);
+    if (negative) out.push_back(-diff);
+  };
+  for (const GregoryInterior& g : kGregoryInterior) {
+    addBlendDerivative(g, true, ru);
+    addBlendDerivative(g, false, rv);
+  }
+  return combineTangentCones(gregoryTangentCone(du, ru), gregoryTangentCone(dv, rv), gregory);
+}
+
+BackPatchResult testConeOfNormals(const ConeOfNormals& cone, const glm::dvec3& eye) {
+  if (!cone.valid) return {false, cone.reason};
+  if (!std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z))
+    return {false, BackPatchVerdict::NonFinite};
+  const glm::dvec3 d = eye - cone.apex;
+  const double lhs = glm::dot(cone.axis, d) + cone.sinAngle * glm::length(d);
+  const double margin = kRelativeMargin * (glm::length(eye) + glm::length(cone.apex));
+  if (lhs < -margin) return {true, BackPatchVerdict::BackFacing};
+  return {false, BackPatchVerdict::EyeOutsideBackRegion};
+}
+
+}  // namespace osd_cull::bound
