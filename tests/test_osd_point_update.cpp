@@ -1,8 +1,14 @@
 // GpuPointUpdate: per-frame cage → control point update on the GPU against the CPU
-// (double) product with the same matrix, frame after frame with a moving cage.
+// (double) product with the same matrix, frame after frame with a moving cage: Far's
+// refinement stencils on small cages, and the patch set's own cage → control point matrix
+// (osd_cull/patch) on the default demo mesh and BigGuy.
+#include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
 #include "osd_cull/osd/gpu_point_update.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/procedural.h"
+#include "support/test_data.h"
 #include "support/vk_test_context.h"
 #include "test_osd_meshes.h"
 
@@ -114,6 +120,50 @@ TEST_F(VkTest, PointUpdateFollowsAMovingCreasedCube) {
 TEST_F(VkTest, PointUpdateWritesVec4PointsWithUnitW) {
   const CageMesh cage = test::openFan();
   checkFrames(context(), cage, refinedPointMatrix(cage), 4);
+}
+
+// The patch set's matrix: frame 0 is the cage as loaded (the GPU must reproduce the
+// extraction's own points), frames 1-2 move it; each frame is compared with the CPU
+// update PatchPointMatrix::update (double).
+void checkPatchPoints(vk::Context& context, const CageMesh& cage, int level) {
+  PatchOptions options;
+  options.isolationLevel = level;
+  const PatchExtraction ex = extractPatches(cage, options);
+  ASSERT_GT(ex.patches.gregoryCount, 0u) << cage.source;
+  DeviceContext device(context);
+  GpuPointUpdate update(device, ex.matrix);
+  ASSERT_EQ(update.pointCount(), static_cast<int>(ex.patches.points.size()));
+  const double diagonal = test::boxDiagonal(
+      std::span<const double>(&ex.patches.points.front().x, 3 * ex.patches.points.size()));
+  std::vector<glm::dvec3> cpu(ex.patches.points.size());
+  for (int frame = 0; frame < 3; ++frame) {
+    std::vector<glm::dvec3> moved = cage.positions;
+    for (size_t v = 0; v < moved.size(); ++v)
+      moved[v] +=
+          0.01 * diagonal * frame * glm::dvec3(std::sin(0.3 * v + frame), std::cos(0.7 * v), 0.5);
+    update.update(moved);
+    ex.matrix.update(moved, cpu);
+    if (frame == 0) {  // the CPU update of the unmoved cage gives the patch set's points
+      double offset = 0.0;
+      for (size_t p = 0; p < cpu.size(); ++p)
+        offset = std::max(offset, glm::length(cpu[p] - ex.patches.points[p]));
+      ASSERT_LE(offset, 1e-12 * diagonal);
+    }
+    const std::vector<float> gpu = update.readback();
+    double worst = 0.0;
+    for (size_t p = 0; p < cpu.size(); ++p)
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(gpu[3 * p + k] - cpu[p][k]));
+    EXPECT_LE(worst, 1e-5 * diagonal) << cage.source << " level " << level << " frame " << frame;
+  }
+}
+
+TEST_F(VkTest, PatchPointsOfTheDefaultMeshFollowTheCage) {
+  checkPatchPoints(context(), scene::defaultMesh(), 2);
+}
+
+TEST_F(VkTest, PatchPointsOfBigGuyFollowTheCage) {
+  OSD_CULL_REQUIRE_DATA();
+  checkPatchPoints(context(), adapters::loadCage(test::dataDir() / "characters" / "bigguy.obj"), 2);
 }
 
 TEST_F(VkTest, PointUpdateRejectsMismatchedInput) {

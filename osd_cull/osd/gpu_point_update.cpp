@@ -1,6 +1,7 @@
 #include "osd_cull/osd/gpu_point_update.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/patch/point_matrix.h"
 #include "osd_cull/vk/commands.h"
 
 #include <bit>
@@ -48,6 +49,11 @@ GpuPointUpdate::GpuPointUpdate(DeviceContext& deviceContext, int cageVertexCount
     }));
   }
 }
+
+GpuPointUpdate::GpuPointUpdate(DeviceContext& deviceContext, const PatchPointMatrix& matrix,
+                               const Options& options)
+    : GpuPointUpdate(deviceContext, matrix.columnCount(), matrix.sizes(), matrix.offsets(),
+                     matrix.indices(), matrix.weights(), options) {}
 
 uint64_t GpuPointUpdate::update(std::span<const float> cageXyz) {
   if (cageXyz.size() != 3 * static_cast<size_t>(cageVertexCount()))

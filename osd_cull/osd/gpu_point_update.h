@@ -20,6 +20,10 @@
 #include <span>
 #include <vector>
 
+namespace osd_cull {
+class PatchPointMatrix;
+}
+
 namespace osd_cull::osd {
 
 /// \brief The matrix on the device plus the buffers of one mesh's per-frame update.
@@ -44,6 +48,13 @@ class GpuPointUpdate {
                  std::span<const double> weights)
       : GpuPointUpdate(deviceContext, cageVertexCount, sizes, offsets, indices, weights,
                        Options{}) {}
+
+  /// \brief Uploads a patch point matrix (rows in PatchSet::points order, see
+  /// osd_cull/patch/extract_patches.h).
+  GpuPointUpdate(DeviceContext& deviceContext, const PatchPointMatrix& matrix,
+                 const Options& options);
+  GpuPointUpdate(DeviceContext& deviceContext, const PatchPointMatrix& matrix)
+      : GpuPointUpdate(deviceContext, matrix, Options{}) {}
 
   /// \brief Uploads new cage positions (cageVertexCount() x, y, z floats) and computes
   /// every control point; submitted, not waited for. `cageXyz` may be reused at once.
