@@ -135,6 +135,24 @@ Row measure(osd_cull::vk::Context& context, const osd_cull::CageMesh& cage, int 
   return row;
 }
 
+// The fixed cost of one GPU update: the same cage upload, submission and fence wait with a
+// one-row matrix (one control point, one weight).
+double measureOverheadMs(osd_cull::vk::Context& context, const osd_cull::CageMesh& cage,
+                         int frames) {
+  const osd_cull::PatchPointMatrix one(cage.vertexCount(), {1}, {0}, {1.0});
+  osd_cull::osd::DeviceContext device(context);
+  osd_cull::osd::GpuPointUpdate gpu(device, one);
+  const std::vector<std::vector<float>> poses = makePoses(cage, 16);
+  std::vector<double> ms;
+  for (int f = -3; f < frames; ++f) {
+    const auto start = Clock::now();
+    gpu.update(poses[static_cast<size_t>(f + 3) % poses.size()]);
+    gpu.wait();
+    if (f >= 0) ms.push_back(msSince(start));
+  }
+  return median(ms);
+}
+
 std::vector<int> parseLevels(const std::string& text) {
   std::vector<int> levels;
   size_t start = 0;
@@ -186,6 +204,10 @@ int main(int argc, char** argv) {
         "| level | patches | control points | non-zeros | GPU submit ms | GPU update ms "
         "| CPU update ms | GPU / CPU | GPU error | CPU error |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "fixed cost of a GPU update (cage upload + submit + wait, 1-point matrix): "
+        "%.3f ms\n",
+        measureOverheadMs(context, cage, frames));
     for (int level : levels) {
       const Row r = measure(context, cage, level, frames);
       std::printf("| %d | %u | %u | %zu | %.3f | %.3f | %.3f | %.2f | %.1e | %.1e |\n", r.level,
