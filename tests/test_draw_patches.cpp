@@ -71,6 +71,28 @@ TEST_F(DrawTest, FlatGregoryPatchCoversExactlyItsRectangle) {
   EXPECT_EQ(stats.statistics.tessEvaluationInvocations, 36u);
 }
 
+TEST_F(DrawTest, PointsCanComeFromAnotherBufferWithAnyStride) {
+  // As an evaluator writes them: packed x, y, z after 5 floats of something else.
+  const PatchSet set = flatRectangle();
+  frame::GpuPatchSet gpu(context(), set);
+  std::vector<float> packed(5, -1.0f);
+  for (const auto& p : set.points)
+    packed.insert(packed.end(), {float(p.x), float(p.y), float(p.z)});
+  vk::Buffer external(context(), packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vk::upload<float>(context(), external, packed);
+  // Poison the set's own copy, so a draw that read it would miss the rectangle.
+  std::vector<glm::dvec3> elsewhere(set.points.size(), glm::dvec3(100.0, 100.0, -3.0));
+  gpu.updatePoints(context(), elsewhere);
+  gpu.readPointsFrom(context(), external, 3, 5);
+  EXPECT_EQ(&gpu.points(), &external);
+  frame::RenderTarget target(context(), 64, 48);
+  frame::Renderer renderer(context());
+  renderer.render(target, test::pixelCamera(64, 48), gpu, &set, {});
+  expectRectangle(target.readItems(context()), 64, 48);
+  EXPECT_THROW(gpu.updatePoints(context(), set.points), Error);
+  EXPECT_THROW(gpu.readPointsFrom(context(), external, 4, 5), Error);  // too small for stride 4
+}
+
 TEST_F(DrawTest, UniformLevelGivesPatchesTimesLevelPlusOneSquaredEvaluations) {
   const PatchSet sphere = frame::convertToGregory(frame::bezierSphere({0, 0, 0}, 1.0, 2),
                                                   [](uint32_t p) { return p % 3 == 0; });

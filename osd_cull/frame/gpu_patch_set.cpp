@@ -78,14 +78,31 @@ VkDescriptorSet GpuPatchSet::descriptorSetWithDrawList(vk::Context& context,
   const VkDescriptorSet set = pool_->allocate(setLayout_.get());
   ++extraSets_;
   vk::DescriptorWriter()
-      .buffer(0, points_)
+      .buffer(0, *pointSource_)
       .buffer(1, params_)
       .buffer(2, drawList)
       .update(context.device(), set);
   return set;
 }
 
+void GpuPatchSet::readPointsFrom(vk::Context& context, const vk::Buffer& points, uint32_t stride,
+                                 uint32_t offset) {
+  const uint64_t needed = (uint64_t{offset} + uint64_t{pointCount_} * stride) * sizeof(float);
+  if (stride < 3 || points.size() < needed)
+    throw Error("GpuPatchSet::readPointsFrom: " + std::to_string(pointCount_) +
+                " points of stride " + std::to_string(stride) + " from float " +
+                std::to_string(offset) + " need " + std::to_string(needed) +
+                " bytes (stride >= 3), the buffer has " + std::to_string(points.size()));
+  pointSource_ = &points;
+  pointStride_ = stride;
+  pointOffset_ = offset;
+  vk::DescriptorWriter().buffer(0, points).update(context.device(), set_);
+}
+
 void GpuPatchSet::updatePoints(vk::Context& context, std::span<const glm::dvec3> points) {
+  if (pointSource_ != &points_)
+    throw Error(
+        "GpuPatchSet::updatePoints: the set reads its points from another buffer (readPointsFrom)");
   if (points.size() != pointCount_)
     throw Error("GpuPatchSet::updatePoints: got " + std::to_string(points.size()) +
                 " points, the set has " + std::to_string(pointCount_));
