@@ -11,7 +11,9 @@
 
 namespace osd_cull::adapters {
 
-bool isBezierPatchFile(const std::filesystem::path& path) { return detail::lowerExtension(path) == ".bpt"; }
+bool isBezierPatchFile(const std::filesystem::path& path) {
+  return detail::lowerExtension(path) == ".bpt";
+}
 
 std::vector<std::string> cageFileExtensions() {
   std::vector<std::string> ext = {".obj", ".off"};

@@ -135,7 +135,6 @@ class CapturedOmErr {
   bool logWasEnabled_ = false;
 };
 
-
 }  // namespace
 
 bool haveOpenMesh() { return true; }

@@ -225,7 +225,8 @@ TEST(BoundBackPatch, CollapsedPolePatchesAreCulledByPcntWhereNcntWouldKeepThem) 
 
 TEST(BoundBackPatch, TeapotCollapsedPatchesAreClassifiedByPcnt) {
   OSD_CULL_REQUIRE_DATA();
-  const std::vector<Bezier> teapot = test::bptPatches(osd_cull::test::dataDir() / "bezier" / "teapot.bpt");
+  const std::vector<Bezier> teapot =
+      test::bptPatches(osd_cull::test::dataDir() / "bezier" / "teapot.bpt");
   ASSERT_EQ(teapot.size(), 32u);
   // Lid-top (20-23: the knob, which wraps round and is never wholly back-facing from above
   // or below) and bottom (28-31: a disc whose first row collapses to the centre) patches.

@@ -25,8 +25,7 @@ using Clock = std::chrono::steady_clock;
 
 TEST(BoundBigGuyRates, BackPatchCullRatesOverSphereViewsAreConservative) {
   OSD_CULL_REQUIRE_DATA();
-  const CageMesh cage =
-      adapters::loadCage(osd_cull::test::dataDir() / "characters" / "bigguy.obj");
+  const CageMesh cage = adapters::loadCage(osd_cull::test::dataDir() / "characters" / "bigguy.obj");
   const BackPatchValidity validity =
       backPatchValidity(summarize(*makeTopologyRefiner(cage)), signedVolume(cage));
   ASSERT_TRUE(validity.enabled) << validity.reason;

@@ -38,11 +38,9 @@ TEST(BoundGregory, EvaluationMatchesOpenSubdivOnTheGregoryPatchesOfACube) {
       // True derivatives: central differences of the positions.
       const double h = 1e-6;
       const glm::dvec3 fdU =
-          (evaluateGregory(g, u + h, v).position - evaluateGregory(g, u - h, v).position) /
-          (2 * h);
+          (evaluateGregory(g, u + h, v).position - evaluateGregory(g, u - h, v).position) / (2 * h);
       const glm::dvec3 fdV =
-          (evaluateGregory(g, u, v + h).position - evaluateGregory(g, u, v - h).position) /
-          (2 * h);
+          (evaluateGregory(g, u, v + h).position - evaluateGregory(g, u, v - h).position) / (2 * h);
       EXPECT_NEAR(glm::length(mine.du - fdU), 0.0, 1e-6 * (1.0 + glm::length(fdU)));
       EXPECT_NEAR(glm::length(mine.dv - fdV), 0.0, 1e-6 * (1.0 + glm::length(fdV)));
       ++checked;

@@ -1,8 +1,8 @@
 // BPT Bézier patch files: the Utah teapot from the shared data and small inline files.
 #include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
-#include "support/test_data.h"
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
