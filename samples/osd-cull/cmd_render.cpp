@@ -1,12 +1,16 @@
 // osd-cull render: draws a mesh (or the built-in scene) with the tessellation pipeline,
 // writes PNG images and prints per-frame statistics.
 #include "command.h"
+#include "cull_options.h"
+#include "mesh_patches.h"
 #include "mesh_source.h"
 
 #include "osd_cull/patch/extract_patches.h"
-#include "osd_cull/scene/procedural.h"
+#include "osd_cull/scene/default_scene.h"
 
+#include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/png_io.h"
 #include "osd_cull/frame/renderer.h"
@@ -23,14 +27,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kUsage = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
+const char* kUsageHead = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
 
 Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
 triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
 MESH: OBJ (with OpenSubdiv tags), OFF, PLY, STL (Catmull-Clark cages, refined adaptively
 into Bézier and Gregory patches) or BPT (Bézier patches, e.g. the Utah teapot).
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
-and fragment-shader invocations (pipeline statistics).
+and fragment-shader invocations (pipeline statistics), and with --cull how many patches
+each test culled.
 
 Options:
   --level N              adaptive isolation level, 0..10 (default 2)
@@ -51,45 +56,43 @@ Options:
   --device X             Vulkan device: index or name substring (default $OSD_CULL_DEVICE,
                          else lavapipe)
   --validate             enable the Vulkan validation layers
+  --level N              adaptive isolation level of MESH, 0..10 (default 2)
+  --scheme S             override the subdivision scheme of MESH
 )";
+
+std::string usage() { return std::string(kUsageHead) + kCullOptionsUsage; }
 
 struct Scene {
   PatchSet patches;
   std::vector<frame::TriangleMesh> occluders;
   glm::dvec3 up{0, 0, 1};
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
+  bound::BackPatchValidity backPatch;
 };
 
-PatchSet extract(CageMesh cage, const PatchOptions& options, const glm::dvec3& offset,
-                 double size) {
-  scene::scale(cage, size);
-  scene::translate(cage, offset);
-  return extractPatches(cage, options).patches;
-}
-
-// Several subdivision objects generated in code, a triangle wall and a ground slab (z up);
-// seen from the default direction some objects are partly hidden behind others.
-Scene builtInScene(const PatchOptions& options) {
-  Scene s;
-  s.patches = extract(scene::defaultMesh(), options, {0.0, 0.0, 0.0}, 1.0);
-  s.patches = frame::concatenate(
-      s.patches, extract(scene::torus(12, 8, 1.0, 0.4), options, {2.6, 0.6, -0.6}, 1.0));
-  s.patches =
-      frame::concatenate(s.patches, extract(scene::poleSphere(5), options, {-1.3, 2.8, 0.0}, 1.0));
-  s.patches =
-      frame::concatenate(s.patches, extract(scene::creasedCube(), options, {1.0, 2.4, -0.4}, 0.6));
-  s.patches.source = "built-in:scene (default mesh, torus, pole sphere, creased cube, wall)";
-  s.occluders.push_back(frame::boxMesh({-2.5, 1.45, -1.0}, {-0.2, 1.55, 0.8}));
-  s.occluders.push_back(frame::boxMesh({-3.5, -2.5, -1.15}, {4.2, 4.5, -1.0}));
-  return s;
-}
-
 Scene loadScene(const MeshSource& source, const PatchOptions& options) {
-  if (!source.path) return builtInScene(options);
-  LoadedMesh mesh = loadMeshSource(source);
-  if (mesh.bezier) return {std::move(*mesh.bezier), {}, {0, 0, 1}, {0.6, -1.0, 0.5}};  // BPT: z up
-  // OBJ and the other cage formats are mostly y up.
-  return {extractPatches(*mesh.cage, options).patches, {}, {0, 1, 0}, {0.45, 0.35, 1.0}};
+  if (!source.path) {
+    scene::Scene demo = scene::defaultScene(options);
+    Scene s{std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection, {}};
+    // Every object is a closed manifold cage with outward normals (scene/procedural.h
+    // tests this), and the walls are occluders, not patches.
+    s.backPatch = {true, "built-in scene: closed cages, normals outward by construction"};
+    return s;
+  }
+  if (!fs::exists(*source.path)) throw Error(*source.path + ": no such file");
+  const LoadedMesh loaded = loadMeshSource(source);
+  MeshPatches mesh = meshPatches(loaded, options);
+  Scene scene;
+  scene.patches = std::move(mesh.patches);
+  scene.backPatch = mesh.backPatch;
+  if (loaded.bezier) {  // BPT files (the teapot) are z up
+    scene.up = {0, 0, 1};
+    scene.viewDirection = {0.6, -1.0, 0.5};
+  } else {  // OBJ and the other cage formats are mostly y up
+    scene.up = {0, 1, 0};
+    scene.viewDirection = {0.45, 0.35, 1.0};
+  }
+  return scene;
 }
 
 std::vector<double> parseNumbers(const std::string& text, size_t count, const std::string& option) {
@@ -138,6 +141,7 @@ int run(Args& args) {
     else
       throw Error("option --endcap: '" + *endcap + "' is not one of gregory, bspline");
   }
+  const CullChoice cull = cullChoiceFromArgs(args);
   const MeshSource source = meshSourceFromArgs(args);
   args.finish();
   if (!out) throw Error("--out FILE.png is required");
@@ -191,17 +195,36 @@ int run(Args& args) {
 
   frame::RenderTarget target(context, width, height);
   frame::Renderer renderer(context);
+  std::unique_ptr<frame::CullPass> pass;
+  if (cull.enabled()) {
+    pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches,
+                                             cullSettings(cull, scene.backPatch));
+    std::cout << "cull: " << cull.mode;
+    for (const frame::CullMethod* m : pass->stages())
+      std::cout << (m == pass->stages().front() ? " (" : ", ") << m->name;
+    std::cout << (pass->stages().empty() ? "" : ")") << "\n";
+    if (!pass->backPatchNote().empty()) std::cout << "note: " << pass->backPatchNote() << "\n";
+  }
   if (outDir) fs::create_directories(*outDir);
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
   for (uint32_t f = 0; f < frames; ++f) {
     const frame::Camera view = frame::orbit(camera, pivot, up, orbitDegrees * f);
-    const frame::FrameStats stats = renderer.render(target, view, {&draw, 1}, occluders, options);
+    const frame::FrameStats stats =
+        pass ? frame::renderCulled(renderer, target, view, *pass, occluders, options)
+             : renderer.render(target, view, {&draw, 1}, occluders, options);
     std::printf(
         "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
         "fragment invocations %llu\n",
         f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
         static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
         static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+    if (pass) {
+      uint32_t byStage[4] = {0, 0, 0, 0};
+      for (uint32_t code : pass->results()) ++byStage[bound::CullCode{code}.stage() & 3u];
+      std::printf("  culled %u of %u: frustum %u, back-patch %u\n",
+                  scene.patches.patchCount() - stats.patchesDrawn, scene.patches.patchCount(),
+                  byStage[1], byStage[2]);
+    }
     const bool last = f + 1 == frames;
     if (!outDir && !last) continue;
     const auto color = frame::colorImage(width, height, target.readColor(context));
@@ -232,8 +255,8 @@ int run(Args& args) {
 
 const Registration kRegistration(
     {"render",
-     "draw a mesh or the built-in scene to PNG, print frame statistics",
-     kUsage,
+     "draw a mesh or the built-in scene to PNG (optionally culled), print frame statistics",
+     usage(),
      {"ids", "debug-colors", "validate"},
      run});
 
