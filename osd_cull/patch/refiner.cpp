@@ -131,7 +131,9 @@ TopologySummary summarize(const Far::TopologyRefiner& refiner) {
   for (int e = 0; e < s.edges; ++e) {
     if (level.IsEdgeNonManifold(e)) ++s.nonManifoldEdges;
     else if (level.GetEdgeFaces(e).size() == 1) ++s.boundaryEdges;
-    if (level.GetEdgeSharpness(e) > 0.0f) ++s.creasedEdges;
+    // OpenSubdiv makes boundary and non-manifold edges infinitely sharp; count only the
+    // interior edges that a tag made sharp.
+    else if (level.GetEdgeSharpness(e) > 0.0f) ++s.creasedEdges;
   }
   for (int v = 0; v < s.vertices; ++v) {
     if (level.IsVertexNonManifold(v)) ++s.nonManifoldVertices;

@@ -31,7 +31,7 @@ struct TopologySummary {
   int nonManifoldVertices = 0;
   int unusedVertices = 0;  ///< vertices no face uses
   int degenerateFaces = 0; ///< faces that repeat a vertex
-  int creasedEdges = 0;    ///< edges with sharpness > 0
+  int creasedEdges = 0;    ///< interior manifold edges with sharpness > 0 (tagged creases)
   int cornerVertices = 0;  ///< vertices with sharpness > 0
   int maxValence = 0;      ///< largest number of edges at a vertex
   int extraordinaryVertices = 0;

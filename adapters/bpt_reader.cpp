@@ -1,0 +1,81 @@
+// BPT Bézier patch files → PatchSet (see load_mesh.h for the format).
+#include "adapters/load_mesh.h"
+#include "adapters/text_input.h"
+
+#include <climits>
+#include <cmath>
+
+namespace osd_cull::adapters {
+
+PatchSet loadBezierPatches(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const std::string bytes = detail::readFileBytes(path);
+  detail::LineReader lines(bytes, file, /*joinContinuations=*/false);
+  std::vector<std::string_view> tokens;
+  auto nextContent = [&]() {
+    while (lines.next()) {
+      tokens = detail::splitTokens(lines.line());
+      if (!tokens.empty() && tokens[0].front() != '#') return true;
+    }
+    return false;
+  };
+
+  if (!nextContent()) detail::fail(file, 0, "the file is empty; expected the patch count");
+  const auto count = tokens.size() == 1 ? detail::parseInt(tokens[0]) : std::nullopt;
+  if (!count)
+    lines.fail("expected the patch count (one integer), found " + detail::quote(lines.line()));
+  if (*count <= 0)
+    lines.fail("the patch count is " + std::to_string(*count) + ": there are no patches");
+  // Each patch takes 17 lines; a larger count is a wrong header or a truncated file and must
+  // not become a huge allocation.
+  const auto left = static_cast<int64_t>(lines.remainingLines());
+  if (*count > left / 17)
+    lines.fail("the file declares " + std::to_string(*count) +
+               " patches (17 lines each) but only " + std::to_string(left) +
+               " lines follow (truncated file or wrong count)");
+
+  PatchSet set;
+  set.source = file;
+  set.bezierCount = static_cast<uint32_t>(*count);
+  set.points.reserve(static_cast<size_t>(*count) * kBezierPoints);
+  for (int64_t p = 0; p < *count; ++p) {
+    const std::string which = "patch " + std::to_string(p) + " of " + std::to_string(*count);
+    if (!nextContent())
+      detail::fail(file, lines.lineNumber(), "the file ends before " + which + " (truncated)");
+    if (tokens.size() != 2 || tokens[0] != "3" || tokens[1] != "3")
+      lines.fail("expected the degrees '3 3' that start " + which + ", found " +
+                 detail::quote(lines.line()) + " (only bicubic patches are supported)");
+    for (uint32_t k = 0; k < kBezierPoints; ++k) {
+      if (!nextContent())
+        detail::fail(file, lines.lineNumber(),
+                     "the file ends inside " + which + " after " + std::to_string(k) +
+                         " of 16 points (truncated)");
+      if (tokens.size() != 3)
+        lines.fail("expected a point 'x y z' of " + which + ", found " +
+                   detail::quote(lines.line()));
+      double c[3];
+      for (size_t i = 0; i < 3; ++i) {
+        const auto value = detail::parseDouble(tokens[i]);
+        if (!value) lines.fail("coordinate " + detail::quote(tokens[i]) + " is not a number");
+        if (!std::isfinite(*value))
+          lines.fail("point " + std::to_string(k) + " of " + which +
+                     " has a NaN or Inf coordinate");
+        c[i] = *value;
+      }
+      // The file lists four rows of four points with u fastest: PatchSet's order.
+      set.points.emplace_back(c[0], c[1], c[2]);
+    }
+    OpenSubdiv::Far::PatchParam param;
+    param.Set(static_cast<OpenSubdiv::Far::Index>(p), 0, 0, /*depth=*/0, /*nonquad=*/false,
+              /*boundary=*/0,
+              /*transition=*/0, /*regular=*/true);
+    set.params.push_back(param);
+    set.origins.push_back(PatchOrigin::Input);
+  }
+  if (nextContent())
+    lines.fail("content after the last of " + std::to_string(*count) +
+               " patches (is the count on the first line right?)");
+  return set;
+}
+
+}  // namespace osd_cull::adapters
