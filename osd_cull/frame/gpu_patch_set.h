@@ -54,7 +54,7 @@ class GpuPatchSet {
   /// `drawList` must outlive every draw that uses the returned set.
   /// \throws osd_cull::Error when the sets are used up.
   VkDescriptorSet descriptorSetWithDrawList(vk::Context& context, const vk::Buffer& drawList);
-  static constexpr uint32_t kMaxDrawListSets = 15;
+  static constexpr uint32_t kMaxDrawListSets = 63;
 
  private:
   uint32_t bezierCount_ = 0;

@@ -1,9 +1,10 @@
 #version 450
 // Hi-Z occlusion test of every patch against a pyramid (Niessner & Loop §4.1.1), one
-// invocation per patch, writing kOcclusionTested / kOcclusionCulled and the level per patch.
+// invocation per patch, writing a result code per patch (shared/hiz_layout.h).
 // The stand-alone form of the occlusion stage; the frame's cull kernel runs the same
 // functions (occlusion.glsl) after its frustum and back-patch tests.
 #include <shared/hiz_layout.h>
+#include <shared/visibility_layout.h>
 #include "occlusion.glsl"
 
 layout(local_size_x = 64) in;
@@ -29,10 +30,13 @@ void main() {
   }
   int level;
   ivec2 t0, t1;
-  uint result = 0u;
+  uint result = kOcclusionVerdictUntested << kOcclusionVerdictShift;
   if (hizFootprint(box, pc.hiz, level, t0, t1)) {
-    result = kOcclusionTested | (uint(level) << kOcclusionLevelShift);
-    if (hizOccluded(box, pc.hiz, pyramid)) result |= kOcclusionCulled;
+    bool occluded = hizOccluded(box, pc.hiz, pyramid);
+    result = (occluded ? kResultOcclusion : kResultSurvived) |
+             ((occluded ? kOcclusionVerdictOccluded : kOcclusionVerdictVisible)
+              << kOcclusionVerdictShift) |
+             (uint(level) << kOcclusionLevelShift);
   }
   results[patchIndex] = result;
 }

@@ -62,10 +62,15 @@ struct HiZParams {
   uint pad0;
 };
 
-// The occlusion-only kernel (shaders/hiz/occlusion_cull.comp): one uint per patch.
-OSD_CULL_CONST uint kOcclusionTested = 1u;      // the screen box was valid (w > 0, on screen)
-OSD_CULL_CONST uint kOcclusionCulled = 2u;      // occluded
-OSD_CULL_CONST uint kOcclusionLevelShift = 8u;  // bits 8..15: the pyramid level looked at
+// The occlusion-only kernel (shaders/hiz/occlusion_cull.comp) writes one result code per
+// patch in the cull kernel's layout: bits 0-3 the stage that culled it (kResultOcclusion of
+// shared/visibility_layout.h, or 0: survived), bits 16-23 the occlusion verdict, bits 24-27
+// the pyramid level looked at (when tested).
+OSD_CULL_CONST uint kOcclusionVerdictOccluded = 0u;  // culled (every stage's verdict 0)
+OSD_CULL_CONST uint kOcclusionVerdictVisible = 1u;   // tested, something may be in front
+OSD_CULL_CONST uint kOcclusionVerdictUntested = 2u;  // a point with w <= 0, NaN/Inf, or off screen
+OSD_CULL_CONST uint kOcclusionVerdictShift = 16u;
+OSD_CULL_CONST uint kOcclusionLevelShift = 24u;
 OSD_CULL_CONST uint kOcclusionGroupSize = 64u;
 
 struct OcclusionCullConstants {

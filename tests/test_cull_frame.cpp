@@ -1,0 +1,227 @@
+// The two-pass frame with temporal visibility (Niessner & Loop §3): the image equals the
+// unculled image frame after frame, occlusion-culled patches are invisible in the oracle,
+// both draw modes and every first-frame policy agree, at odd and tiny sizes and with the
+// camera inside the scene.
+#include "osd_cull/frame/cull_frame.h"
+#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/visibility_oracle.h"
+#include "support/vk_test_context.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+namespace osd_cull {
+namespace {
+
+using frame::CullDrawMode;
+using frame::FirstFrame;
+
+struct ImageDiff {
+  uint32_t uncovered = 0;  ///< covered without culling, background with culling
+  uint32_t different = 0;  ///< item or color differs
+  uint32_t pixels = 0;
+};
+
+class CullFrameTest : public test::VkTest {
+ protected:
+  void SetUp() override {
+    VkTest::SetUp();
+    scene_ = frame::defaultDemoScene();
+    gpu_ = std::make_unique<frame::GpuPatchSet>(context(), scene_.patches);
+    for (const auto& m : scene_.occluders) occluderMeshes_.emplace_back(context(), m);
+    for (const auto& m : occluderMeshes_) occluders_.push_back(&m);
+    renderer_ = std::make_unique<frame::Renderer>(context());
+    bounds_ = frame::boundsOf(scene_.patches.points);
+  }
+  void TearDown() override {
+    occluders_.clear();
+    occluderMeshes_.clear();
+    renderer_.reset();
+    gpu_.reset();
+    VkTest::TearDown();
+  }
+
+  frame::Camera camera(uint32_t w, uint32_t h, double degrees) const {
+    const frame::Camera base =
+        frame::frameBounds(bounds_, scene_.viewDirection, scene_.up, 40.0, w, h);
+    return frame::orbit(base, bounds_.center(), scene_.up, degrees);
+  }
+
+  frame::CullMesh mesh() { return {gpu_.get(), &scene_.patches}; }
+
+  static frame::CullFrameOptions options(CullDrawMode mode, FirstFrame first, bool aggressive) {
+    frame::CullFrameOptions o;
+    o.render.tessellation.uniformLevel = 4;
+    o.drawMode = mode;
+    o.firstFrame = first;
+    o.aggressive = aggressive;
+    return o;
+  }
+
+  // The culled frame in `culled` against everything drawn into `reference`.
+  ImageDiff compare(frame::RenderTarget& culled, frame::RenderTarget& reference,
+                    const frame::Camera& cam, const frame::RenderOptions& render) {
+    const frame::PatchDraw draw{gpu_.get(), &scene_.patches, 0};
+    renderer_->render(reference, cam, {&draw, 1}, occluders_, render);
+    const auto a = culled.readItems(context()), b = reference.readItems(context());
+    const auto ca = culled.readColor(context()), cb = reference.readColor(context());
+    ImageDiff d;
+    d.pixels = static_cast<uint32_t>(a.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+      if (b[i] != 0 && a[i] == 0) ++d.uncovered;
+      bool differs = a[i] != b[i];
+      for (int c = 0; c < 4; ++c) differs = differs || ca[4 * i + c] != cb[4 * i + c];
+      d.different += differs;
+    }
+    return d;
+  }
+
+  // Runs `frames` frames orbiting by `step` degrees; every final image is compared (the
+  // aggressive mode from the second frame on at a standstill only).
+  void expectSameImages(uint32_t w, uint32_t h, const frame::CullFrameOptions& o, int frames,
+                        double step, frame::Camera (*override)(uint32_t, uint32_t) = nullptr) {
+    frame::RenderTarget target(context(), w, h), reference(context(), w, h);
+    const frame::CullMesh meshes[] = {mesh()};
+    frame::CullFrame cull(context(), *renderer_, target, meshes, o);
+    for (int f = 0; f < frames; ++f) {
+      const frame::Camera cam = override ? override(w, h) : camera(w, h, step * f);
+      const frame::CullFrameStats s = cull.render(cam, occluders_);
+      EXPECT_EQ(s.patchesTotal, scene_.patches.patchCount());
+      EXPECT_EQ(s.survivors + s.culled(), s.patchesTotal);
+      const ImageDiff d = compare(target, reference, cam, o.render);
+      EXPECT_EQ(d.uncovered, 0u) << w << "x" << h << " frame " << f << " mode "
+                                 << toString(o.drawMode) << " first " << toString(o.firstFrame);
+      EXPECT_LE(d.different * 10000.0, double(d.pixels))
+          << d.different << " pixels differ, " << w << "x" << h << " frame " << f;
+    }
+  }
+
+  frame::DemoScene scene_;
+  std::unique_ptr<frame::GpuPatchSet> gpu_;
+  std::vector<frame::GpuTriangleMesh> occluderMeshes_;
+  std::vector<const frame::GpuTriangleMesh*> occluders_;
+  std::unique_ptr<frame::Renderer> renderer_;
+  frame::Bounds bounds_;
+};
+
+TEST_F(CullFrameTest, FilteredFramesEqualTheUnculledImageOverAMovingCamera) {
+  expectSameImages(200, 150, options(CullDrawMode::Filtered, FirstFrame::AllVisible, false), 8,
+                   6.0);
+}
+
+TEST_F(CullFrameTest, TessFactorZeroFramesEqualTheUnculledImageOverAMovingCamera) {
+  expectSameImages(200, 150, options(CullDrawMode::TessFactorZero, FirstFrame::AllVisible, false),
+                   6, 6.0);
+}
+
+TEST_F(CullFrameTest, EveryFirstFramePolicyGivesTheSameImage) {
+  for (FirstFrame first :
+       {FirstFrame::AllVisible, FirstFrame::HalfVisible, FirstFrame::NoneVisible})
+    expectSameImages(160, 120, options(CullDrawMode::Filtered, first, false), 2, 10.0);
+}
+
+TEST_F(CullFrameTest, NonPowerOfTwoAndTinyImages) {
+  for (auto [w, h] :
+       {std::pair{333u, 517u}, std::pair{1u, 1u}, std::pair{2u, 3u}, std::pair{37u, 5u}})
+    expectSameImages(w, h, options(CullDrawMode::Filtered, FirstFrame::NoneVisible, false), 2,
+                     15.0);
+}
+
+TEST_F(CullFrameTest, CameraInsideTheScene) {
+  // Between the tori, looking at the wall and the sphere behind it; near plane close.
+  auto inside = [](uint32_t w, uint32_t h) {
+    return frame::Camera::lookAt({0.2, 0.4, 0.1}, {-1.0, 2.5, 0.3}, {0, 0, 1}, 70.0, w, h, 0.01,
+                                 20.0);
+  };
+  expectSameImages(160, 120, options(CullDrawMode::Filtered, FirstFrame::AllVisible, false), 3, 0.0,
+                   inside);
+}
+
+TEST_F(CullFrameTest, OcclusionCulledPatchesHaveNoPixelsInTheOracle) {
+  const uint32_t w = 160, h = 120;
+  frame::RenderTarget target(context(), w, h), oracleTarget(context(), w, h);
+  const frame::CullMesh meshes[] = {mesh()};
+  auto o = options(CullDrawMode::Filtered, FirstFrame::AllVisible, false);
+  frame::CullFrame cull(context(), *renderer_, target, meshes, o);
+  frame::VisibilityOracle oracle(context());
+  uint32_t culled = 0, invisible = 0;
+  for (int f = 0; f < 24; ++f) {
+    const frame::Camera cam = camera(w, h, 15.0 * f);
+    const auto s = cull.render(cam, occluders_);
+    const auto counts = oracle.query(*renderer_, oracleTarget, cam, *gpu_, &scene_.patches,
+                                     occluders_, o.render.tessellation);
+    const auto results = cull.readResults(0);
+    for (uint32_t p = 0; p < results.size(); ++p) {
+      if ((results[p] & shader::kResultStageMask) != shader::kResultOcclusion) continue;
+      ++culled;
+      EXPECT_EQ(counts.pixels[p], 0u) << "frame " << f << " patch " << p;
+    }
+    invisible += s.patchesTotal - counts.visiblePatchCount();
+    EXPECT_EQ(s.culledOcclusion,
+              static_cast<uint32_t>(std::count_if(results.begin(), results.end(), [](uint32_t r) {
+                return (r & shader::kResultStageMask) == shader::kResultOcclusion;
+              })));
+  }
+  std::printf("occlusion-culled %u, oracle-invisible %u (24 views)\n", culled, invisible);
+  EXPECT_GT(culled, 24u);
+}
+
+TEST_F(CullFrameTest, AggressiveModeSkipsTheSecondPassAndCatchesUpNextFrame) {
+  const uint32_t w = 160, h = 120;
+  frame::RenderTarget target(context(), w, h), reference(context(), w, h);
+  const frame::CullMesh meshes[] = {mesh()};
+  const auto o = options(CullDrawMode::Filtered, FirstFrame::NoneVisible, true);
+  frame::CullFrame cull(context(), *renderer_, target, meshes, o);
+  const frame::Camera cam = camera(w, h, 30.0);
+  const auto first = cull.render(cam, occluders_);
+  EXPECT_EQ(first.drawnPass1, 0u);  // nothing was visible before
+  EXPECT_EQ(first.drawnPass2, 0u);  // and the second pass is skipped
+  EXPECT_GT(first.newlyVisible, 0u);
+  EXPECT_EQ(first.pass2.tessEvaluationInvocations, 0u);
+  EXPECT_GT(compare(target, reference, cam, o.render).uncovered, 0u);  // one frame late
+  const auto second = cull.render(cam, occluders_);
+  EXPECT_EQ(second.drawnPass1, first.survivors);
+  const ImageDiff d = compare(target, reference, cam, o.render);
+  EXPECT_EQ(d.uncovered, 0u);
+  EXPECT_LE(d.different * 10000.0, double(d.pixels));
+}
+
+TEST_F(CullFrameTest, DrawModesDrawTheSamePatchesButTessFactorZeroRunsEveryControlShader) {
+  const uint32_t w = 160, h = 120;
+  frame::RenderTarget a(context(), w, h), b(context(), w, h);
+  const frame::CullMesh meshes[] = {mesh()};
+  frame::CullFrame filtered(context(), *renderer_, a, meshes,
+                            options(CullDrawMode::Filtered, FirstFrame::AllVisible, false));
+  frame::CullFrame tf0(context(), *renderer_, b, meshes,
+                       options(CullDrawMode::TessFactorZero, FirstFrame::AllVisible, false));
+  for (int f = 0; f < 3; ++f) {
+    const frame::Camera cam = camera(w, h, 12.0 * f);
+    const auto s = filtered.render(cam, occluders_);
+    const auto t = tf0.render(cam, occluders_);
+    EXPECT_EQ(s.drawnPass1, t.drawnPass1);
+    EXPECT_EQ(s.drawnPass2, t.drawnPass2);
+    EXPECT_EQ(s.pass1.tessEvaluationInvocations, t.pass1.tessEvaluationInvocations);
+    EXPECT_EQ(s.pass2.tessEvaluationInvocations, t.pass2.tessEvaluationInvocations);
+    // Every patch goes through the control shader in the variant, in both passes.
+    EXPECT_EQ(t.pass1.tessControlPatches, s.patchesTotal);
+    EXPECT_EQ(t.pass2.tessControlPatches, s.patchesTotal);
+    EXPECT_EQ(s.pass1.tessControlPatches, s.drawnPass1);
+    EXPECT_EQ(s.pass2.tessControlPatches, s.drawnPass2);
+    EXPECT_EQ(a.readItems(context()), b.readItems(context()));
+  }
+}
+
+TEST_F(CullFrameTest, StatusViewColorsEveryPatch) {
+  const uint32_t w = 96, h = 64;
+  frame::RenderTarget target(context(), w, h), view(context(), w, h);
+  const frame::CullMesh meshes[] = {mesh()};
+  frame::CullFrame cull(context(), *renderer_, target, meshes,
+                        options(CullDrawMode::Filtered, FirstFrame::AllVisible, false));
+  cull.render(camera(w, h, 0.0), occluders_);
+  const auto s = cull.renderStatusView(view, camera(w, h, 180.0), occluders_);
+  EXPECT_EQ(s.patchesDrawn, scene_.patches.patchCount());
+}
+
+}  // namespace
+}  // namespace osd_cull
