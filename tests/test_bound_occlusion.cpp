@@ -100,28 +100,30 @@ TEST(BoundOcclusion, PyramidTexelIsTheFarthestDepthOfItsFootprint) {
 TEST(BoundOcclusion, FootprintIsAtMostTwoByTwoTexelsAndCoversTheBox) {
   // Every box of a 37 x 21 image, at both resolutions: <= 2 texels per axis, and the
   // texels' pixels contain the box.
-  for (bool full : {false, true}) {
-    const HiZLayout l = HiZLayout::make(37, 21, full);
-    for (uint32_t x0 = 0; x0 < l.width; ++x0)
-      for (uint32_t x1 = x0; x1 < l.width; ++x1)
-        for (uint32_t y0 = 0; y0 < l.height; y0 += 3)
-          for (uint32_t y1 = y0; y1 < l.height; y1 += 2) {
-            HiZScreenBox box;
-            box.valid = true;
-            box.x0 = x0, box.x1 = x1, box.y0 = y0, box.y1 = y1;
-            const HiZFootprint f = hizFootprint(l, box);
-            ASSERT_LT(f.level, l.levelCount);
-            ASSERT_LE(f.x1 - f.x0, 1u) << x0 << ".." << x1 << " full " << full;
-            ASSERT_LE(f.y1 - f.y0, 1u) << y0 << ".." << y1 << " full " << full;
-            const uint32_t s = l.texelShift(f.level);
-            const bool lastX = f.x1 + 1 == l.levelWidth(f.level);
-            const bool lastY = f.y1 + 1 == l.levelHeight(f.level);
-            ASSERT_LE(f.x0 << s, x0);
-            ASSERT_LE(f.y0 << s, y0);
-            ASSERT_TRUE(lastX || ((f.x1 + 1) << s) > x1);
-            ASSERT_TRUE(lastY || ((f.y1 + 1) << s) > y1);
-          }
-  }
+  for (bool full : {false, true})
+    for (HiZLookup lookup : {HiZLookup::Paper, HiZLookup::Tight}) {
+      const HiZLayout l = HiZLayout::make(37, 21, full);
+      for (uint32_t x0 = 0; x0 < l.width; ++x0)
+        for (uint32_t x1 = x0; x1 < l.width; ++x1)
+          for (uint32_t y0 = 0; y0 < l.height; y0 += 3)
+            for (uint32_t y1 = y0; y1 < l.height; y1 += 2) {
+              HiZScreenBox box;
+              box.valid = true;
+              box.x0 = x0, box.x1 = x1, box.y0 = y0, box.y1 = y1;
+              const HiZFootprint f = hizFootprint(l, box, lookup);
+              ASSERT_LT(f.level, l.levelCount);
+              ASSERT_LE(f.level, hizFootprint(l, box).level);
+              ASSERT_LE(f.x1 - f.x0, 1u) << x0 << ".." << x1 << " full " << full;
+              ASSERT_LE(f.y1 - f.y0, 1u) << y0 << ".." << y1 << " full " << full;
+              const uint32_t s = l.texelShift(f.level);
+              const bool lastX = f.x1 + 1 == l.levelWidth(f.level);
+              const bool lastY = f.y1 + 1 == l.levelHeight(f.level);
+              ASSERT_LE(f.x0 << s, x0);
+              ASSERT_LE(f.y0 << s, y0);
+              ASSERT_TRUE(lastX || ((f.x1 + 1) << s) > x1);
+              ASSERT_TRUE(lastY || ((f.y1 + 1) << s) > y1);
+            }
+    }
 }
 
 TEST(BoundOcclusion, LevelIsCeilLog2OfTheBoxSizeInTexelsOfTheTopLevel) {
@@ -165,8 +167,13 @@ TEST(BoundOcclusion, PatchBehindAWallIsCulledInFrontOrBesideItIsNot) {
     EXPECT_TRUE(hizOcclusionTest(square(16.1, 4.1, 15.8, 7.8, -5), vp, p).culled);
     EXPECT_FALSE(hizOcclusionTest(square(16.1, 4.1, 24.5, 7.8, -5), vp, p).culled);
     // Pixels 24..39: 16 pixels, but texels [16, 32) and [32, 48); the second holds
-    // background (the paper's conservative 2x2 lookup).
-    EXPECT_FALSE(hizOcclusionTest(square(24.1, 4.1, 15.8, 7.8, -5), vp, p).culled);
+    // background (the paper's conservative 2x2 lookup). The tight lookup finds that 8-pixel
+    // texels [24, 32) and [32, 40) cover the box too, and culls.
+    const auto straddling = square(24.1, 4.1, 15.8, 7.8, -5);
+    EXPECT_FALSE(hizOcclusionTest(straddling, vp, p).culled);
+    const OcclusionResult tight = hizOcclusionTest(straddling, vp, p, HiZLookup::Tight);
+    EXPECT_TRUE(tight.culled);
+    EXPECT_EQ(tight.footprint.level + 1, hizOcclusionTest(straddling, vp, p).footprint.level);
   }
 }
 
@@ -231,7 +238,13 @@ TEST(BoundOcclusion, CulledPatchesHaveNoPixelNearerThanTheDepthImage) {
       test::Bezier b = test::transformed(
           frame::flatBezierPatch({-0.5, -0.5, 0}, {1, 0, 0}, {0, 1, 0}), rng, rng.uniform(0.1, 2));
       for (auto& q : b) q += glm::dvec3(0, 0, rng.uniform(-12, 2));
-      const OcclusionResult r = hizOcclusionTest(b, vp, p);
+      const OcclusionResult r =
+          hizOcclusionTest(b, vp, p, k % 2 ? HiZLookup::Tight : HiZLookup::Paper);
+      // A finer texel's depth is never farther: the tight lookup culls whatever the paper's does.
+      const OcclusionResult paper = hizOcclusionTest(b, vp, p, HiZLookup::Paper);
+      const OcclusionResult tight = hizOcclusionTest(b, vp, p, HiZLookup::Tight);
+      ASSERT_LE(tight.hizDepth, paper.hizDepth);
+      ASSERT_TRUE(!paper.culled || tight.culled);
       if (!r.tested) continue;
       ++tested;
       if (!r.culled) continue;

@@ -25,7 +25,8 @@ class HiZOcclusionTest : public test::VkTest {
   // reference on the read-back depth, and checks GPU culled => reference culled and GPU
   // culled => zero oracle pixels.
   Comparison compare(const PatchSet& set, std::span<const frame::TriangleMesh> meshes,
-                     const frame::Camera& camera, bool fullResolution) {
+                     const frame::Camera& camera, bool fullResolution,
+                     bound::HiZLookup lookup = bound::HiZLookup::Paper) {
     frame::GpuPatchSet gpu(context(), set);
     std::vector<frame::GpuTriangleMesh> gpuMeshes;
     for (const auto& m : meshes) gpuMeshes.emplace_back(context(), m);
@@ -37,7 +38,8 @@ class HiZOcclusionTest : public test::VkTest {
     frame::TessellationOptions tess;
     tess.uniformLevel = 6;
     const auto counts = oracle.query(renderer, target, camera, gpu, &set, occluders, tess);
-    frame::HiZPyramid pyramid(context(), target.depth(), {fullResolution});
+    frame::HiZPyramid pyramid(context(), target.depth(),
+                              {fullResolution, frame::HiZReduction::Auto, lookup});
     pyramid.build(context(), frame::RenderTarget::kDepthLayout);
     frame::OcclusionCullKernel kernel(context());
     const auto results = kernel.run(gpu, camera, pyramid);
@@ -46,7 +48,8 @@ class HiZOcclusionTest : public test::VkTest {
     const glm::dmat4 vp = camera.viewProjection();
     Comparison c;
     for (uint32_t p = 0; p < set.patchCount(); ++p) {
-      const bound::OcclusionResult r = bound::hizOcclusionTest(set.controlPoints(p), vp, ref);
+      const bound::OcclusionResult r =
+          bound::hizOcclusionTest(set.controlPoints(p), vp, ref, lookup);
       EXPECT_EQ(results[p].tested, r.tested) << "patch " << p;
       if (results[p].culled) {
         EXPECT_TRUE(r.culled) << "patch " << p << ": GPU culls, the reference does not";
@@ -74,7 +77,10 @@ TEST_F(HiZOcclusionTest, GpuCullsWhatTheReferenceCullsOnTheDemoScene) {
       const frame::Camera base =
           frame::frameBounds(bounds, scene.viewDirection, scene.up, 40.0, size.first, size.second);
       const frame::Camera camera = frame::orbit(base, bounds.center(), scene.up, degrees);
-      const Comparison c = compare(scene.patches, scene.occluders, camera, view++ % 2 == 1);
+      const Comparison c =
+          compare(scene.patches, scene.occluders, camera, view % 2 == 1,
+                  view % 4 < 2 ? bound::HiZLookup::Paper : bound::HiZLookup::Tight);
+      ++view;
       total.gpuCulled += c.gpuCulled;
       total.cpuCulled += c.cpuCulled;
       total.tested += c.tested;

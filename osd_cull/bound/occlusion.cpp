@@ -120,13 +120,20 @@ HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& 
   return box;
 }
 
-HiZFootprint hizFootprint(const HiZLayout& layout, const HiZScreenBox& box) {
+HiZFootprint hizFootprint(const HiZLayout& layout, const HiZScreenBox& box, HiZLookup lookup) {
   const uint32_t n = std::max(box.x1 - box.x0, box.y1 - box.y0) + 1;
   // ceil(log2(n)) in integers: n pixels starting anywhere touch at most two aligned runs
   // of 2^k >= n pixels.
   const uint32_t k = n <= 1 ? 0u : static_cast<uint32_t>(std::bit_width(n - 1));
   HiZFootprint f;
   f.level = std::min(k > layout.baseShift ? k - layout.baseShift : 0u, layout.levelCount - 1);
+  if (lookup == HiZLookup::Tight && f.level > 0) {
+    // Only the next finer level can do: there 2^(k-1) < n pixels per texel, and one more
+    // level down the box would touch at least three.
+    const uint32_t finer = layout.texelShift(f.level - 1);
+    if ((box.x1 >> finer) - (box.x0 >> finer) <= 1 && (box.y1 >> finer) - (box.y0 >> finer) <= 1)
+      --f.level;
+  }
   const uint32_t shift = layout.texelShift(f.level);
   const uint32_t lw = layout.levelWidth(f.level), lh = layout.levelHeight(f.level);
   f.x0 = std::min(box.x0 >> shift, lw - 1);
@@ -137,14 +144,14 @@ HiZFootprint hizFootprint(const HiZLayout& layout, const HiZScreenBox& box) {
 }
 
 OcclusionResult hizOcclusionTest(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
-                                 const HiZPyramid& pyramid) {
+                                 const HiZPyramid& pyramid, HiZLookup lookup) {
   OcclusionResult r;
   const HiZLayout& l = pyramid.layout;
   const HiZScreenBox box = hizScreenBox(points, viewProj, l.width, l.height);
   if (!box.valid) return r;
   r.tested = true;
   r.nearestDepth = box.nearestDepth;
-  r.footprint = hizFootprint(l, box);
+  r.footprint = hizFootprint(l, box, lookup);
   const HiZFootprint& f = r.footprint;
   r.hizDepth =
       std::max(std::max(pyramid.texel(f.level, f.x0, f.y0), pyramid.texel(f.level, f.x1, f.y0)),

@@ -79,6 +79,12 @@ struct HiZScreenBox {
 HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
                           uint32_t width, uint32_t height, double marginScale = 1.0);
 
+/// \brief Which level a box is looked up at (shared/hiz_layout.h kHiZLookup*).
+enum class HiZLookup {
+  Paper,  ///< ceil(log2(n)) for an n-pixel box (§4.1.1)
+  Tight,  ///< one level finer when the box touches at most 2x2 texels there
+};
+
 /// \brief The texels that cover a pixel box: level and inclusive texel ranges (at most
 /// two per axis).
 struct HiZFootprint {
@@ -86,9 +92,11 @@ struct HiZFootprint {
   uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
-/// \brief The level ceil(log2(max(box width, box height))) - baseShift (at least 0) and
-/// the texels under the box there.
-HiZFootprint hizFootprint(const HiZLayout& layout, const HiZScreenBox& box);
+/// \brief The level ceil(log2(max(box width, box height))) - baseShift (at least 0; with
+/// HiZLookup::Tight one less when the box touches at most 2x2 texels there) and the texels
+/// under the box at that level.
+HiZFootprint hizFootprint(const HiZLayout& layout, const HiZScreenBox& box,
+                          HiZLookup lookup = HiZLookup::Paper);
 
 /// \brief Result of the occlusion test.
 struct OcclusionResult {
@@ -103,6 +111,6 @@ struct OcclusionResult {
 /// 20 Gregory). Culled iff every fragment the patch can produce in its box would fail a
 /// LESS depth test against the depths the pyramid was built from.
 OcclusionResult hizOcclusionTest(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
-                                 const HiZPyramid& pyramid);
+                                 const HiZPyramid& pyramid, HiZLookup lookup = HiZLookup::Paper);
 
 }  // namespace osd_cull::bound

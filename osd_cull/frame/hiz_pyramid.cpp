@@ -85,6 +85,7 @@ HiZPyramid::HiZPyramid(vk::Context& context, const vk::Image& depth, const HiZOp
   sampler_ = options.reduction == HiZReduction::Sampler ||
              (options.reduction == HiZReduction::Auto && minmax);
   depthSampler_ = sampler_ && supportsMinmaxDepthReduction(context);
+  lookup_ = options.lookup;
 
   image_ = vk::Image(context,
                      {layout_.levelWidth(0), layout_.levelHeight(0), kPyramidFormat,
@@ -132,6 +133,7 @@ shader::HiZParams HiZPyramid::params() const {
   p.level0Width = layout_.levelWidth(0);
   p.level0Height = layout_.levelHeight(0);
   p.enabled = 1;
+  p.lookup = lookup_ == bound::HiZLookup::Tight ? shader::kHiZLookupTight : shader::kHiZLookupPaper;
   return p;
 }
 

@@ -37,6 +37,8 @@ enum class HiZReduction {
 struct HiZOptions {
   bool fullResolution = false;  ///< level 0 at the depth image's resolution (paper: half)
   HiZReduction reduction = HiZReduction::Auto;
+  /// Level at which the occlusion test looks a box up (params().lookup).
+  bound::HiZLookup lookup = bound::HiZLookup::Paper;
 };
 
 /// \brief True when the device can reduce pyramid levels with a MAX sampler: the
@@ -90,6 +92,7 @@ class HiZPyramid {
 
   bool sampler_ = false;
   bool depthSampler_ = false;
+  bound::HiZLookup lookup_ = bound::HiZLookup::Paper;
   bool built_ = false;
   vk::Image image_;
   vk::UniqueSampler depthMaxSampler_;  // MAX, clamp to border (opaque white = far)

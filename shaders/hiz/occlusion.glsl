@@ -35,8 +35,9 @@ void hizBoxAdd(inout HiZBox b, vec4 c, vec4 m) {
   b.nearest = min(b.nearest, ndc.z - err.z);
 }
 
-// The footprint of the box: level ceil(log2(n)) - baseShift for an n-pixel box, and up to
-// 2 x 2 texels there (ceil, not floor: floor could need 3 x 3). Returns false when the box
+// The footprint of the box: level ceil(log2(n)) - baseShift for an n-pixel box (one finer
+// with kHiZLookupTight when the box allows), and up to 2 x 2 texels there (ceil, not floor:
+// floor could need 3 x 3). Returns false when the box
 // misses the screen or is invalid.
 bool hizFootprint(HiZBox b, HiZParams hiz, out int level, out ivec2 t0, out ivec2 t1) {
   level = 0;
@@ -54,6 +55,11 @@ bool hizFootprint(HiZBox b, HiZParams hiz, out int level, out ivec2 t0, out ivec
   int n = max(x1.x - x0.x, x1.y - x0.y) + 1;
   int k = n <= 1 ? 0 : findMSB(n - 1) + 1;
   level = clamp(k - int(hiz.baseShift), 0, int(hiz.levelCount) - 1);
+  if (hiz.lookup == kHiZLookupTight && level > 0) {
+    int finer = level - 1 + int(hiz.baseShift);
+    ivec2 span = (x1 >> finer) - (x0 >> finer);
+    if (span.x <= 1 && span.y <= 1) level -= 1;
+  }
   int shift = level + int(hiz.baseShift);
   ivec2 levelLast = max(ivec2(hiz.level0Width, hiz.level0Height) >> level, ivec2(1)) - 1;
   t0 = min(x0 >> shift, levelLast);

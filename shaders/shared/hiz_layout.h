@@ -37,6 +37,13 @@ OSD_CULL_CONST float kHiZDepthBias = 9.5367431640625e-7f;     // 2^-20
 OSD_CULL_CONST float kHiZPixelMargin = 0.015625f;             // 1/64
 OSD_CULL_CONST float kHiZGpuMarginScale = 2.0f;
 
+// HiZParams.lookup: the level a box is looked up at. Paper (§4.1.1): ceil(log2(n)) for an
+// n-pixel box, where 2x2 texels always cover it. Tight: one level finer when the box, as it
+// happens to lie, still touches at most 2x2 texels there (no coarser level can be needed,
+// so it never looks at more texels, and a finer texel's depth is never farther).
+OSD_CULL_CONST uint kHiZLookupPaper = 0u;
+OSD_CULL_CONST uint kHiZLookupTight = 1u;
+
 // Push constants of one reduction step (one pyramid level).
 struct HiZReduceConstants {
   uint srcWidth;  // source level (or depth image) size in texels
@@ -59,7 +66,7 @@ struct HiZParams {
   uint level0Width;  // size of level 0 in texels; level l is max(1, size >> l)
   uint level0Height;
   uint enabled;  // 0: no pyramid bound, never occlusion-culled
-  uint pad0;
+  uint lookup;   // kHiZLookupPaper or kHiZLookupTight
 };
 
 // The occlusion-only kernel (shaders/hiz/occlusion_cull.comp) writes one result code per
