@@ -1,8 +1,10 @@
 // osd-cull render: draws a mesh (or the built-in scene) with the tessellation pipeline,
 // writes PNG images and prints per-frame statistics.
 #include "command.h"
+#include "cull_report.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/png_io.h"
 #include "osd_cull/frame/renderer.h"
@@ -11,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -39,6 +42,23 @@ Options:
   --ids                  also write the item buffer (patch ID + 1 per pixel, 24-bit RGB)
                          as FILE_ids.png and the depth as FILE_depth.png
   --debug-colors         color each patch by its index
+
+Culling (Niessner & Loop, two passes with temporal visibility per patch):
+  --cull MODE            none (default) or occlusion: draw the patches visible last frame,
+                         build a Hi-Z pyramid, test every patch, draw the newly visible
+  --aggressive           skip the second pass (newly visible patches appear a frame late)
+  --draw-mode M          filtered (compact indirect draws, default) or tf0 (every patch,
+                         tessellation factor 0 for the ones not drawn)
+  --first-frame P        status before the first frame: all (default), half, none
+  --hiz-full             top pyramid level at full resolution (default: half)
+  --hiz-tight            look boxes up one level finer when 2x2 texels still cover them
+  --hiz-reduction R      auto (default), sampler (min/max sampler) or fourtap
+  --stats FILE.json      write the per-frame figures as JSON
+  --status-view          also write FILE_status.png (patches colored by status: green
+                         visible, yellow newly visible, blue frustum-, purple back-patch-,
+                         red occlusion-culled) from the camera and FILE_status_side.png from
+                         90 degrees around the up axis
+  --pyramid-dir DIR      write the Hi-Z levels of the last frame as DIR/hiz_level_NN.png
   --device X             Vulkan device: index or name substring (default $OSD_CULL_DEVICE,
                          else lavapipe)
   --validate             enable the Vulkan validation layers
@@ -102,9 +122,57 @@ int run(Args& args) {
   const bool debugColors = args.flag("debug-colors");
   const bool validate = args.flag("validate");
   const auto device = args.value("device");
+  const std::string cullMode = args.value("cull").value_or("none");
+  const bool aggressive = args.flag("aggressive");
+  const std::string drawMode = args.value("draw-mode").value_or("filtered");
+  const std::string firstFrame = args.value("first-frame").value_or("all");
+  const bool hizFull = args.flag("hiz-full");
+  const bool hizTight = args.flag("hiz-tight");
+  const std::string hizReduction = args.value("hiz-reduction").value_or("auto");
+  const auto statsPath = args.value("stats");
+  const bool statusView = args.flag("status-view");
+  const auto pyramidDir = args.value("pyramid-dir");
   args.finish();
   if (!out) throw Error("--out FILE.png is required");
   if (tess && adaptive) throw Error("--tess and --adaptive exclude each other");
+  if (cullMode == "frustum" || cullMode == "backpatch" || cullMode == "all")
+    throw Error("--cull " + cullMode +
+                ": the frustum and back-patch stages come with the cull kernel, which is not "
+                "in this build; --cull occlusion runs the Hi-Z stage alone");
+  if (cullMode != "none" && cullMode != "occlusion")
+    throw Error("--cull: '" + cullMode +
+                "' is not one of none, frustum, backpatch, occlusion, all");
+  const bool culling = cullMode != "none";
+  frame::CullFrameOptions cullOptions;
+  cullOptions.aggressive = aggressive;
+  if (drawMode != "filtered" && drawMode != "tf0")
+    throw Error("--draw-mode: '" + drawMode + "' is not filtered or tf0");
+  cullOptions.drawMode =
+      drawMode == "tf0" ? frame::CullDrawMode::TessFactorZero : frame::CullDrawMode::Filtered;
+  if (firstFrame == "all")
+    cullOptions.firstFrame = frame::FirstFrame::AllVisible;
+  else if (firstFrame == "half")
+    cullOptions.firstFrame = frame::FirstFrame::HalfVisible;
+  else if (firstFrame == "none")
+    cullOptions.firstFrame = frame::FirstFrame::NoneVisible;
+  else
+    throw Error("--first-frame: '" + firstFrame + "' is not all, half or none");
+  cullOptions.hiz.fullResolution = hizFull;
+  cullOptions.hiz.lookup = hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
+  if (hizReduction == "auto")
+    cullOptions.hiz.reduction = frame::HiZReduction::Auto;
+  else if (hizReduction == "sampler")
+    cullOptions.hiz.reduction = frame::HiZReduction::Sampler;
+  else if (hizReduction == "fourtap")
+    cullOptions.hiz.reduction = frame::HiZReduction::FourTap;
+  else
+    throw Error("--hiz-reduction: '" + hizReduction + "' is not auto, sampler or fourtap");
+  const bool cullOnly = aggressive || hizFull || hizTight || drawMode != "filtered" ||
+                        firstFrame != "all" || hizReduction != "auto" || statusView || pyramidDir;
+  if (!culling && cullOnly)
+    throw Error(
+        "--aggressive, --draw-mode, --first-frame, --hiz-*, --status-view and "
+        "--pyramid-dir need --cull occlusion");
 
   const Scene scene = loadScene(args.positional());
   vk::ContextOptions contextOptions;
@@ -156,15 +224,38 @@ int run(Args& args) {
   frame::Renderer renderer(context);
   if (outDir) fs::create_directories(*outDir);
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
+  cullOptions.render = options;
+  const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
+  std::unique_ptr<frame::CullFrame> cull;
+  if (culling) {
+    cull = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, cullOptions);
+    std::cout << "culling: " << cullMode << ", " << (aggressive ? "aggressive" : "two passes")
+              << ", draw mode " << toString(cullOptions.drawMode) << ", first frame "
+              << toString(cullOptions.firstFrame) << "; Hi-Z "
+              << cull->pyramid().layout().levelCount << " levels from "
+              << cull->pyramid().layout().levelWidth(0) << "x"
+              << cull->pyramid().layout().levelHeight(0) << ", "
+              << (cull->pyramid().usesSampler() ? "min/max sampler" : "4-tap") << " reduction, "
+              << (hizTight ? "tight" : "paper") << " lookup\n";
+  }
+  nlohmann::json jsonFrames = nlohmann::json::array();
+  frame::Camera view = camera;
   for (uint32_t f = 0; f < frames; ++f) {
-    const frame::Camera view = frame::orbit(camera, pivot, up, orbitDegrees * f);
-    const frame::FrameStats stats = renderer.render(target, view, {&draw, 1}, occluders, options);
-    std::printf(
-        "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
-        "fragment invocations %llu\n",
-        f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
-        static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
-        static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+    view = frame::orbit(camera, pivot, up, orbitDegrees * f);
+    if (cull) {
+      const frame::CullFrameStats stats = cull->render(view, occluders);
+      std::printf("%s\n", cullFrameLine(f, stats).c_str());
+      jsonFrames.push_back(cullFrameJson(f, stats));
+    } else {
+      const frame::FrameStats stats = renderer.render(target, view, {&draw, 1}, occluders, options);
+      std::printf(
+          "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
+          "fragment invocations %llu\n",
+          f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
+          static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
+          static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+      jsonFrames.push_back(plainFrameJson(f, stats));
+    }
     const bool last = f + 1 == frames;
     if (!outDir && !last) continue;
     const auto color = frame::colorImage(width, height, target.readColor(context));
@@ -186,6 +277,39 @@ int run(Args& args) {
       }
     }
   }
+  if (statsPath) {
+    nlohmann::json doc{{"device", context.info().name},
+                       {"scene", scene.patches.source},
+                       {"width", width},
+                       {"height", height},
+                       {"cull", cullMode},
+                       {"frames", jsonFrames}};
+    if (cull)
+      doc["options"] = {{"aggressive", aggressive},
+                        {"drawMode", toString(cullOptions.drawMode)},
+                        {"firstFrame", toString(cullOptions.firstFrame)},
+                        {"hizFullResolution", hizFull},
+                        {"hizLookup", hizTight ? "tight" : "paper"},
+                        {"hizSampler", cull->pyramid().usesSampler()}};
+    std::ofstream file(*statsPath);
+    if (!(file << doc.dump(2) << "\n")) throw Error(*statsPath + ": cannot write");
+    std::cout << "wrote " << *statsPath << "\n";
+  }
+  if (cull && statusView) {
+    frame::RenderTarget viewTarget(context, width, height);
+    const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
+    for (const auto& [camera2, suffix] :
+         {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
+      cull->renderStatusView(viewTarget, camera2, occluders);
+      frame::writePng(sibling(*out, suffix),
+                      frame::colorImage(width, height, viewTarget.readColor(context)));
+      std::cout << "wrote " << sibling(*out, suffix).string() << "\n";
+    }
+  }
+  if (cull && pyramidDir) {
+    const uint32_t n = writePyramidLevels(*pyramidDir, cull->pyramid(), context);
+    std::cout << "wrote " << n << " pyramid levels to " << *pyramidDir << "\n";
+  }
   if (const vk::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
     return 1;
@@ -197,7 +321,7 @@ const Registration kRegistration(
     {"render",
      "draw a mesh or the built-in scene to PNG, print frame statistics",
      kUsage,
-     {"ids", "debug-colors", "validate"},
+     {"ids", "debug-colors", "validate", "aggressive", "hiz-full", "hiz-tight", "status-view"},
      run});
 
 }  // namespace

@@ -1,0 +1,112 @@
+// `osd-cull render --cull occlusion`: the two-pass frame from the command line, with the
+// per-frame report, JSON statistics, the status debug view and the pyramid levels.
+#include "osd_cull/frame/png_io.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+namespace osd_cull {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string output;
+};
+
+Result runCommand(const std::string& command) {
+  Result r;
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>&1").c_str(), "r"), pclose);
+  if (!pipe) return r;
+  std::array<char, 512> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe.get())) r.output += buffer.data();
+  r.status = pclose(pipe.release());
+  return r;
+}
+
+fs::path program() { return fs::path(OSD_CULL_BINARY_DIR) / "samples" / "osd-cull"; }
+
+TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyramid) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cull_cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Result r =
+      runCommand(program().string() + " render --out " + (dir / "s.png").string() +
+                 " --width 120 --height 90 --frames 3 --orbit 20 --cull occlusion "
+                 "--validate --status-view --stats " +
+                 (dir / "s.json").string() + " --pyramid-dir " + (dir / "hiz").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  for (const char* line : {"frame 0:", "frame 2:", "drawn pass 1", "pass 2", "occlusion",
+                           "TES invocations", "pyramid", "wrote "})
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+  // 120 x 90 pads to 128 x 128; level 0 at half resolution is 64 x 64: 7 levels.
+  for (int l = 0; l < 7; ++l) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "hiz_level_%02d.png", l);
+    ASSERT_TRUE(fs::exists(dir / "hiz" / name)) << name;
+    EXPECT_EQ(frame::readPng(dir / "hiz" / name).width, 64u >> l);
+  }
+  EXPECT_FALSE(fs::exists(dir / "hiz" / "hiz_level_07.png"));
+  for (const char* f : {"s.png", "s_status.png", "s_status_side.png"})
+    EXPECT_EQ(frame::readPng(dir / f).width, 120u) << f;
+  std::ifstream in(dir / "s.json");
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  ASSERT_EQ(doc["frames"].size(), 3u);
+  const auto& f0 = doc["frames"][0];
+  EXPECT_EQ(f0["patches"], f0["drawnPass1"]);  // first frame: everything visible before
+  EXPECT_EQ(f0["drawnPass2"], 0);
+  const auto& f1 = doc["frames"][1];
+  const uint32_t survivors0 = f0["survivors"];
+  EXPECT_EQ(f1["drawnPass1"], survivors0);
+  const uint32_t patches = f1["patches"], survivors = f1["survivors"];
+  const uint32_t culled = f1["culled"]["occlusion"];
+  EXPECT_EQ(survivors + culled, patches);
+  EXPECT_GT(f1["pass1"]["tessEvaluationInvocations"].get<uint64_t>(), 0u);
+  EXPECT_GT(f1["ms"]["total"].get<double>(), 0.0);
+  EXPECT_EQ(doc["options"]["drawMode"], "filtered");
+}
+
+TEST(RenderCullCommand, CullOptionsAreCheckedWithAClearMessage) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  Result r = runCommand(program().string() + " render --out x.png --cull sometimes");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("is not one of none"), std::string::npos) << r.output;
+  r = runCommand(program().string() + " render --out x.png --aggressive");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("need --cull"), std::string::npos) << r.output;
+  r = runCommand(program().string() + " render --out x.png --cull occlusion --first-frame most");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.output.find("all, half or none"), std::string::npos) << r.output;
+}
+
+TEST(RenderCullCommand, AggressiveTessFactorZeroRunsWithoutSecondPass) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cull_cli_tf0";
+  fs::create_directories(dir);
+  const Result r = runCommand(program().string() + " render --out " + (dir / "a.png").string() +
+                              " --width 64 --height 48 --frames 2 --cull occlusion --aggressive "
+                              "--draw-mode tf0 --first-frame none --hiz-full --hiz-tight "
+                              "--hiz-reduction fourtap --validate --stats " +
+                              (dir / "a.json").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("aggressive"), std::string::npos) << r.output;
+  std::ifstream in(dir / "a.json");
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  for (const auto& f : doc["frames"]) EXPECT_EQ(f["drawnPass2"], 0);
+  EXPECT_EQ(doc["frames"][0]["drawnPass1"], 0);  // nothing visible before the first frame
+  EXPECT_GT(doc["frames"][1]["drawnPass1"].get<uint32_t>(), 0u);
+  EXPECT_EQ(doc["options"]["hizLookup"], "tight");
+  EXPECT_EQ(doc["options"]["hizSampler"], false);
+}
+
+}  // namespace
+}  // namespace osd_cull
