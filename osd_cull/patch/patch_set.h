@@ -30,7 +30,8 @@ inline constexpr uint32_t kGregoryPoints = 20;
 enum class PatchOrigin : uint8_t {
   Regular,   ///< interior regular B-spline patch, converted to Bézier
   Boundary,  ///< regular patch with one boundary edge (points extrapolated), converted
-  Corner,    ///< regular patch with two boundary edges, converted
+  Corner,    ///< regular patch with two or more boundary edges (a corner, or a strip one
+             ///< patch wide), converted
   Gregory,   ///< irregular patch, Gregory-basis end cap
   BSplineEndCap,  ///< irregular patch approximated by a B-spline end cap, converted
   Input,     ///< Bézier patch read directly from a file (e.g. BPT)

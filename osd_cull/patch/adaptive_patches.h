@@ -1,0 +1,67 @@
+#pragma once
+/// \file adaptive_patches.h
+/// \brief Feature-adaptive refinement → Far::PatchTable and the stencils of its points.
+
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/topologyRefiner.h>
+
+#include <memory>
+#include <optional>
+
+namespace osd_cull {
+
+namespace Far = OpenSubdiv::Far;
+
+/// \brief How irregular patches (around extraordinary vertices) are closed.
+enum class EndCap {
+  GregoryBasis,  ///< 20-point Gregory-basis patches (OpenSubdiv's default, smoothest)
+  BSplineBasis,  ///< 16-point B-spline patches approximating the limit surface
+};
+
+/// \brief Options of the adaptive patch table.
+struct PatchOptions {
+  /// Feature-adaptive isolation level, 0..10. Level 0 is accepted only when every face that
+  /// is not a hole is a quad (OpenSubdiv makes no patch for a non-quad face at level 0).
+  int isolationLevel = 2;
+  /// Shallower level at which smooth irregular features stop being isolated (OpenSubdiv's
+  /// AdaptiveOptions::secondaryLevel), 0..isolationLevel; unset: isolate to isolationLevel.
+  std::optional<int> secondaryLevel;
+  EndCap endCaps = EndCap::GregoryBasis;
+  /// Infinitely sharp creases and corners become regular boundary-like patches instead of
+  /// being isolated to the last level (OpenSubdiv's useInfSharpPatch).
+  bool infSharpPatches = true;
+};
+
+/// \brief A patch table with double-precision stencils for all of its points.
+///
+/// Patch point index i (as in Far::PatchTable::GetPatchVertices) is refined vertex i for
+/// i < refinedVertexCount (row i of refinedStencils), else local point i - refinedVertexCount
+/// (a row of localPointStencils, whose indices are refined vertices). Composing the two
+/// gives the point in terms of cage vertices, what
+/// Far::StencilTableFactory::AppendLocalPointStencilTable computes.
+struct AdaptivePatches {
+  std::unique_ptr<const Far::PatchTable> patchTable;
+  /// One stencil per vertex of every refinement level, level 0 included (as identity
+  /// stencils); columns are the cage (level 0) vertices.
+  std::unique_ptr<const Far::StencilTableReal<double>> refinedStencils;
+  /// One stencil per local (end-cap) point over refined vertices; owned by patchTable,
+  /// null when there are no local points.
+  const Far::StencilTableReal<double>* localPointStencils = nullptr;
+  int refinedVertexCount = 0;  ///< vertices of all levels (refiner.GetNumVerticesTotal())
+  int localPointCount = 0;     ///< end-cap points after them
+  double refineMs = 0.0;       ///< adaptive refinement
+  double patchTableMs = 0.0;   ///< Far::PatchTableFactory::Create
+  double stencilMs = 0.0;      ///< refinement stencils
+};
+
+/// \brief Checks options (ranges above) and throws osd_cull::Error naming the bad option.
+void checkPatchOptions(const PatchOptions& options);
+
+/// \brief Refines `refiner` adaptively and builds the patch table and stencils.
+/// The refiner must be a Catmull-Clark refiner that has not been refined yet.
+/// \throws osd_cull::Error for Loop or bilinear refiners ("Loop patches are not extracted
+/// yet"), an already refined refiner, or bad options.
+AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchOptions& options);
+
+}  // namespace osd_cull

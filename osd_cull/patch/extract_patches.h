@@ -1,0 +1,69 @@
+#pragma once
+/// \file extract_patches.h
+/// \brief The entry point of osd_cull/patch: a cage in, Bézier and Gregory patches and the
+/// cage → control-point matrix out.
+///
+/// Pipeline: makeTopologyRefiner → buildAdaptivePatches (feature-adaptive refinement,
+/// Far::PatchTable, refinement + local-point stencils) → per patch, B-spline boundary
+/// extrapolation and B-spline → Bézier conversion (bspline_bezier.h) or the 20 Gregory-basis
+/// points → one PatchPointMatrix whose rows are every control point of the PatchSet.
+
+#include "osd_cull/patch/adaptive_patches.h"
+#include "osd_cull/patch/cage_mesh.h"
+#include "osd_cull/patch/patch_set.h"
+#include "osd_cull/patch/point_matrix.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace osd_cull {
+
+/// \brief What an extraction produced and what it cost.
+struct ExtractionStats {
+  uint32_t regular = 0;         ///< PatchOrigin::Regular
+  uint32_t boundary = 0;        ///< PatchOrigin::Boundary
+  uint32_t corner = 0;          ///< PatchOrigin::Corner
+  uint32_t gregory = 0;         ///< PatchOrigin::Gregory
+  uint32_t bsplineEndCaps = 0;  ///< PatchOrigin::BSplineEndCap
+  uint32_t controlPoints = 0;   ///< rows of the matrix, points of the PatchSet
+  std::size_t matrixNonZeros = 0;
+  int cageVertices = 0;
+  int refinedVertices = 0;    ///< vertices of all refinement levels
+  int localPoints = 0;        ///< OpenSubdiv end-cap points
+  double topologyMs = 0.0;    ///< cage → Far::TopologyRefiner
+  double refineMs = 0.0;      ///< adaptive refinement
+  double patchTableMs = 0.0;  ///< Far::PatchTable
+  double stencilMs = 0.0;     ///< refinement and local-point stencils
+  double matrixMs = 0.0;      ///< composing the matrix and the points
+  double totalMs = 0.0;
+
+  uint32_t patches() const { return regular + boundary + corner + gregory + bsplineEndCaps; }
+};
+
+/// \brief PatchSet + the matrix that recomputes its points from moved cage vertices.
+struct PatchExtraction {
+  PatchSet patches;
+  PatchPointMatrix matrix;  ///< rows = patches.points, columns = cage vertices
+  ExtractionStats stats;
+};
+
+/// \brief Extracts the patches of a Catmull-Clark cage.
+/// \throws osd_cull::Error for an invalid cage (see validate()), Loop or bilinear schemes
+/// (not extracted yet), bad options, or a patch type OpenSubdiv should not have produced.
+PatchExtraction extractPatches(const CageMesh& cage, const PatchOptions& options = {});
+
+/// \brief The same for a base-level refiner the caller built; `positions` are its level-0
+/// vertices. The refiner is refined adaptively in place.
+PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const glm::dvec3> positions,
+                               const PatchOptions& options = {}, const std::string& source = {});
+
+/// \brief The origin of a regular B-spline patch from its PatchParam: BSplineEndCap if
+/// OpenSubdiv marks it irregular, else by its boundary edges: none → Regular, one →
+/// Boundary, two or more (a corner, or a strip one patch wide) → Corner.
+PatchOrigin bsplinePatchOrigin(const Far::PatchParam& param);
+
+}  // namespace osd_cull
