@@ -1,6 +1,7 @@
 // `osd-cull render --cull occlusion`: the two-pass frame from the command line, with the
 // per-frame report, JSON statistics, the status debug view and the pyramid levels.
 #include "osd_cull/frame/png_io.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -106,6 +107,33 @@ TEST(RenderCullCommand, AggressiveTessFactorZeroRunsWithoutSecondPass) {
   EXPECT_GT(doc["frames"][1]["drawnPass1"].get<uint32_t>(), 0u);
   EXPECT_EQ(doc["options"]["hizLookup"], "tight");
   EXPECT_EQ(doc["options"]["hizSampler"], false);
+}
+
+TEST(RenderCullCommand, MeshWithAnObjOccluderWallIsCulledBehindTheWall) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  OSD_CULL_REQUIRE_DATA();
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cull_cli_mesh";
+  fs::create_directories(dir);
+  // A wall in front of BigGuy's lower half (the default view looks from +z).
+  std::ofstream(dir / "wall.obj")
+      << "v -30 -30 20\nv 30 -30 20\nv 30 0 20\nv -30 0 20\nf 1 2 3 4\n";
+  const std::string base = program().string() + " render " +
+                           (test::dataDir() / "characters" / "bigguy.obj").string() +
+                           " --level 1 --width 96 --height 96 --frames 2 --cull occlusion --stats ";
+  const Result with =
+      runCommand(base + (dir / "wall.json").string() + " --out " + (dir / "wall.png").string() +
+                 " --occluders " + (dir / "wall.obj").string());
+  ASSERT_EQ(with.status, 0) << with.output;
+  EXPECT_NE(with.output.find("1 triangle occluders"), std::string::npos) << with.output;
+  const Result without =
+      runCommand(base + (dir / "open.json").string() + " --out " + (dir / "open.png").string());
+  ASSERT_EQ(without.status, 0) << without.output;
+  std::ifstream a(dir / "wall.json"), b(dir / "open.json");
+  const nlohmann::json wall = nlohmann::json::parse(a), open = nlohmann::json::parse(b);
+  const uint32_t culledWall = wall["frames"][1]["culled"]["occlusion"];
+  const uint32_t culledOpen = open["frames"][1]["culled"]["occlusion"];
+  EXPECT_GT(culledOpen, 0u);                // the back of the body
+  EXPECT_GT(culledWall, culledOpen + 100);  // and the legs behind the wall
 }
 
 }  // namespace

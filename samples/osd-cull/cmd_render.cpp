@@ -3,11 +3,14 @@
 #include "command.h"
 #include "cull_report.h"
 
+#include "adapters/load_mesh.h"
+#include "adapters/load_occluder.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/png_io.h"
 #include "osd_cull/frame/renderer.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/vk/context.h"
 
 #include <cmath>
@@ -24,13 +27,16 @@ namespace fs = std::filesystem;
 
 const char* kUsage = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
 
-Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
-triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
+Draws MESH (a cage: OBJ with OpenSubdiv tags, OFF, PLY, STL; or Bezier patches: BPT) or,
+without MESH, a built-in scene of subdivision tori, a patch sphere and triangle walls,
+with the Vulkan tessellation pipeline and writes the image as PNG.
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
 and fragment-shader invocations (pipeline statistics).
 
 Options:
   --out FILE.png         image of the last frame (required)
+  --level N              isolation level of the patches of MESH (default 2)
+  --occluders F[,F...]   OBJ files drawn as triangle occluders (in the first pass)
   --width W --height H   image size (default 640 x 480)
   --tess N               uniform tessellation, N segments per patch edge (default 4)
   --adaptive PIXELS      screen-space adaptive tessellation, PIXELS per segment
@@ -71,7 +77,7 @@ struct Scene {
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
 };
 
-Scene loadScene(const std::vector<std::string>& positional) {
+Scene loadScene(const std::vector<std::string>& positional, int level) {
   if (positional.size() > 1) throw Error("render takes at most one MESH argument");
   if (positional.empty()) {
     frame::DemoScene demo = frame::defaultDemoScene();
@@ -79,12 +85,20 @@ Scene loadScene(const std::vector<std::string>& positional) {
   }
   const fs::path path = positional[0];
   if (!fs::exists(path)) throw Error(path.string() + ": no such file");
-  // Mesh files become patches through adapters::loadCage / loadBezierPatches and the
-  // Bézier/Gregory extraction of osd_cull/patch; neither is in this build yet.
-  throw Error(path.string() +
-              ": loading meshes needs the mesh loaders (adapters/) and patch extraction "
-              "(osd_cull/patch/) that are not merged into this build yet; run `osd-cull render` "
-              "without MESH for the built-in scene");
+  Scene scene;
+  // Meshes are y-up by convention (OBJ); look from the front, a little from above.
+  scene.up = {0, 1, 0};
+  scene.viewDirection = {0.3, 0.25, 1.0};
+  if (adapters::isBezierPatchFile(path)) {
+    scene.patches = adapters::loadBezierPatches(path);
+    scene.up = {0, 0, 1};  // the teapot is z-up
+    scene.viewDirection = {0.55, -1.0, 0.45};
+  } else {
+    PatchOptions options;
+    options.isolationLevel = level;
+    scene.patches = extractPatches(adapters::loadCage(path), options).patches;
+  }
+  return scene;
 }
 
 std::vector<double> parseNumbers(const std::string& text, size_t count, const std::string& option) {
@@ -130,6 +144,8 @@ int run(Args& args) {
   const bool hizTight = args.flag("hiz-tight");
   const std::string hizReduction = args.value("hiz-reduction").value_or("auto");
   const auto statsPath = args.value("stats");
+  const int level = static_cast<int>(args.integer("level", 0, 10).value_or(2));
+  const auto occluderFiles = args.value("occluders");
   const bool statusView = args.flag("status-view");
   const auto pyramidDir = args.value("pyramid-dir");
   args.finish();
@@ -174,7 +190,13 @@ int run(Args& args) {
         "--aggressive, --draw-mode, --first-frame, --hiz-*, --status-view and "
         "--pyramid-dir need --cull occlusion");
 
-  const Scene scene = loadScene(args.positional());
+  Scene scene = loadScene(args.positional(), level);
+  if (occluderFiles) {
+    std::stringstream list(*occluderFiles);
+    std::string file;
+    while (std::getline(list, file, ','))
+      if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
+  }
   vk::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
