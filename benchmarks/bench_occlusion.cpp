@@ -9,18 +9,23 @@
 //  4. a long sequence with fast rotation: pixels that differ from the unculled image.
 //
 //   bench-occlusion [--width 1024] [--height 768] [--views 1000] [--rotation-frames 60]
-//                   [--sequence 300] [--repeats 3] [--only 1234] [--device X]
+//                   [--sequence 300] [--repeats 3] [--only 1234]
+//                   [--scenes default,bigguy0,bigguy1,bigguy2] [--device X]
+#include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/vk/context.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -32,6 +37,7 @@ struct Options {
   uint32_t width = 1024, height = 768, views = 1000, rotationFrames = 60, sequence = 300;
   uint32_t repeats = 3;
   std::string only = "1234";
+  std::string scenes = "default,bigguy0,bigguy1,bigguy2";
   std::string device;
 };
 
@@ -58,6 +64,8 @@ Options parse(int argc, char** argv) {
       o.repeats = std::max(1u, number());
     else if (a == "--only")
       o.only = next();
+    else if (a == "--scenes")
+      o.scenes = next();
     else if (a == "--device")
       o.device = next();
     else
@@ -264,11 +272,41 @@ void sequence(vk::Context& context, const Scene& scene, const Options& o, bool a
   std::fflush(stdout);
 }
 
-std::vector<Scene> scenes() {
+// The data folder beside the project (as the tests find it), or $OSD_CULL_DATA_DIR.
+std::filesystem::path dataDir() {
+  if (const char* d = std::getenv("OSD_CULL_DATA_DIR")) return d;
+  return std::filesystem::path(OSD_CULL_SOURCE_DIR) / ".." / "shared" / "data";
+}
+
+// `names`: comma-separated among default, bigguy0, bigguy1, bigguy2, ... (BigGuy at that
+// isolation level; skipped with a note when the data folder is missing).
+std::vector<Scene> scenes(const std::string& names) {
   std::vector<Scene> out;
-  frame::DemoScene demo = frame::defaultDemoScene();
-  out.push_back({"default scene", std::move(demo.patches), std::move(demo.occluders), demo.up,
-                 demo.viewDirection});
+  std::stringstream list(names);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    if (name == "default") {
+      frame::DemoScene demo = frame::defaultDemoScene();
+      out.push_back({"default scene", std::move(demo.patches), std::move(demo.occluders), demo.up,
+                     demo.viewDirection});
+    } else if (name.rfind("bigguy", 0) == 0 && name.size() == 7) {
+      const auto path = dataDir() / "characters" / "bigguy.obj";
+      if (!std::filesystem::exists(path)) {
+        std::printf("(%s skipped: %s not found)\n", name.c_str(), path.string().c_str());
+        continue;
+      }
+      PatchOptions options;
+      options.isolationLevel = name[6] - '0';
+      Scene s{"BigGuy level " + name.substr(6),
+              extractPatches(adapters::loadCage(path), options).patches,
+              {},
+              {0, 1, 0},
+              {0.3, 0.25, 1.0}};
+      out.push_back(std::move(s));
+    } else {
+      throw Error("--scenes: unknown scene '" + name + "'");
+    }
+  }
   return out;
 }
 
@@ -280,7 +318,7 @@ int main(int argc, char** argv) {
     vk::ContextOptions contextOptions;
     contextOptions.device = o.device;
     vk::Context context(contextOptions);
-    const std::vector<Scene> all = scenes();
+    const std::vector<Scene> all = scenes(o.scenes);
     std::printf("device: %s; image %ux%u; Hi-Z top level at half resolution\n\n",
                 context.info().name.c_str(), o.width, o.height);
     auto want = [&](char c) { return o.only.find(c) != std::string::npos; };
