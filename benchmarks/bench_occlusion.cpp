@@ -6,10 +6,11 @@
 //  3. frame time and TES invocations with and without culling on the default scene at tess
 //     factors 4, 16, 32 (ratios from the same run) and the cull overhead (pyramid + cull) as
 //     a share of the culled frame;
-//  4. a long sequence with fast rotation: pixels that differ from the unculled image.
+//  4. a long sequence with fast rotation: pixels that differ from the unculled image;
+//  5. the first frame under each first-frame policy (all, half, none visible before).
 //
 //   bench-occlusion [--width 1024] [--height 768] [--views 1000] [--rotation-frames 60]
-//                   [--sequence 300] [--repeats 3] [--only 1234]
+//                   [--sequence 300] [--repeats 3] [--only 12345]
 //                   [--scenes default,bigguy0,bigguy1,bigguy2] [--device X]
 #include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
@@ -36,7 +37,7 @@ using namespace osd_cull;
 struct Options {
   uint32_t width = 1024, height = 768, views = 1000, rotationFrames = 60, sequence = 300;
   uint32_t repeats = 3;
-  std::string only = "1234";
+  std::string only = "12345";
   std::string scenes = "default,bigguy0,bigguy1,bigguy2";
   std::string device;
 };
@@ -280,6 +281,47 @@ std::filesystem::path dataDir() {
 
 // `names`: comma-separated among default, bigguy0, bigguy1, bigguy2, ... (BigGuy at that
 // isolation level; skipped with a note when the data folder is missing).
+// 5. The first frame under each first-frame policy (averaged over whole-object views): what
+// each pass draws and the tessellation work, against drawing everything once.
+void firstFrames(vk::Context& context, const Scene& scene, const Options& o) {
+  GpuScene g(context, scene);
+  frame::RenderTarget target(context, o.width, o.height), plain(context, o.width, o.height);
+  frame::Renderer renderer(context);
+  const frame::CullMesh meshes[] = {g.mesh()};
+  const frame::PatchDraw draw{&g.gpu, &scene.patches, 0};
+  const uint32_t views = std::max(1u, std::min(o.views, 50u));
+  for (frame::FirstFrame policy : {frame::FirstFrame::AllVisible, frame::FirstFrame::HalfVisible,
+                                   frame::FirstFrame::NoneVisible}) {
+    frame::CullFrameOptions co = cullOptions(4);
+    co.firstFrame = policy;
+    frame::CullFrame cull(context, renderer, target, meshes, co);
+    std::mt19937_64 rng(77);
+    uint64_t pass1 = 0, pass2 = 0, tes = 0, tesPlain = 0, culled = 0;
+    std::vector<double> ratio;
+    cull.render(
+        frame::frameBounds(g.bounds, scene.viewDirection, scene.up, 40.0, o.width, o.height),
+        g.occluders);  // JIT warm-up
+    for (uint32_t v = 0; v < views; ++v) {
+      const glm::dvec3 dir = randomDirection(rng);
+      const frame::Camera cam =
+          frame::frameBounds(g.bounds, dir, upFor(dir, scene.up), 40.0, o.width, o.height);
+      cull.reset(policy);
+      const auto s = cull.render(cam, g.occluders);
+      const auto p = renderer.render(plain, cam, {&draw, 1}, g.occluders, co.render);
+      pass1 += s.drawnPass1;
+      pass2 += s.drawnPass2;
+      culled += s.culled();
+      tes += s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations;
+      tesPlain += p.statistics.tessEvaluationInvocations;
+      ratio.push_back(s.totalMs() / p.wallMs);
+    }
+    std::printf("| %s | %s | %.0f | %.0f | %.0f | %.2f | %.2f |\n", scene.name.c_str(),
+                toString(policy), double(pass1) / views, double(pass2) / views,
+                double(culled) / views, double(tes) / tesPlain, median(ratio));
+    std::fflush(stdout);
+  }
+}
+
 std::vector<Scene> scenes(const std::string& names) {
   std::vector<Scene> out;
   std::stringstream list(names);
@@ -343,6 +385,14 @@ int main(int argc, char** argv) {
           "time ratio | TES ratio | fragment ratio | pyramid + cull share |\n");
       std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
       for (const Scene& s : all) frameCosts(context, s, o);
+    }
+    if (want('5')) {
+      std::printf("\n## First frame by first-frame policy (means over %u views)\n\n",
+                  std::max(1u, std::min(o.views, 50u)));
+      std::printf(
+          "| scene | policy | drawn pass 1 | drawn pass 2 | culled | TES ratio | time ratio |\n");
+      std::printf("|---|---|---:|---:|---:|---:|---:|\n");
+      for (const Scene& s : all) firstFrames(context, s, o);
     }
     if (want('4')) {
       std::printf("\n## Image equality over a fast-rotation sequence\n\n");
