@@ -200,6 +200,7 @@ void frameCosts(vk::Context& context, const Scene& scene, const Options& o) {
       frame::CullFrame cull(context, renderer, target, meshes, co);
       std::vector<double> ratio, overhead, culledMs, plainMs;
       uint64_t tesCulled = 0, tesPlain = 0, fragCulled = 0, fragPlain = 0, culled = 0, total = 0;
+      uint64_t tcsCulled = 0, tcsPlain = 0;
       renderer.render(plain, start, {&draw, 1}, g.occluders, co.render);  // JIT warm-up
       cull.render(start, g.occluders);
       const uint32_t frames = 12 * o.repeats;
@@ -214,6 +215,8 @@ void frameCosts(vk::Context& context, const Scene& scene, const Options& o) {
         tesPlain += p.statistics.tessEvaluationInvocations;
         tesCulled += c.pass1.tessEvaluationInvocations + c.pass2.tessEvaluationInvocations;
         fragPlain += p.statistics.fragmentShaderInvocations;
+        tcsPlain += p.statistics.tessControlPatches;
+        tcsCulled += c.pass1.tessControlPatches + c.pass2.tessControlPatches;
         fragCulled += c.pass1.fragmentShaderInvocations + c.pass2.fragmentShaderInvocations;
         culled += c.culled();
         total += c.patchesTotal;
@@ -382,8 +385,8 @@ int main(int argc, char** argv) {
                   12 * o.repeats);
       std::printf(
           "| scene | tess | draw mode | culled | frame ms, no culling | frame ms, culling | "
-          "time ratio | TES ratio | fragment ratio | pyramid + cull share |\n");
-      std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
+          "time ratio | TES ratio | TCS patch ratio | fragment ratio | pyramid + cull share |\n");
+      std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
       for (const Scene& s : all) frameCosts(context, s, o);
     }
     if (want('5')) {
