@@ -9,4 +9,4 @@ add_test(NAME InstalledPackage.ConsumerBuildsAndRuns
     -DGENERATOR=${CMAKE_GENERATOR}
     -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/consumer_check.cmake)
 set_tests_properties(InstalledPackage.ConsumerBuildsAndRuns PROPERTIES
-  TIMEOUT 600 PASS_REGULAR_EXPRESSION "consumer: cube faces=6 closed=1")
+  TIMEOUT 600 PASS_REGULAR_EXPRESSION "consumer: cube patches=96 shift=10.000000")

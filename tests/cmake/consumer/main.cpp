@@ -1,16 +1,19 @@
-// A program outside the osd_cull tree, built against the installed package.
-#include <osd_cull/patch/refiner.h>
+// A program outside the osd_cull tree, built against the installed package: it extracts
+// the patches of a cube cage and moves the cage through the cage → control-point matrix.
+#include <osd_cull/patch/extract_patches.h>
+#include <osd_cull/scene/procedural.h>
 
 #include <cstdio>
+#include <vector>
 
 int main() {
-  osd_cull::CageMesh cube;
-  cube.source = "consumer:cube";
-  cube.positions = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                    {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  cube.faceSizes = {4, 4, 4, 4, 4, 4};
-  cube.faceVertices = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
-  const auto summary = osd_cull::summarize(*osd_cull::makeTopologyRefiner(cube));
-  std::printf("consumer: cube faces=%d closed=%d\n", summary.faces, summary.closed ? 1 : 0);
-  return summary.closed ? 0 : 1;
+  const osd_cull::CageMesh cube = osd_cull::scene::cube();
+  const osd_cull::PatchExtraction ex = osd_cull::extractPatches(cube);
+  std::vector<glm::dvec3> moved = cube.positions;
+  for (auto& p : moved) p += glm::dvec3(10.0, 0.0, 0.0);
+  std::vector<glm::dvec3> points(ex.patches.points.size());
+  ex.matrix.update(moved, points);
+  const double shift = points[0].x - ex.patches.points[0].x;  // affine: every point moves by 10
+  std::printf("consumer: cube patches=%u shift=%.6f\n", ex.patches.patchCount(), shift);
+  return ex.patches.patchCount() > 0 && shift > 9.999999 && shift < 10.000001 ? 0 : 1;
 }
