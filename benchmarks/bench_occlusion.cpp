@@ -9,7 +9,7 @@
 //  4. a long sequence with fast rotation: pixels that differ from the unculled image;
 //  5. the first frame under each first-frame policy (all, half, none visible before).
 //
-//   bench-occlusion [--width 1024] [--height 768] [--views 1000] [--rotation-frames 60]
+//   bench-occlusion [--width 1024] [--height 768] [--views 1000] [--orbit-degrees 360]
 //                   [--sequence 300] [--repeats 3] [--only 12345]
 //                   [--scenes default,bigguy0,bigguy1,bigguy2] [--device X]
 #include "adapters/load_mesh.h"
@@ -35,7 +35,8 @@ namespace {
 using namespace osd_cull;
 
 struct Options {
-  uint32_t width = 1024, height = 768, views = 1000, rotationFrames = 60, sequence = 300;
+  uint32_t width = 1024, height = 768, views = 1000, sequence = 300;
+  double orbitDegrees = 360.0;
   uint32_t repeats = 3;
   std::string only = "12345";
   std::string scenes = "default,bigguy0,bigguy1,bigguy2";
@@ -57,8 +58,8 @@ Options parse(int argc, char** argv) {
       o.height = number();
     else if (a == "--views")
       o.views = std::max(1u, number());
-    else if (a == "--rotation-frames")
-      o.rotationFrames = std::max(2u, number());
+    else if (a == "--orbit-degrees")
+      o.orbitDegrees = std::max(10.0, std::stod(next()));
     else if (a == "--sequence")
       o.sequence = std::max(1u, number());
     else if (a == "--repeats")
@@ -156,8 +157,10 @@ void cullRates(vk::Context& context, const Scene& scene, const Options& o) {
   std::fflush(stdout);
 }
 
-// 2. Cull rate while the camera orbits the object at `speed` degrees per frame; frame 0
-// (everything visible before) is left out of the average.
+// 2. Cull rate while the camera orbits the object at `speed` degrees per frame, over one
+// orbit of `--orbit-degrees` (every speed sees the same views). Frame 0 (everything visible
+// before) is left out. Speed 0 is the static camera at the orbit's views every 10 degrees,
+// each settled (everything visible before the frame: the pyramid holds the full depth).
 void rotationRates(vk::Context& context, const Scene& scene, const Options& o) {
   GpuScene g(context, scene);
   frame::RenderTarget target(context, o.width, o.height);
@@ -167,18 +170,32 @@ void rotationRates(vk::Context& context, const Scene& scene, const Options& o) {
   const frame::Camera start =
       frame::frameBounds(g.bounds, scene.viewDirection, scene.up, 40.0, o.width, o.height);
   for (double speed = 0.0; speed <= 10.0; speed += 1.0) {
-    cull.reset(frame::FirstFrame::AllVisible);
-    uint64_t culled = 0, total = 0, pass2 = 0;
-    for (uint32_t f = 0; f < o.rotationFrames; ++f) {
-      const auto cam = frame::orbit(start, g.bounds.center(), scene.up, speed * f);
-      const auto s = cull.render(cam, g.occluders);
-      if (f == 0) continue;
-      culled += s.culledOcclusion;
-      total += s.patchesTotal;
-      pass2 += s.drawnPass2;
+    uint64_t culled = 0, total = 0, pass2 = 0, frames = 0;
+    if (speed == 0.0) {
+      for (double a = 0.0; a < o.orbitDegrees; a += 10.0) {
+        cull.reset(frame::FirstFrame::AllVisible);
+        const auto s =
+            cull.render(frame::orbit(start, g.bounds.center(), scene.up, a), g.occluders);
+        culled += s.culledOcclusion;
+        total += s.patchesTotal;
+        ++frames;
+      }
+    } else {
+      cull.reset(frame::FirstFrame::AllVisible);
+      const auto n = static_cast<uint32_t>(std::lround(o.orbitDegrees / speed));
+      for (uint32_t f = 0; f <= n; ++f) {
+        const auto s =
+            cull.render(frame::orbit(start, g.bounds.center(), scene.up, speed * f), g.occluders);
+        if (f == 0) continue;
+        culled += s.culledOcclusion;
+        total += s.patchesTotal;
+        pass2 += s.drawnPass2;
+        ++frames;
+      }
     }
-    std::printf("| %s | %.0f | %.1f%% | %.1f |\n", scene.name.c_str(), speed,
-                100.0 * culled / total, double(pass2) / (o.rotationFrames - 1));
+    std::printf("| %s | %.0f | %llu | %.1f%% | %.1f |\n", scene.name.c_str(), speed,
+                static_cast<unsigned long long>(frames), 100.0 * culled / total,
+                double(pass2) / double(frames));
     std::fflush(stdout);
   }
 }
@@ -375,9 +392,11 @@ int main(int argc, char** argv) {
       for (const Scene& s : all) cullRates(context, s, o);
     }
     if (want('2')) {
-      std::printf("\n## Cull rate against rotation speed (%u frames)\n\n", o.rotationFrames);
-      std::printf("| scene | degrees / frame | occlusion cull rate | patches drawn in pass 2 |\n");
-      std::printf("|---|---:|---:|---:|\n");
+      std::printf("\n## Cull rate against rotation speed (orbit of %.0f degrees)\n\n",
+                  o.orbitDegrees);
+      std::printf(
+          "| scene | degrees / frame | frames | occlusion cull rate | patches drawn in pass 2 |\n");
+      std::printf("|---|---:|---:|---:|---:|\n");
       for (const Scene& s : all) rotationRates(context, s, o);
     }
     if (want('3')) {
