@@ -18,6 +18,7 @@
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/default_scene.h"
 #include "osd_cull/vk/context.h"
 
 #include <algorithm>
@@ -348,7 +349,7 @@ std::vector<Scene> scenes(const std::string& names) {
   std::string name;
   while (std::getline(list, name, ',')) {
     if (name == "default") {
-      frame::DemoScene demo = frame::defaultDemoScene();
+      scene::Scene demo = scene::defaultScene();
       out.push_back({"default scene", std::move(demo.patches), std::move(demo.occluders), demo.up,
                      demo.viewDirection});
     } else if (name.rfind("bigguy", 0) == 0 && name.size() == 7) {

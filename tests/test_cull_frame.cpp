@@ -7,6 +7,7 @@
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/default_scene.h"
 #include "support/test_data.h"
 #include "support/vk_test_context.h"
 
@@ -31,10 +32,10 @@ class CullFrameTest : public test::VkTest {
   void SetUp() override {
     VkTest::SetUp();
     renderer_ = std::make_unique<frame::Renderer>(context());
-    use(frame::defaultDemoScene());
+    use(scene::defaultScene());
   }
 
-  void use(frame::DemoScene scene) {
+  void use(scene::Scene scene) {
     occluders_.clear();
     occluderMeshes_.clear();
     scene_ = std::move(scene);
@@ -48,7 +49,7 @@ class CullFrameTest : public test::VkTest {
   void useBigGuy(int level) {
     PatchOptions options;
     options.isolationLevel = level;
-    frame::DemoScene s;
+    scene::Scene s;
     s.patches =
         extractPatches(adapters::loadCage(test::dataDir() / "characters" / "bigguy.obj"), options)
             .patches;
@@ -124,7 +125,7 @@ class CullFrameTest : public test::VkTest {
   void expectCulledPatchesInvisible(uint32_t w, uint32_t h, int views, double step,
                                     uint32_t minCulled);
 
-  frame::DemoScene scene_;
+  scene::Scene scene_;
   std::unique_ptr<frame::GpuPatchSet> gpu_;
   std::vector<frame::GpuTriangleMesh> occluderMeshes_;
   std::vector<const frame::GpuTriangleMesh*> occluders_;
@@ -163,13 +164,20 @@ TEST_F(CullFrameTest, NonPowerOfTwoAndTinyImages) {
 }
 
 TEST_F(CullFrameTest, CameraInsideTheScene) {
-  // Between the tori, looking at the wall and the sphere behind it; near plane close.
-  auto inside = [](uint32_t w, uint32_t h) {
-    return frame::Camera::lookAt({0.2, 0.4, 0.1}, {-1.0, 2.5, 0.3}, {0, 0, 1}, 70.0, w, h, 0.01,
+  // Inside the default mesh (a closed object around the origin), near plane close.
+  auto insideObject = [](uint32_t w, uint32_t h) {
+    return frame::Camera::lookAt({0.2, 0.4, 0.1}, {-1.3, 2.8, 0.0}, {0, 0, 1}, 70.0, w, h, 0.01,
+                                 20.0);
+  };
+  // Between the objects, just in front of the wall, the pole sphere behind it.
+  auto betweenObjects = [](uint32_t w, uint32_t h) {
+    return frame::Camera::lookAt({-1.2, 1.1, 0.2}, {-1.3, 2.8, 0.0}, {0, 0, 1}, 90.0, w, h, 0.01,
                                  20.0);
   };
   expectSameImages(160, 120, options(CullDrawMode::Filtered, FirstFrame::AllVisible, false), 3, 0.0,
-                   inside);
+                   insideObject);
+  expectSameImages(160, 120, options(CullDrawMode::Filtered, FirstFrame::NoneVisible, false), 3,
+                   0.0, betweenObjects);
 }
 
 TEST_F(CullFrameTest, OcclusionCulledPatchesHaveNoPixelsInTheOracle) {

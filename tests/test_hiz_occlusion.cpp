@@ -5,6 +5,7 @@
 #include "osd_cull/frame/hiz_pyramid.h"
 #include "osd_cull/frame/occlusion_cull.h"
 #include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/scene/default_scene.h"
 #include "support/vk_test_context.h"
 #include "support/vk_test_images.h"
 
@@ -68,7 +69,7 @@ class HiZOcclusionTest : public test::VkTest {
 };
 
 TEST_F(HiZOcclusionTest, GpuCullsWhatTheReferenceCullsOnTheDemoScene) {
-  const frame::DemoScene scene = frame::defaultDemoScene();
+  const scene::Scene scene = scene::defaultScene();
   const frame::Bounds bounds = frame::boundsOf(scene.patches.points);
   Comparison total;
   int view = 0;

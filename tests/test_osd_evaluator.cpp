@@ -5,6 +5,7 @@
 #include "osd_cull/osd/compute_evaluator.h"
 #include "osd_cull/osd/vertex_buffer.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/procedural.h"
 #include "osd_cull/vk/buffer.h"
 #include "support/vk_test_context.h"
 #include "test_osd_meshes.h"
@@ -127,7 +128,7 @@ TEST_F(VkTest, DescriptorOffsetsAndStridesPlaceEveryElement) {
 
 TEST_F(VkTest, LimitStencilsGivePositionsAndDerivatives) {
   DeviceContext device(context());
-  auto refiner = makeTopologyRefiner(test::creasedCube());
+  auto refiner = makeTopologyRefiner(scene::creasedCube());
   refiner->RefineAdaptive(Far::TopologyRefiner::AdaptiveOptions(3));
   // Five locations on each of the six faces.
   const std::vector<float> s = {0.1f, 0.5f, 0.9f, 0.0f, 0.33f};
@@ -148,7 +149,7 @@ TEST_F(VkTest, LimitStencilsGivePositionsAndDerivatives) {
   ASSERT_TRUE(table->HasDerivatives());
   ASSERT_LE(table->GetNumSourceVertices(), 8);
 
-  const std::vector<float> cage = test::packedXyz(test::creasedCube());
+  const std::vector<float> cage = test::packedXyz(scene::creasedCube());
   VkVertexBuffer cageBuffer(device, 3, 8);
   cageBuffer.UpdateData(cage.data(), 0, 8);
   VkVertexBuffer position(device, 3, 30), du(device, 3, 30), dv(device, 3, 30);

@@ -4,6 +4,7 @@
 // table buffers against Far's arrays, word for word.
 #include "osd_cull/osd/mesh.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/procedural.h"
 #include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
 #include "test_osd_meshes.h"
@@ -103,7 +104,7 @@ void checkMeshAgainstCpu(vk::Context& context, const CageMesh& cage) {
 }
 
 TEST_F(VkTest, OsdMeshRefinesACreasedCubeLikeTheCpu) {
-  checkMeshAgainstCpu(context(), test::creasedCube());
+  checkMeshAgainstCpu(context(), scene::creasedCube());
 }
 
 TEST_F(VkTest, OsdMeshRefinesAnOpenCageWithPolesLikeTheCpu) {
@@ -113,9 +114,9 @@ TEST_F(VkTest, OsdMeshRefinesAnOpenCageWithPolesLikeTheCpu) {
 TEST_F(VkTest, OsdMeshKeepsOneEvaluatorPerBufferLayout) {
   DeviceContext device(context());
   VkEvaluatorCache evaluators;
-  VkMesh mesh(makeTopologyRefiner(test::creasedCube()).release(), 3, 0, 2, adaptiveGregoryBits(),
+  VkMesh mesh(makeTopologyRefiner(scene::creasedCube()).release(), 3, 0, 2, adaptiveGregoryBits(),
               &evaluators, &device);
-  const std::vector<float> xyz = test::packedXyz(test::creasedCube());
+  const std::vector<float> xyz = test::packedXyz(scene::creasedCube());
   mesh.UpdateVertexBuffer(xyz.data(), 0, 8);
   mesh.Refine();
   mesh.Refine();

@@ -1,5 +1,6 @@
 #pragma once
-// Cages built in code for the Osd backend tests, and small comparison helpers.
+// An open cage built in code for the Osd backend tests (osd_cull/scene/procedural.h has
+// the closed ones), and small comparison helpers.
 #include "osd_cull/patch/cage_mesh.h"
 
 #include <glm/common.hpp>
@@ -11,19 +12,6 @@
 #include <vector>
 
 namespace osd_cull::test {
-
-/// A cube (8 valence-3 vertices: Gregory end caps around each) with a crease and a corner.
-inline CageMesh creasedCube() {
-  CageMesh m;
-  m.source = "built-in:creased-cube";
-  m.positions = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                 {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  m.faceSizes = {4, 4, 4, 4, 4, 4};
-  m.faceVertices = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
-  m.creases = {{0, 1, 2.0f}};
-  m.corners = {{6, 3.0f}};
-  return m;
-}
 
 /// A ring of quads around a valence-6 pole with a triangle and an open boundary: regular,
 /// boundary and extraordinary patches in one cage.

@@ -113,7 +113,7 @@ void checkFrames(vk::Context& context, const CageMesh& cage, const Csr& matrix, 
 }
 
 TEST_F(VkTest, PointUpdateFollowsAMovingCreasedCube) {
-  const CageMesh cage = test::creasedCube();
+  const CageMesh cage = scene::creasedCube();
   checkFrames(context(), cage, refinedPointMatrix(cage), 3);
 }
 
@@ -168,7 +168,7 @@ TEST_F(VkTest, PatchPointsOfBigGuyFollowTheCage) {
 
 TEST_F(VkTest, PointUpdateRejectsMismatchedInput) {
   DeviceContext device(context());
-  const Csr matrix = refinedPointMatrix(test::creasedCube());
+  const Csr matrix = refinedPointMatrix(scene::creasedCube());
   // The matrix reads vertex 7: a cage of 7 vertices is too small.
   EXPECT_THROW(
       GpuPointUpdate(device, 7, matrix.sizes, matrix.offsets, matrix.indices, matrix.weights),

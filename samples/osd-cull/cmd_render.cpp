@@ -2,8 +2,8 @@
 // writes PNG images and prints per-frame statistics.
 #include "command.h"
 #include "cull_report.h"
+#include "mesh_source.h"
 
-#include "adapters/load_mesh.h"
 #include "adapters/load_occluder.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
@@ -11,6 +11,7 @@
 #include "osd_cull/frame/png_io.h"
 #include "osd_cull/frame/renderer.h"
 #include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/default_scene.h"
 #include "osd_cull/vk/context.h"
 
 #include <cmath>
@@ -27,15 +28,18 @@ namespace fs = std::filesystem;
 
 const char* kUsage = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
 
-Draws MESH (a cage: OBJ with OpenSubdiv tags, OFF, PLY, STL; or Bezier patches: BPT) or,
-without MESH, a built-in scene of subdivision tori, a patch sphere and triangle walls,
-with the Vulkan tessellation pipeline and writes the image as PNG.
+Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
+triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
+MESH: OBJ (with OpenSubdiv tags), OFF, PLY, STL (Catmull-Clark cages, refined adaptively
+into Bézier and Gregory patches) or BPT (Bézier patches, e.g. the Utah teapot).
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
 and fragment-shader invocations (pipeline statistics).
 
 Options:
+  --level N              adaptive isolation level, 0..10 (default 2)
+  --endcap gregory|bspline  end caps of irregular patches (default gregory)
+  --scheme catmark|loop|bilinear  override the scheme (default: file-name prefix)
   --out FILE.png         image of the last frame (required)
-  --level N              isolation level of the patches of MESH (default 2)
   --occluders F[,F...]   OBJ files drawn as triangle occluders (in the first pass)
   --width W --height H   image size (default 640 x 480)
   --tess N               uniform tessellation, N segments per patch edge (default 4)
@@ -70,35 +74,14 @@ Culling (Niessner & Loop, two passes with temporal visibility per patch):
   --validate             enable the Vulkan validation layers
 )";
 
-struct Scene {
-  PatchSet patches;
-  std::vector<frame::TriangleMesh> occluders;
-  glm::dvec3 up{0, 0, 1};
-  glm::dvec3 viewDirection{0.55, -1.0, 0.45};
-};
+using Scene = scene::Scene;
 
-Scene loadScene(const std::vector<std::string>& positional, int level) {
-  if (positional.size() > 1) throw Error("render takes at most one MESH argument");
-  if (positional.empty()) {
-    frame::DemoScene demo = frame::defaultDemoScene();
-    return {std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection};
-  }
-  const fs::path path = positional[0];
-  if (!fs::exists(path)) throw Error(path.string() + ": no such file");
-  Scene scene;
-  // Meshes are y-up by convention (OBJ); look from the front, a little from above.
-  scene.up = {0, 1, 0};
-  scene.viewDirection = {0.3, 0.25, 1.0};
-  if (adapters::isBezierPatchFile(path)) {
-    scene.patches = adapters::loadBezierPatches(path);
-    scene.up = {0, 0, 1};  // the teapot is z-up
-    scene.viewDirection = {0.55, -1.0, 0.45};
-  } else {
-    PatchOptions options;
-    options.isolationLevel = level;
-    scene.patches = extractPatches(adapters::loadCage(path), options).patches;
-  }
-  return scene;
+Scene loadScene(const MeshSource& source, const PatchOptions& options) {
+  if (!source.path) return scene::defaultScene(options);
+  LoadedMesh mesh = loadMeshSource(source);
+  if (mesh.bezier) return {std::move(*mesh.bezier), {}, {0, 0, 1}, {0.6, -1.0, 0.5}};  // BPT: z up
+  // OBJ and the other cage formats are mostly y up.
+  return {extractPatches(*mesh.cage, options).patches, {}, {0, 1, 0}, {0.45, 0.35, 1.0}};
 }
 
 std::vector<double> parseNumbers(const std::string& text, size_t count, const std::string& option) {
@@ -144,10 +127,21 @@ int run(Args& args) {
   const bool hizTight = args.flag("hiz-tight");
   const std::string hizReduction = args.value("hiz-reduction").value_or("auto");
   const auto statsPath = args.value("stats");
-  const int level = static_cast<int>(args.integer("level", 0, 10).value_or(2));
   const auto occluderFiles = args.value("occluders");
   const bool statusView = args.flag("status-view");
   const auto pyramidDir = args.value("pyramid-dir");
+  PatchOptions patchOptions;
+  if (auto level = args.integer("level", 0, 10))
+    patchOptions.isolationLevel = static_cast<int>(*level);
+  if (auto endcap = args.value("endcap")) {
+    if (*endcap == "gregory")
+      patchOptions.endCaps = EndCap::GregoryBasis;
+    else if (*endcap == "bspline")
+      patchOptions.endCaps = EndCap::BSplineBasis;
+    else
+      throw Error("option --endcap: '" + *endcap + "' is not one of gregory, bspline");
+  }
+  const MeshSource source = meshSourceFromArgs(args);
   args.finish();
   if (!out) throw Error("--out FILE.png is required");
   if (tess && adaptive) throw Error("--tess and --adaptive exclude each other");
@@ -190,7 +184,7 @@ int run(Args& args) {
         "--aggressive, --draw-mode, --first-frame, --hiz-*, --status-view and "
         "--pyramid-dir need --cull occlusion");
 
-  Scene scene = loadScene(args.positional(), level);
+  Scene scene = loadScene(source, patchOptions);
   if (occluderFiles) {
     std::stringstream list(*occluderFiles);
     std::string file;
