@@ -226,6 +226,26 @@ FrameStats Renderer::render(RenderTarget& target, const Camera& camera,
                             std::span<const PatchDraw> patches,
                             std::span<const GpuTriangleMesh* const> occluders,
                             const RenderOptions& options) {
+  uint32_t patchesDrawn = 0;
+  FrameStats stats = renderWith(
+      target, camera, occluders, options, [](VkCommandBuffer) {},
+      [&](VkCommandBuffer cmd) {
+        uint32_t draws = 0;
+        for (const PatchDraw& d : patches) {
+          draws += recordPatches(cmd, camera, d, options);
+          patchesDrawn += d.gpu->patchCount();
+        }
+        return draws;
+      });
+  stats.patchesDrawn = patchesDrawn;
+  return stats;
+}
+
+FrameStats Renderer::renderWith(RenderTarget& target, const Camera& camera,
+                                std::span<const GpuTriangleMesh* const> occluders,
+                                const RenderOptions& options,
+                                const std::function<void(VkCommandBuffer)>& beforePass,
+                                const std::function<uint32_t(VkCommandBuffer)>& recordPatchDraws) {
   checkOptions(context_, camera, target, options);
   FrameStats stats;
   const auto start = std::chrono::steady_clock::now();
@@ -235,13 +255,11 @@ FrameStats Renderer::render(RenderTarget& target, const Camera& camera,
       timestamps_->reset(cmd);
       timestamps_->write(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
     }
+    beforePass(cmd);
     beginPass(cmd, target, options);
     statistics_.begin(cmd);
     recordOccluders(cmd, camera, occluders);
-    for (const PatchDraw& d : patches) {
-      stats.drawCalls += recordPatches(cmd, camera, d, options);
-      stats.patchesDrawn += d.gpu->patchCount();
-    }
+    stats.drawCalls += recordPatchDraws(cmd);
     statistics_.end(cmd);
     endPass(cmd);
     if (timestamps_) timestamps_->write(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);

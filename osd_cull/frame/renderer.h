@@ -13,6 +13,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
@@ -73,6 +74,15 @@ class Renderer {
   FrameStats render(RenderTarget& target, const Camera& camera, std::span<const PatchDraw> patches,
                     std::span<const GpuTriangleMesh* const> occluders,
                     const RenderOptions& options);
+  /// \brief Like render(), with patch draws recorded by the caller: `beforePass` is
+  /// recorded before the render pass begins (e.g. a cull dispatch), `recordPatchDraws`
+  /// inside it after the occluders, returning its number of draw calls.
+  /// FrameStats::patchesDrawn is left 0 for the caller to fill in.
+  FrameStats renderWith(RenderTarget& target, const Camera& camera,
+                        std::span<const GpuTriangleMesh* const> occluders,
+                        const RenderOptions& options,
+                        const std::function<void(VkCommandBuffer)>& beforePass,
+                        const std::function<uint32_t(VkCommandBuffer)>& recordPatchDraws);
   /// \brief One patch set, no occluders.
   FrameStats render(RenderTarget& target, const Camera& camera, const GpuPatchSet& patches,
                     const PatchSet* host, const RenderOptions& options);

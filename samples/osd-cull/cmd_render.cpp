@@ -1,23 +1,24 @@
 // osd-cull render: draws a mesh (or the built-in scene) with the tessellation pipeline,
 // writes PNG images and prints per-frame statistics.
 #include "command.h"
-#include "cull_report.h"
+#include "cull_options.h"
+#include "mesh_patches.h"
 #include "mesh_source.h"
 
-#include "adapters/load_occluder.h"
+#include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/default_scene.h"
+
+#include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
-#include "osd_cull/frame/cull_frame.h"
+#include "osd_cull/frame/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/png_io.h"
 #include "osd_cull/frame/renderer.h"
-#include "osd_cull/patch/extract_patches.h"
-#include "osd_cull/scene/default_scene.h"
 #include "osd_cull/vk/context.h"
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -26,21 +27,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kUsage = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
+const char* kUsageHead = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
 
 Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
 triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
 MESH: OBJ (with OpenSubdiv tags), OFF, PLY, STL (Catmull-Clark cages, refined adaptively
 into Bézier and Gregory patches) or BPT (Bézier patches, e.g. the Utah teapot).
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
-and fragment-shader invocations (pipeline statistics).
+and fragment-shader invocations (pipeline statistics), and with --cull how many patches
+each test culled.
 
 Options:
   --level N              adaptive isolation level, 0..10 (default 2)
   --endcap gregory|bspline  end caps of irregular patches (default gregory)
   --scheme catmark|loop|bilinear  override the scheme (default: file-name prefix)
   --out FILE.png         image of the last frame (required)
-  --occluders F[,F...]   OBJ files drawn as triangle occluders (in the first pass)
   --width W --height H   image size (default 640 x 480)
   --tess N               uniform tessellation, N segments per patch edge (default 4)
   --adaptive PIXELS      screen-space adaptive tessellation, PIXELS per segment
@@ -52,36 +53,46 @@ Options:
   --ids                  also write the item buffer (patch ID + 1 per pixel, 24-bit RGB)
                          as FILE_ids.png and the depth as FILE_depth.png
   --debug-colors         color each patch by its index
-
-Culling (Niessner & Loop, two passes with temporal visibility per patch):
-  --cull MODE            none (default) or occlusion: draw the patches visible last frame,
-                         build a Hi-Z pyramid, test every patch, draw the newly visible
-  --aggressive           skip the second pass (newly visible patches appear a frame late)
-  --draw-mode M          filtered (compact indirect draws, default) or tf0 (every patch,
-                         tessellation factor 0 for the ones not drawn)
-  --first-frame P        status before the first frame: all (default), half, none
-  --hiz-full             top pyramid level at full resolution (default: half)
-  --hiz-tight            look boxes up one level finer when 2x2 texels still cover them
-  --hiz-reduction R      auto (default), sampler (min/max sampler) or fourtap
-  --stats FILE.json      write the per-frame figures as JSON
-  --status-view          also write FILE_status.png (patches colored by status: green
-                         visible, yellow newly visible, blue frustum-, purple back-patch-,
-                         red occlusion-culled) from the camera and FILE_status_side.png from
-                         90 degrees around the up axis
-  --pyramid-dir DIR      write the Hi-Z levels of the last frame as DIR/hiz_level_NN.png
   --device X             Vulkan device: index or name substring (default $OSD_CULL_DEVICE,
                          else lavapipe)
   --validate             enable the Vulkan validation layers
+  --level N              adaptive isolation level of MESH, 0..10 (default 2)
+  --scheme S             override the subdivision scheme of MESH
 )";
 
-using Scene = scene::Scene;
+std::string usage() { return std::string(kUsageHead) + kCullOptionsUsage; }
+
+struct Scene {
+  PatchSet patches;
+  std::vector<frame::TriangleMesh> occluders;
+  glm::dvec3 up{0, 0, 1};
+  glm::dvec3 viewDirection{0.55, -1.0, 0.45};
+  bound::BackPatchValidity backPatch;
+};
 
 Scene loadScene(const MeshSource& source, const PatchOptions& options) {
-  if (!source.path) return scene::defaultScene(options);
-  LoadedMesh mesh = loadMeshSource(source);
-  if (mesh.bezier) return {std::move(*mesh.bezier), {}, {0, 0, 1}, {0.6, -1.0, 0.5}};  // BPT: z up
-  // OBJ and the other cage formats are mostly y up.
-  return {extractPatches(*mesh.cage, options).patches, {}, {0, 1, 0}, {0.45, 0.35, 1.0}};
+  if (!source.path) {
+    scene::Scene demo = scene::defaultScene(options);
+    Scene s{std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection, {}};
+    // Every object is a closed manifold cage with outward normals (scene/procedural.h
+    // tests this), and the walls are occluders, not patches.
+    s.backPatch = {true, "built-in scene: closed cages, normals outward by construction"};
+    return s;
+  }
+  if (!fs::exists(*source.path)) throw Error(*source.path + ": no such file");
+  const LoadedMesh loaded = loadMeshSource(source);
+  MeshPatches mesh = meshPatches(loaded, options);
+  Scene scene;
+  scene.patches = std::move(mesh.patches);
+  scene.backPatch = mesh.backPatch;
+  if (loaded.bezier) {  // BPT files (the teapot) are z up
+    scene.up = {0, 0, 1};
+    scene.viewDirection = {0.6, -1.0, 0.5};
+  } else {  // OBJ and the other cage formats are mostly y up
+    scene.up = {0, 1, 0};
+    scene.viewDirection = {0.45, 0.35, 1.0};
+  }
+  return scene;
 }
 
 std::vector<double> parseNumbers(const std::string& text, size_t count, const std::string& option) {
@@ -119,17 +130,6 @@ int run(Args& args) {
   const bool debugColors = args.flag("debug-colors");
   const bool validate = args.flag("validate");
   const auto device = args.value("device");
-  const std::string cullMode = args.value("cull").value_or("none");
-  const bool aggressive = args.flag("aggressive");
-  const std::string drawMode = args.value("draw-mode").value_or("filtered");
-  const std::string firstFrame = args.value("first-frame").value_or("all");
-  const bool hizFull = args.flag("hiz-full");
-  const bool hizTight = args.flag("hiz-tight");
-  const std::string hizReduction = args.value("hiz-reduction").value_or("auto");
-  const auto statsPath = args.value("stats");
-  const auto occluderFiles = args.value("occluders");
-  const bool statusView = args.flag("status-view");
-  const auto pyramidDir = args.value("pyramid-dir");
   PatchOptions patchOptions;
   if (auto level = args.integer("level", 0, 10))
     patchOptions.isolationLevel = static_cast<int>(*level);
@@ -141,56 +141,13 @@ int run(Args& args) {
     else
       throw Error("option --endcap: '" + *endcap + "' is not one of gregory, bspline");
   }
+  const CullChoice cull = cullChoiceFromArgs(args);
   const MeshSource source = meshSourceFromArgs(args);
   args.finish();
   if (!out) throw Error("--out FILE.png is required");
   if (tess && adaptive) throw Error("--tess and --adaptive exclude each other");
-  if (cullMode == "frustum" || cullMode == "backpatch" || cullMode == "all")
-    throw Error("--cull " + cullMode +
-                ": the frustum and back-patch stages come with the cull kernel, which is not "
-                "in this build; --cull occlusion runs the Hi-Z stage alone");
-  if (cullMode != "none" && cullMode != "occlusion")
-    throw Error("--cull: '" + cullMode +
-                "' is not one of none, frustum, backpatch, occlusion, all");
-  const bool culling = cullMode != "none";
-  frame::CullFrameOptions cullOptions;
-  cullOptions.aggressive = aggressive;
-  if (drawMode != "filtered" && drawMode != "tf0")
-    throw Error("--draw-mode: '" + drawMode + "' is not filtered or tf0");
-  cullOptions.drawMode =
-      drawMode == "tf0" ? frame::CullDrawMode::TessFactorZero : frame::CullDrawMode::Filtered;
-  if (firstFrame == "all")
-    cullOptions.firstFrame = frame::FirstFrame::AllVisible;
-  else if (firstFrame == "half")
-    cullOptions.firstFrame = frame::FirstFrame::HalfVisible;
-  else if (firstFrame == "none")
-    cullOptions.firstFrame = frame::FirstFrame::NoneVisible;
-  else
-    throw Error("--first-frame: '" + firstFrame + "' is not all, half or none");
-  cullOptions.hiz.fullResolution = hizFull;
-  cullOptions.hiz.lookup = hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
-  if (hizReduction == "auto")
-    cullOptions.hiz.reduction = frame::HiZReduction::Auto;
-  else if (hizReduction == "sampler")
-    cullOptions.hiz.reduction = frame::HiZReduction::Sampler;
-  else if (hizReduction == "fourtap")
-    cullOptions.hiz.reduction = frame::HiZReduction::FourTap;
-  else
-    throw Error("--hiz-reduction: '" + hizReduction + "' is not auto, sampler or fourtap");
-  const bool cullOnly = aggressive || hizFull || hizTight || drawMode != "filtered" ||
-                        firstFrame != "all" || hizReduction != "auto" || statusView || pyramidDir;
-  if (!culling && cullOnly)
-    throw Error(
-        "--aggressive, --draw-mode, --first-frame, --hiz-*, --status-view and "
-        "--pyramid-dir need --cull occlusion");
 
-  Scene scene = loadScene(source, patchOptions);
-  if (occluderFiles) {
-    std::stringstream list(*occluderFiles);
-    std::string file;
-    while (std::getline(list, file, ','))
-      if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
-  }
+  const Scene scene = loadScene(source, patchOptions);
   vk::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
@@ -238,39 +195,35 @@ int run(Args& args) {
 
   frame::RenderTarget target(context, width, height);
   frame::Renderer renderer(context);
+  std::unique_ptr<frame::CullPass> pass;
+  if (cull.enabled()) {
+    pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches,
+                                             cullSettings(cull, scene.backPatch));
+    std::cout << "cull: " << cull.mode;
+    for (const frame::CullMethod* m : pass->stages())
+      std::cout << (m == pass->stages().front() ? " (" : ", ") << m->name;
+    std::cout << (pass->stages().empty() ? "" : ")") << "\n";
+    if (!pass->backPatchNote().empty()) std::cout << "note: " << pass->backPatchNote() << "\n";
+  }
   if (outDir) fs::create_directories(*outDir);
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
-  cullOptions.render = options;
-  const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
-  std::unique_ptr<frame::CullFrame> cull;
-  if (culling) {
-    cull = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, cullOptions);
-    std::cout << "culling: " << cullMode << ", " << (aggressive ? "aggressive" : "two passes")
-              << ", draw mode " << toString(cullOptions.drawMode) << ", first frame "
-              << toString(cullOptions.firstFrame) << "; Hi-Z "
-              << cull->pyramid().layout().levelCount << " levels from "
-              << cull->pyramid().layout().levelWidth(0) << "x"
-              << cull->pyramid().layout().levelHeight(0) << ", "
-              << (cull->pyramid().usesSampler() ? "min/max sampler" : "4-tap") << " reduction, "
-              << (hizTight ? "tight" : "paper") << " lookup\n";
-  }
-  nlohmann::json jsonFrames = nlohmann::json::array();
-  frame::Camera view = camera;
   for (uint32_t f = 0; f < frames; ++f) {
-    view = frame::orbit(camera, pivot, up, orbitDegrees * f);
-    if (cull) {
-      const frame::CullFrameStats stats = cull->render(view, occluders);
-      std::printf("%s\n", cullFrameLine(f, stats).c_str());
-      jsonFrames.push_back(cullFrameJson(f, stats));
-    } else {
-      const frame::FrameStats stats = renderer.render(target, view, {&draw, 1}, occluders, options);
-      std::printf(
-          "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
-          "fragment invocations %llu\n",
-          f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
-          static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
-          static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
-      jsonFrames.push_back(plainFrameJson(f, stats));
+    const frame::Camera view = frame::orbit(camera, pivot, up, orbitDegrees * f);
+    const frame::FrameStats stats =
+        pass ? frame::renderCulled(renderer, target, view, *pass, occluders, options)
+             : renderer.render(target, view, {&draw, 1}, occluders, options);
+    std::printf(
+        "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
+        "fragment invocations %llu\n",
+        f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
+        static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
+        static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+    if (pass) {
+      uint32_t byStage[4] = {0, 0, 0, 0};
+      for (uint32_t code : pass->results()) ++byStage[bound::CullCode{code}.stage() & 3u];
+      std::printf("  culled %u of %u: frustum %u, back-patch %u\n",
+                  scene.patches.patchCount() - stats.patchesDrawn, scene.patches.patchCount(),
+                  byStage[1], byStage[2]);
     }
     const bool last = f + 1 == frames;
     if (!outDir && !last) continue;
@@ -293,39 +246,6 @@ int run(Args& args) {
       }
     }
   }
-  if (statsPath) {
-    nlohmann::json doc{{"device", context.info().name},
-                       {"scene", scene.patches.source},
-                       {"width", width},
-                       {"height", height},
-                       {"cull", cullMode},
-                       {"frames", jsonFrames}};
-    if (cull)
-      doc["options"] = {{"aggressive", aggressive},
-                        {"drawMode", toString(cullOptions.drawMode)},
-                        {"firstFrame", toString(cullOptions.firstFrame)},
-                        {"hizFullResolution", hizFull},
-                        {"hizLookup", hizTight ? "tight" : "paper"},
-                        {"hizSampler", cull->pyramid().usesSampler()}};
-    std::ofstream file(*statsPath);
-    if (!(file << doc.dump(2) << "\n")) throw Error(*statsPath + ": cannot write");
-    std::cout << "wrote " << *statsPath << "\n";
-  }
-  if (cull && statusView) {
-    frame::RenderTarget viewTarget(context, width, height);
-    const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
-    for (const auto& [camera2, suffix] :
-         {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
-      cull->renderStatusView(viewTarget, camera2, occluders);
-      frame::writePng(sibling(*out, suffix),
-                      frame::colorImage(width, height, viewTarget.readColor(context)));
-      std::cout << "wrote " << sibling(*out, suffix).string() << "\n";
-    }
-  }
-  if (cull && pyramidDir) {
-    const uint32_t n = writePyramidLevels(*pyramidDir, cull->pyramid(), context);
-    std::cout << "wrote " << n << " pyramid levels to " << *pyramidDir << "\n";
-  }
   if (const vk::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
     return 1;
@@ -335,9 +255,9 @@ int run(Args& args) {
 
 const Registration kRegistration(
     {"render",
-     "draw a mesh or the built-in scene to PNG, print frame statistics",
-     kUsage,
-     {"ids", "debug-colors", "validate", "aggressive", "hiz-full", "hiz-tight", "status-view"},
+     "draw a mesh or the built-in scene to PNG (optionally culled), print frame statistics",
+     usage(),
+     {"ids", "debug-colors", "validate"},
      run});
 
 }  // namespace

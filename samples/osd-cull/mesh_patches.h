@@ -1,0 +1,28 @@
+#pragma once
+/// \file mesh_patches.h
+/// \brief A loaded mesh turned into patches, with the per-mesh back-patch decision, as the
+/// culling subcommands (render, verify) need it.
+
+#include "mesh_source.h"
+
+#include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/patch/adaptive_patches.h"
+#include "osd_cull/patch/patch_set.h"
+
+#include <string>
+
+namespace osd_cull::cli {
+
+/// \brief Patches of a mesh and whether back-patch culling may be used on it.
+struct MeshPatches {
+  std::string name;
+  PatchSet patches;
+  bound::BackPatchValidity backPatch;
+};
+
+/// \brief Extracts the patches of a cage (bound::backPatchValidity from its topology and
+/// signed volume) or takes a Bézier patch file as is (back-patch culling off: a patch file
+/// carries no topology to show that it is closed).
+MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options);
+
+}  // namespace osd_cull::cli

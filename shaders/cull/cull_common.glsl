@@ -1,0 +1,56 @@
+// Resources and helpers shared by every stage of the cull kernel (cull_main.glsl).
+// Mirrors osd_cull/bound/clip_space.h in fp32; see docs/algorithms/cull-kernel.md.
+#ifndef OSD_CULL_CULL_COMMON_GLSL
+#define OSD_CULL_CULL_COMMON_GLSL
+#include <shared/cull_layout.h>
+
+layout(push_constant) uniform Push { CullConstants pc; };
+
+layout(std430, set = 0, binding = kCullBindingPoints) readonly buffer Points { float points[]; };
+layout(std430, set = 0, binding = kCullBindingCones) readonly buffer Cones { vec4 cones[]; };
+layout(std430, set = 0, binding = kCullBindingResults) writeonly buffer Results { uint results[]; };
+layout(std430, set = 0, binding = kCullBindingDrawList) writeonly buffer DrawList { uint drawList[]; };
+layout(std430, set = 0, binding = kCullBindingCounters) buffer Counters { uint counters[]; };
+layout(std430, set = 0, binding = kCullBindingTable) readonly buffer Table { uvec2 table[]; };
+
+// Finite test on the bits, so that no fast-math assumption can fold it away.
+bool isFiniteF(float x) { return (floatBitsToUint(x) & 0x7F800000u) != 0x7F800000u; }
+bool isFiniteF(vec3 v) { return isFiniteF(v.x) && isFiniteF(v.y) && isFiniteF(v.z); }
+bool isFiniteF(vec4 v) { return isFiniteF(v.xyz) && isFiniteF(v.w); }
+
+bool isBezier(uint patchIndex) { return patchIndex < pc.bezierCount; }
+uint pointCount(uint patchIndex) { return isBezier(patchIndex) ? 16u : 20u; }
+
+// Index of the first control point of a patch (PatchSet layout: Bezier first, then Gregory).
+uint firstPoint(uint patchIndex) {
+  return isBezier(patchIndex) ? patchIndex * 16u
+                              : pc.bezierCount * 16u + (patchIndex - pc.bezierCount) * 20u;
+}
+
+vec3 controlPoint(uint index) {
+  uint base = pc.pointOffset + index * pc.pointStride;
+  return vec3(points[base], points[base + 1u], points[base + 2u]);
+}
+
+// c = viewProj * (p, 1) and m = |viewProj| * (|p|, 1): m bounds every product summed in c
+// (bound::clipPoint, bound::absClipPoint).
+vec4 clipPoint(vec3 p) { return pc.viewProjection * vec4(p, 1.0); }
+vec4 absClipPoint(vec3 p) {
+  mat4 a = mat4(abs(pc.viewProjection[0]), abs(pc.viewProjection[1]),
+                abs(pc.viewProjection[2]), abs(pc.viewProjection[3]));
+  return a * vec4(abs(p), 1.0);
+}
+
+bool matrixIsFinite() {
+  return isFiniteF(pc.viewProjection[0]) && isFiniteF(pc.viewProjection[1]) &&
+         isFiniteF(pc.viewProjection[2]) && isFiniteF(pc.viewProjection[3]);
+}
+
+// Result-code fields (shared/cull_layout.h).
+uint resultStage(uint r) { return r & 0xFu; }
+uint withStage(uint r, uint stage) { return (r & ~0xFu) | stage; }
+uint withField(uint r, uint shift, uint width, uint value) {
+  uint mask = ((1u << width) - 1u) << shift;
+  return (r & ~mask) | ((value << shift) & mask);
+}
+#endif

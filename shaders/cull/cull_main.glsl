@@ -1,0 +1,80 @@
+// The cull kernel: one dispatch over all patches of a GpuPatchSet runs the enabled stages
+// cheapest first (frustum, back-patch, occlusion), writes each patch's result code and
+// appends survivors to the compact draw list (Bezier from slot 0, Gregory from slot
+// bezierCount). The host composes the source (frame/cull_pass.cpp):
+//   CULL_LANES        threads per patch (1, or 16 for tangent-plane-16)
+//   CULL_FRUSTUM      1: run the frustum test (frustum.glsl)
+//   CULL_BACK_PATCH   1: a back-patch file defines
+//                     uint backPatchVerdict(uint patchIndex, uint lane, uint slot, bool run)
+//                     returning a bound::BackPatchVerdict (0 = culled) or 0xFF when !run;
+//                     called by every invocation (multi-lane versions use barriers)
+//   CULL_OCCLUSION    1: an occlusion file defines
+//                     uint occlusionVerdict(uint patchIndex, PatchClipBounds bounds)
+//                     returning 0 (culled: occluded) or a non-zero reason to keep; called by
+//                     one thread per patch that survived the earlier stages; its resources
+//                     live in descriptor set 1 and CullConstants.viewport.zw / stage0 / stage1
+// and includes the stage files before this one.
+#include "frustum.glsl"
+
+layout(local_size_x = kCullGroupSize) in;
+
+const uint kLanes = uint(CULL_LANES);
+const uint kPatchesPerGroup = kCullGroupSize / kLanes;
+#if CULL_LANES > 1
+shared uint sResult[kPatchesPerGroup];
+#endif
+
+void main() {
+  const uint lane = gl_LocalInvocationIndex % kLanes;
+  const uint slot = gl_LocalInvocationIndex / kLanes;
+  const uint patchIndex = gl_WorkGroupID.x * kPatchesPerGroup + slot;
+  const bool inRange = patchIndex < pc.patchCount;
+  uint result = kResultInitial;
+  PatchClipBounds bounds;
+  bounds.finite = false;
+  bounds.hasNdcBox = false;
+
+#if CULL_FRUSTUM || CULL_OCCLUSION
+  if (inRange && lane == 0u) bounds = patchClipBounds(patchIndex);
+#endif
+#if CULL_FRUSTUM
+  if (inRange && lane == 0u) {
+    uint f = frustumCode(bounds);
+    result = withField(result, kResultShiftFrustum, 4u, f);
+    if (f < kFrustumInside) result = withStage(result, kStageFrustum);
+  }
+#endif
+
+#if CULL_BACK_PATCH
+#if CULL_LANES > 1
+  if (lane == 0u) sResult[slot] = result;
+  memoryBarrierShared();
+  barrier();
+  result = sResult[slot];
+#endif
+  const bool runBackPatch = inRange && resultStage(result) == kStageNone;
+  uint b = backPatchVerdict(patchIndex, lane, slot, runBackPatch);
+  if (runBackPatch) {
+    result = withField(result, kResultShiftBackPatch, 8u, b);
+    if (b == kVerdictBackFacing) result = withStage(result, kStageBackPatch);
+  }
+#endif
+
+  if (!inRange || lane != 0u) return;
+
+#if CULL_OCCLUSION
+  if (resultStage(result) == kStageNone) {
+    uint o = occlusionVerdict(patchIndex, bounds);
+    result = withField(result, kResultShiftOcclusion, 8u, o);
+    if (o == 0u) result = withStage(result, kStageOcclusion);
+  }
+#endif
+
+  results[patchIndex] = result;
+  if (resultStage(result) != kStageNone) return;
+  if (isBezier(patchIndex)) {
+    drawList[atomicAdd(counters[kCounterSurvivorsBezier], 1u)] = patchIndex;
+  } else {
+    drawList[pc.bezierCount + atomicAdd(counters[kCounterSurvivorsGregory], 1u)] = patchIndex;
+  }
+}

@@ -1,0 +1,115 @@
+// Push constants, bindings and the per-patch result code of the cull pass
+// (shaders/cull/*, osd_cull/frame/cull_pass, osd_cull/bound/cull_reference), shared by C++
+// and GLSL so they cannot drift.
+#ifndef OSD_CULL_SHARED_CULL_LAYOUT_H
+#define OSD_CULL_SHARED_CULL_LAYOUT_H
+#include "glsl_compat.h"
+
+OSD_CULL_SHARED_BEGIN
+
+// Descriptor bindings of the cull set (set 0). Set 1 belongs to the occlusion stage, when one
+// is enabled (CullMethod::stageBindings).
+OSD_CULL_CONST uint kCullBindingPoints = 0u;    // float points[]: GpuPatchSet::points()
+OSD_CULL_CONST uint kCullBindingCones = 1u;     // vec4 cones[]: kConeVec4s per patch (PatchCone)
+OSD_CULL_CONST uint kCullBindingResults = 2u;   // uint results[]: one result code per patch
+OSD_CULL_CONST uint kCullBindingDrawList = 3u;  // uint drawList[]: survivors, Bezier from slot 0,
+                                                // Gregory from slot bezierCount
+OSD_CULL_CONST uint kCullBindingCounters = 4u;  // uint counters[kCounterCount]
+OSD_CULL_CONST uint kCullBindingCommands = 5u;  // uvec4 commands[]: VkDrawIndirectCommand
+OSD_CULL_CONST uint kCullBindingTable = 6u;     // uvec2 table[]: the method's constant table
+// (CullMethod::table). The tangent-plane table: per term (target | j << 8 | k << 16 | l << 24,
+// floatBitsToUint(weight)). A buffer, not GLSL constants: lavapipe's LLVM backend needs
+// 150-190 s to compile the kernel with 516-entry constant arrays, 0.4 s with this buffer.
+
+// counters[]: survivors appended per patch type, then indirect draw counts per type (read by
+// vkCmdDrawIndirectCount at byte offset 4 * kCounterDraws*).
+OSD_CULL_CONST uint kCounterSurvivorsBezier = 0u;
+OSD_CULL_CONST uint kCounterSurvivorsGregory = 1u;
+OSD_CULL_CONST uint kCounterDrawsBezier = 2u;
+OSD_CULL_CONST uint kCounterDrawsGregory = 3u;
+OSD_CULL_CONST uint kCounterCount = 4u;
+
+// A cone of normals (bound::ConeOfNormals rounded to float), two vec4 per patch:
+// cones[2p] = (apex.xyz, sin of the half-angle rounded up),
+// cones[2p+1] = (axis.xyz, code): code < 0 for a valid cone, else the BackPatchVerdict that
+// says why it never culls (NonFinite, NoNormal, WideCone).
+OSD_CULL_CONST uint kConeVec4s = 2u;
+
+OSD_CULL_CONST uint kCullGroupSize = 64u;   // invocations per workgroup, every variant
+OSD_CULL_CONST uint kDrawsGroupSize = 64u;  // write_draws.comp
+
+// ---- Result code, one uint per patch --------------------------------------------------
+// bits 0-3   stage that culled the patch (kStage*), kStageNone when it survives;
+// bits 4-7   frustum code: the plane (bound::FrustumPlane 0..5) that culled, kFrustumInside,
+//            kFrustumNonFinite, or kNotRun;
+// bits 8-15  back-patch verdict (bound::BackPatchVerdict) or kNotRun;
+// bits 16-23 occlusion verdict (defined by the occlusion stage) or kNotRun.
+// Stages run cheapest first and stop at the first cull: later fields stay kNotRun.
+OSD_CULL_CONST uint kStageNone = 0u;
+OSD_CULL_CONST uint kStageFrustum = 1u;
+OSD_CULL_CONST uint kStageBackPatch = 2u;
+OSD_CULL_CONST uint kStageOcclusion = 3u;
+
+// Back-patch verdicts: the values of bound::BackPatchVerdict (static_assert in
+// osd_cull/bound/cull_reference.cpp). For the back-patch and occlusion stages verdict 0
+// means "culled"; the frustum field holds the plane that culled (0..5) or a reason to keep.
+OSD_CULL_CONST uint kVerdictBackFacing = 0u;
+OSD_CULL_CONST uint kVerdictFrontFacing = 1u;
+OSD_CULL_CONST uint kVerdictSilhouette = 2u;
+OSD_CULL_CONST uint kVerdictEyeOutsideBackRegion = 3u;
+OSD_CULL_CONST uint kVerdictNonFinite = 4u;
+OSD_CULL_CONST uint kVerdictNoNormal = 5u;
+OSD_CULL_CONST uint kVerdictWideCone = 6u;
+OSD_CULL_CONST uint kVerdictNoFiniteEye = 7u;
+
+OSD_CULL_CONST uint kFrustumInside = 6u;     // bound::kNoPlane: not outside one plane
+OSD_CULL_CONST uint kFrustumNonFinite = 7u;  // NaN/Inf point or clip coordinate: kept
+OSD_CULL_CONST uint kNotRun = 0xFu;          // in a 4-bit field; 0xFF in an 8-bit field
+
+OSD_CULL_CONST uint kResultShiftFrustum = 4u;
+OSD_CULL_CONST uint kResultShiftBackPatch = 8u;
+OSD_CULL_CONST uint kResultShiftOcclusion = 16u;
+// Every field "not run", stage none: what a patch starts with.
+OSD_CULL_CONST uint kResultInitial = 0x00FFFFF0u;
+
+// fp32 margins, each derived in docs/algorithms/cull-kernel.md so that every GPU cull is
+// a cull of the double reference (bound/, margin bound::kRelativeMargin = 1e-12):
+// - frustum and cone tests: a quantity counts as having a sign only beyond
+//   kCullRelativeMargin times an upper bound of the magnitudes it is computed from (their
+//   fp32 error, including rounding the inputs to float, is below 15 * 2^-24 of that bound);
+// - tangent plane (shaders/cull/tangent_plane_common.glsl): arithmetic error < 35 * 2^-24 ma,
+//   input rounding < 4 * 2^-24 mb, and the reference's own margin < 1.32e-11 mr / |e.w|.
+#ifdef __cplusplus
+inline constexpr float kCullRelativeMargin = 1e-5f;
+inline constexpr float kTpArithmeticMargin = 1e-5f;
+inline constexpr float kTpInputMargin = 9.5367431640625e-7f;  // 2^-20 = 16 * 2^-24
+inline constexpr float kTpReferenceMargin = 2.4e-11f;
+#else
+const float kCullRelativeMargin = 1e-5;
+const float kTpArithmeticMargin = 1e-5;
+const float kTpInputMargin = 9.5367431640625e-7;
+const float kTpReferenceMargin = 2.4e-11;
+#endif
+
+struct CullConstants {
+  mat4 viewProjection;  // world to clip space
+  vec4 eye;             // xyz: eye (world, bound::eyePosition), NaN when the projection has
+                        // no finite eye; w: 1 / |e.w| of the homogeneous eye
+                        // (bound::homogeneousEye), 0 when there is no finite eye
+  vec4 viewport;        // xy: width, height in pixels; zw: free for the occlusion stage
+  uint patchCount;      // patches [0, bezierCount) are Bezier, the rest Gregory
+  uint bezierCount;
+  uint pointStride;      // floats between control points
+  uint pointOffset;      // float index of control point 0
+  uint drawChunkBezier;  // patches per indirect draw (draw_chunks.h batch limits)
+  uint drawChunkGregory;
+  uint stage0;  // free for the occlusion stage
+  uint stage1;
+};
+
+OSD_CULL_SHARED_END
+
+#ifdef __cplusplus
+static_assert(sizeof(osd_cull::shader::CullConstants) == 128);
+#endif
+#endif

@@ -1,0 +1,40 @@
+#pragma once
+/// \file cull_test_meshes.h
+/// \brief Meshes for the cull tests: shared-data shapes turned into patches with their
+/// per-mesh back-patch decision, and a summary check of CullVerifier totals.
+
+#include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/frame/cull_verification.h"
+#include "osd_cull/patch/patch_set.h"
+
+#include <filesystem>
+#include <string>
+
+namespace osd_cull::test {
+
+/// \brief Patches of a mesh and whether back-patch culling is valid on it.
+struct CullMesh {
+  std::string name;
+  PatchSet patches;
+  bound::BackPatchValidity validity;
+};
+
+/// \brief Loads a cage file (adapters::loadCage), extracts its patches at `level` and
+/// decides back-patch validity from its topology and signed volume.
+CullMesh loadCullMesh(const std::filesystem::path& path, int level = 2);
+
+/// \brief Every method's totals show no violation (gtest failures otherwise): no GPU cull
+/// outside the double reference, no visible sample on the dense sampling, no pixel lost in
+/// the image, and no culled patch with pixels in the oracle, except for silhouette chords of
+/// back-patch tests (docs/algorithms/cull-kernel.md, "Tessellated silhouettes"): the tests
+/// are exact for the surface, and a culled back-facing patch can still have a drawn chord
+/// triangle facing the eye at the silhouette. There we allow
+/// single pixels (each covered by a neighbour in the culled image), at most
+/// `silhouettePixelsPerView` per view on average.
+void expectNoViolations(const frame::CullVerifier& verifier, const std::string& context,
+                        double silhouettePixelsPerView = 0.05);
+
+/// \brief The totals of one method (gtest failure and a dummy when absent).
+const frame::MethodTotals& totalsOf(const frame::CullVerifier& verifier, const std::string& name);
+
+}  // namespace osd_cull::test

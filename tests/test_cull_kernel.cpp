@@ -1,0 +1,222 @@
+// The cull kernel (shaders/cull, frame/cull_pass): every method against its double
+// reference, the result codes, the survivor list and indirect commands, per-mesh validity,
+// non-finite input and the method registry.
+#include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/error.h"
+#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/view_sets.h"
+#include "osd_cull/vk/transfer.h"
+#include "support/vk_test_context.h"
+
+#include <shared/cull_layout.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace osd_cull {
+namespace {
+
+using bound::CullCode;
+using frame::CullPass;
+using frame::CullSettings;
+namespace sh = shader;
+
+const bound::BackPatchValidity kClosed{true, "closed test surface"};
+
+// A closed sphere of Bézier patches, some turned into (equal-surface) Gregory patches.
+PatchSet sphereWithGregory() {
+  PatchSet s = frame::bezierSphere({0.2, -0.1, 0.3}, 1.5, 3);
+  return frame::convertToGregory(s, [](uint32_t p) { return p % 7 == 3; });
+}
+
+CullSettings backPatchOnly(const std::string& method) {
+  CullSettings s;
+  s.frustum = false;
+  s.backPatch = method;
+  s.backPatchValidity = kClosed;
+  return s;
+}
+
+class CullKernelTest : public test::VkTest {};
+
+TEST_F(CullKernelTest, EveryBackPatchMethodCullsASubsetOfItsReferenceAndCullsSomething) {
+  const PatchSet set = sphereWithGregory();
+  frame::GpuPatchSet gpu(context(), set);
+  frame::ViewSetOptions vo;
+  vo.count = 12;
+  const auto views = frame::randomViews(frame::boundsOf(set.points), vo);
+  for (const std::string& method : frame::cullMethodNames(frame::CullStage::BackPatch)) {
+    CullPass pass(context(), gpu, set, backPatchOnly(method));
+    ASSERT_TRUE(pass.backPatchEnabled()) << method;
+    uint64_t gpuCulled = 0, cpuCulled = 0, agree = 0, total = 0;
+    for (const auto& camera : views) {
+      pass.run(camera);
+      const auto results = pass.results();
+      const auto codes = bound::referenceCull(set, bound::makeCullView(camera.viewProjection()),
+                                              pass.referenceTests(), pass.cones());
+      for (uint32_t p = 0; p < set.patchCount(); ++p) {
+        const CullCode g{results[p]}, c{codes[p]};
+        ASSERT_TRUE(!g.culled() || c.culled())
+            << method << " patch " << p << ": GPU " << bound::describe(g) << ", reference "
+            << bound::describe(c);
+        EXPECT_EQ(g.frustum(), sh::kNotRun);
+        gpuCulled += g.culled();
+        cpuCulled += c.culled();
+        agree += g.culled() == c.culled();
+        ++total;
+      }
+    }
+    // A closed sphere seen from outside faces away with about half its patches.
+    EXPECT_GT(double(gpuCulled) / double(total), 0.2) << method;
+    EXPECT_GT(double(agree) / double(total), 0.97) << method;
+    EXPECT_LE(gpuCulled, cpuCulled) << method;
+  }
+}
+
+TEST_F(CullKernelTest, TangentPlaneWithOneAndSixteenThreadsGiveTheSameVerdicts) {
+  const PatchSet set = sphereWithGregory();
+  frame::GpuPatchSet gpu(context(), set);
+  CullPass one(context(), gpu, set, backPatchOnly("tangent-plane"));
+  CullPass sixteen(context(), gpu, set, backPatchOnly("tangent-plane-16"));
+  frame::ViewSetOptions vo;
+  vo.count = 8;
+  vo.set = frame::ViewSet::WholeObject;
+  uint64_t same = 0, total = 0, culled = 0;
+  for (const auto& camera : frame::randomViews(frame::boundsOf(set.points), vo)) {
+    one.run(camera);
+    sixteen.run(camera);
+    for (uint32_t p = 0; p < set.patchCount(); ++p) {
+      same += one.results()[p] == sixteen.results()[p];
+      culled += CullCode{one.results()[p]}.culled();
+      ++total;
+    }
+  }
+  // Only the summation order differs: verdicts may differ only within rounding.
+  EXPECT_GE(same, total - total / 200);
+  EXPECT_GT(culled, total / 4);
+}
+
+TEST_F(CullKernelTest, SurvivorListAndIndirectCommandsMatchTheResultCodes) {
+  PatchSet set = frame::bezierSphere({0.2, -0.1, 0.3}, 1.5, 8);  // 384 patches
+  set = frame::convertToGregory(set, [](uint32_t p) { return p % 7 == 3; });
+  frame::GpuPatchSet gpu(context(), set);
+  CullSettings settings = backPatchOnly("ncone");
+  settings.frustum = true;
+  CullPass pass(context(), gpu, set, settings);
+  // Looking at the sphere from close by with a narrow view: frustum and back-patch culls.
+  const auto camera =
+      frame::Camera::lookAt({0.2, -4.0, 0.3}, {0.9, -0.1, 0.3}, {0, 0, 1}, 30.0, 64, 64, 0.5, 20.0);
+  frame::TessellationOptions tess;
+  tess.uniformLevel = 16;  // 33^2 vertices per patch at transitions: 60 patches per draw
+  pass.run(camera, tess);
+  std::set<uint32_t> expected;
+  uint32_t byStage[4] = {0, 0, 0, 0};
+  for (uint32_t p = 0; p < set.patchCount(); ++p) {
+    const CullCode c{pass.results()[p]};
+    ++byStage[c.stage()];
+    if (!c.culled()) expected.insert(p);
+  }
+  EXPECT_GT(byStage[sh::kStageFrustum], 0u);
+  EXPECT_GT(byStage[sh::kStageBackPatch], 0u);
+  EXPECT_GT(byStage[sh::kStageNone], 0u);
+  const auto survivors = pass.survivors(context());
+  EXPECT_EQ(std::set<uint32_t>(survivors.begin(), survivors.end()), expected);
+  EXPECT_EQ(survivors.size(), expected.size());
+  const frame::CullCounts counts = pass.counts();
+  for (uint32_t i = 0; i < counts.survivorsBezier; ++i) EXPECT_LT(survivors[i], set.bezierCount);
+  for (uint32_t i = counts.survivorsBezier; i < survivors.size(); ++i)
+    EXPECT_GE(survivors[i], set.bezierCount);
+
+  // Commands: consecutive runs of at most indirectDrawChunk slots covering the survivors.
+  const uint32_t chunkB = frame::indirectDrawChunk(tess, kBezierPoints, set.bezierCount);
+  const uint32_t chunkG = frame::indirectDrawChunk(tess, kGregoryPoints, set.gregoryCount);
+  EXPECT_EQ(chunkB, 60u);
+  EXPECT_EQ(counts.drawsBezier, (counts.survivorsBezier + chunkB - 1) / chunkB);
+  EXPECT_EQ(counts.drawsGregory, (counts.survivorsGregory + chunkG - 1) / chunkG);
+  const auto commands = vk::readback<VkDrawIndirectCommand>(context(), pass.commands());
+  const uint32_t maxB = (set.bezierCount + chunkB - 1) / chunkB;
+  uint32_t slots = 0;
+  for (uint32_t i = 0; i < counts.drawsBezier; ++i) {
+    EXPECT_EQ(commands[i].firstVertex, slots * 16);
+    EXPECT_LE(commands[i].vertexCount, chunkB * 16);
+    EXPECT_EQ(commands[i].instanceCount, 1u);
+    slots += commands[i].vertexCount / 16;
+  }
+  EXPECT_EQ(slots, counts.survivorsBezier);
+  slots = 0;
+  for (uint32_t i = 0; i < counts.drawsGregory; ++i) {
+    EXPECT_EQ(commands[maxB + i].firstVertex, (set.bezierCount + slots) * 20);
+    slots += commands[maxB + i].vertexCount / 20;
+  }
+  EXPECT_EQ(slots, counts.survivorsGregory);
+}
+
+TEST_F(CullKernelTest, BackPatchStageIsLeftOutWithTheReasonOnAnInvalidMesh) {
+  const PatchSet set = sphereWithGregory();
+  frame::GpuPatchSet gpu(context(), set);
+  CullSettings settings = backPatchOnly("tangent-plane");
+  settings.backPatchValidity = {false, "the surface is open (12 boundary edges)"};
+  CullPass pass(context(), gpu, set, settings);
+  EXPECT_FALSE(pass.backPatchEnabled());
+  EXPECT_NE(pass.backPatchNote().find("12 boundary edges"), std::string::npos);
+  const auto camera =
+      frame::frameBounds(frame::boundsOf(set.points), {1, 0.3, 0.2}, {0, 0, 1}, 40.0, 64, 64);
+  pass.run(camera);
+  for (uint32_t r : pass.results()) EXPECT_EQ(r, sh::kResultInitial);
+  EXPECT_EQ(pass.counts().survivors(), set.patchCount());
+  // Without a stated validity, back-patch culling stays off.
+  CullSettings unstated;
+  unstated.backPatch = "tcone";
+  EXPECT_FALSE(CullPass(context(), gpu, set, unstated).backPatchEnabled());
+}
+
+TEST_F(CullKernelTest, NonFiniteControlPointsAreKeptByEveryStage) {
+  PatchSet set = sphereWithGregory();
+  // Views from all around: each bad patch would otherwise be culled in some of them.
+  frame::ViewSetOptions vo;
+  vo.count = 6;
+  std::vector<frame::Camera> views = frame::randomViews(frame::boundsOf(set.points), vo);
+  views.push_back(frame::Camera::lookAt({0, 0, -6}, {0, 0, -10}, {0, 1, 0}, 40, 32, 32, 0.1, 9));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const uint32_t bad[] = {0, 5, set.bezierCount + 1};  // two Bézier, one Gregory
+  set.points[set.firstPoint(bad[0]) + 5].y = nan;
+  set.points[set.firstPoint(bad[1]) + 15].x = inf;
+  set.points[set.firstPoint(bad[2]) + 7].z = -inf;
+  frame::GpuPatchSet gpu(context(), set);
+  for (const std::string& method : frame::cullMethodNames(frame::CullStage::BackPatch)) {
+    CullSettings settings = backPatchOnly(method);
+    settings.frustum = true;
+    CullPass pass(context(), gpu, set, settings);
+    for (const auto& camera : views) {
+      pass.run(camera);
+      for (uint32_t p : bad) {
+        const CullCode c{pass.results()[p]};
+        EXPECT_FALSE(c.culled()) << method << " patch " << p << ": " << bound::describe(c);
+        EXPECT_EQ(c.frustum(), sh::kFrustumNonFinite) << method;
+      }
+    }
+  }
+}
+
+TEST_F(CullKernelTest, UnknownOrMisplacedMethodsAreRejected) {
+  const PatchSet set = frame::bezierSphere({0, 0, 0}, 1.0, 1);
+  frame::GpuPatchSet gpu(context(), set);
+  CullSettings s = backPatchOnly("tangent-plane-17");
+  try {
+    CullPass pass(context(), gpu, set, s);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("tangent-plane-16"), std::string::npos) << e.what();
+  }
+  s.backPatch = "frustum";
+  EXPECT_THROW(CullPass(context(), gpu, set, s), Error);
+}
+
+}  // namespace
+}  // namespace osd_cull
