@@ -1,16 +1,15 @@
 // `osd-cull render --cull occlusion`: the two-pass frame from the command line, with the
 // per-frame report, JSON statistics, the status debug view and the pyramid levels.
 #include "osd_cull/frame/png_io.h"
+#include "support/run_command.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <string>
 
 namespace osd_cull {
@@ -18,34 +17,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string output;
-};
+using test::runCommand;
 
-Result runCommand(const std::string& command) {
-  Result r;
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>&1").c_str(), "r"), pclose);
-  if (!pipe) return r;
-  std::array<char, 512> buffer;
-  while (fgets(buffer.data(), buffer.size(), pipe.get())) r.output += buffer.data();
-  r.status = pclose(pipe.release());
-  return r;
-}
-
-fs::path program() { return fs::path(OSD_CULL_BINARY_DIR) / "samples" / "osd-cull"; }
+fs::path program() { return test::osdCullProgram(); }
 
 TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyramid) {
   if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
   const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cull_cli";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const Result r =
+  const test::CommandResult r =
       runCommand(program().string() + " render --out " + (dir / "s.png").string() +
                  " --width 120 --height 90 --frames 3 --orbit 20 --cull occlusion "
                  "--validate --status-view --stats " +
                  (dir / "s.json").string() + " --pyramid-dir " + (dir / "hiz").string());
-  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
   for (const char* line : {"frame 0:", "frame 2:", "drawn pass 1", "pass 2", "occlusion",
                            "TES invocations", "pyramid", "wrote "})
     EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
@@ -78,27 +64,28 @@ TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyr
 
 TEST(RenderCullCommand, CullOptionsAreCheckedWithAClearMessage) {
   if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
-  Result r = runCommand(program().string() + " render --out x.png --cull sometimes");
-  EXPECT_NE(r.status, 0);
+  test::CommandResult r = runCommand(program().string() + " render --out x.png --cull sometimes");
+  EXPECT_NE(r.exitCode(), 0);
   EXPECT_NE(r.output.find("is not one of none"), std::string::npos) << r.output;
   r = runCommand(program().string() + " render --out x.png --aggressive");
-  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.exitCode(), 0);
   EXPECT_NE(r.output.find("need --cull"), std::string::npos) << r.output;
   r = runCommand(program().string() + " render --out x.png --cull occlusion --first-frame most");
-  EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.output.find("all, half or none"), std::string::npos) << r.output;
+  EXPECT_NE(r.exitCode(), 0);
+  EXPECT_NE(r.output.find("all, half, none"), std::string::npos) << r.output;
 }
 
 TEST(RenderCullCommand, AggressiveTessFactorZeroRunsWithoutSecondPass) {
   if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
   const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cull_cli_tf0";
   fs::create_directories(dir);
-  const Result r = runCommand(program().string() + " render --out " + (dir / "a.png").string() +
-                              " --width 64 --height 48 --frames 2 --cull occlusion --aggressive "
-                              "--draw-mode tf0 --first-frame none --hiz-full --hiz-tight "
-                              "--hiz-reduction fourtap --validate --stats " +
-                              (dir / "a.json").string());
-  ASSERT_EQ(r.status, 0) << r.output;
+  const test::CommandResult r =
+      runCommand(program().string() + " render --out " + (dir / "a.png").string() +
+                 " --width 64 --height 48 --frames 2 --cull occlusion --aggressive "
+                 "--draw-mode tf0 --first-frame none --hiz-full --hiz-tight "
+                 "--hiz-reduction fourtap --validate --stats " +
+                 (dir / "a.json").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
   EXPECT_NE(r.output.find("aggressive"), std::string::npos) << r.output;
   std::ifstream in(dir / "a.json");
   const nlohmann::json doc = nlohmann::json::parse(in);
@@ -120,20 +107,64 @@ TEST(RenderCullCommand, MeshWithAnObjOccluderWallIsCulledBehindTheWall) {
   const std::string base = program().string() + " render " +
                            (test::dataDir() / "characters" / "bigguy.obj").string() +
                            " --level 1 --width 96 --height 96 --frames 2 --cull occlusion --stats ";
-  const Result with =
+  const test::CommandResult with =
       runCommand(base + (dir / "wall.json").string() + " --out " + (dir / "wall.png").string() +
                  " --occluders " + (dir / "wall.obj").string());
-  ASSERT_EQ(with.status, 0) << with.output;
+  ASSERT_EQ(with.exitCode(), 0) << with.output;
   EXPECT_NE(with.output.find("1 triangle occluders"), std::string::npos) << with.output;
-  const Result without =
+  const test::CommandResult without =
       runCommand(base + (dir / "open.json").string() + " --out " + (dir / "open.png").string());
-  ASSERT_EQ(without.status, 0) << without.output;
+  ASSERT_EQ(without.exitCode(), 0) << without.output;
   std::ifstream a(dir / "wall.json"), b(dir / "open.json");
   const nlohmann::json wall = nlohmann::json::parse(a), open = nlohmann::json::parse(b);
   const uint32_t culledWall = wall["frames"][1]["culled"]["occlusion"];
   const uint32_t culledOpen = open["frames"][1]["culled"]["occlusion"];
   EXPECT_GT(culledOpen, 0u);                // the back of the body
   EXPECT_GT(culledWall, culledOpen + 100);  // and the legs behind the wall
+}
+
+TEST(RenderCullCommand, AllRunsEveryStageOfTheKernelInTheTwoPassFrame) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cull_cli_all";
+  fs::create_directories(dir);
+  const auto r = runCommand(program().string() + " render --out " + (dir / "all.png").string() +
+                            " --width 128 --height 96 --frames 2 --orbit 10 --cull all "
+                            "--validate --stats " +
+                            (dir / "all.json").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("cull: all (frustum, tangent-plane, hiz)"), std::string::npos)
+      << r.output;
+  std::ifstream in(dir / "all.json");
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  const auto& f1 = doc["frames"][1];
+  EXPECT_GT(f1["culled"]["backPatch"].get<uint32_t>(), 0u);
+  EXPECT_GT(f1["culled"]["occlusion"].get<uint32_t>(), 0u);
+  const uint32_t patches = f1["patches"], survivors = f1["survivors"];
+  const uint32_t culled = f1["culled"]["frustum"].get<uint32_t>() +
+                          f1["culled"]["backPatch"].get<uint32_t>() +
+                          f1["culled"]["occlusion"].get<uint32_t>();
+  EXPECT_EQ(survivors + culled, patches);
+}
+
+TEST(VerifyCullCommand, HizIsCheckedAgainstItsReferenceTheOracleAndTheImage) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "verify_hiz";
+  fs::create_directories(dir);
+  const auto r = runCommand(program().string() +
+                            " verify --methods hiz --views 6 --width 96 --height 96 "
+                            "--view-set whole-object --image-check --json " +
+                            (dir / "hiz.json").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  std::ifstream in(dir / "hiz.json");
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  ASSERT_EQ(doc["methods"].size(), 1u);
+  const auto& m = doc["methods"][0];
+  EXPECT_EQ(m["name"], "hiz");
+  EXPECT_EQ(m["culled_not_in_reference"], 0);
+  EXPECT_EQ(m["false_culls"], 0);
+  EXPECT_EQ(m["pixels_lost"], 0);
+  EXPECT_GT(m["cull_rate"].get<double>(), 0.05);
+  EXPECT_GE(m["oracle_invisible_rate"].get<double>(), m["cull_rate"].get<double>());
 }
 
 }  // namespace

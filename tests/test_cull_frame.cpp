@@ -8,6 +8,7 @@
 #include "osd_cull/frame/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/default_scene.h"
+#include "support/cull_test_meshes.h"
 #include "support/test_data.h"
 #include "support/vk_test_context.h"
 
@@ -47,17 +48,15 @@ class CullFrameTest : public test::VkTest {
 
   // BigGuy (y up) with a wall in front of its legs.
   void useBigGuy(int level) {
-    PatchOptions options;
-    options.isolationLevel = level;
+    test::CullMesh mesh = test::loadCullMesh(test::dataDir() / "characters" / "bigguy.obj", level);
     scene::Scene s;
-    s.patches =
-        extractPatches(adapters::loadCage(test::dataDir() / "characters" / "bigguy.obj"), options)
-            .patches;
+    s.patches = std::move(mesh.patches);
     s.occluders.push_back(
         frame::quadMesh({-30, -30, 12}, {30, -30, 12}, {30, -2, 12}, {-30, -2, 12}));
     s.up = {0, 1, 0};
     s.viewDirection = {0.3, 0.25, 1.0};
     use(std::move(s));
+    validity_ = mesh.validity;
   }
   void TearDown() override {
     occluders_.clear();
@@ -84,6 +83,12 @@ class CullFrameTest : public test::VkTest {
     return o;
   }
 
+  // Frustum, tangent-plane back-patch (where valid for the mesh) and Hi-Z occlusion.
+  frame::CullFrameOptions allStages(frame::CullFrameOptions o) const {
+    o.cull = {true, "tangent-plane", "hiz", validity_};
+    return o;
+  }
+
   // The culled frame in `culled` against everything drawn into `reference`.
   ImageDiff compare(frame::RenderTarget& culled, frame::RenderTarget& reference,
                     const frame::Camera& cam, const frame::RenderOptions& render) {
@@ -104,14 +109,20 @@ class CullFrameTest : public test::VkTest {
 
   // Runs `frames` frames orbiting by `step` degrees; every final image is compared (the
   // aggressive mode from the second frame on at a standstill only).
-  void expectSameImages(uint32_t w, uint32_t h, const frame::CullFrameOptions& o, int frames,
-                        double step, frame::Camera (*override)(uint32_t, uint32_t) = nullptr) {
+  // Returns the culls of all frames summed.
+  frame::CullFrameStats expectSameImages(uint32_t w, uint32_t h, const frame::CullFrameOptions& o,
+                                         int frames, double step,
+                                         frame::Camera (*override)(uint32_t, uint32_t) = nullptr) {
+    frame::CullFrameStats total;
     frame::RenderTarget target(context(), w, h), reference(context(), w, h);
     const frame::CullMesh meshes[] = {mesh()};
     frame::CullFrame cull(context(), *renderer_, target, meshes, o);
     for (int f = 0; f < frames; ++f) {
       const frame::Camera cam = override ? override(w, h) : camera(w, h, step * f);
       const frame::CullFrameStats s = cull.render(cam, occluders_);
+      total.culledFrustum += s.culledFrustum;
+      total.culledBackPatch += s.culledBackPatch;
+      total.culledOcclusion += s.culledOcclusion;
       EXPECT_EQ(s.patchesTotal, scene_.patches.patchCount());
       EXPECT_EQ(s.survivors + s.culled(), s.patchesTotal);
       const ImageDiff d = compare(target, reference, cam, o.render);
@@ -120,6 +131,7 @@ class CullFrameTest : public test::VkTest {
       EXPECT_LE(d.different * 10000.0, double(d.pixels))
           << d.different << " pixels differ, " << w << "x" << h << " frame " << f;
     }
+    return total;
   }
 
   void expectCulledPatchesInvisible(uint32_t w, uint32_t h, int views, double step,
@@ -131,6 +143,8 @@ class CullFrameTest : public test::VkTest {
   std::vector<const frame::GpuTriangleMesh*> occluders_;
   std::unique_ptr<frame::Renderer> renderer_;
   frame::Bounds bounds_;
+  // The built-in scene's objects are closed cages with outward normals.
+  bound::BackPatchValidity validity_{true, "built-in scene: closed, outward cages"};
 };
 
 TEST_F(CullFrameTest, FilteredFramesEqualTheUnculledImageOverAMovingCamera) {
@@ -143,6 +157,36 @@ TEST_F(CullFrameTest, BigGuyFramesEqualTheUnculledImageOverAMovingCamera) {
   useBigGuy(1);
   expectSameImages(180, 180, options(CullDrawMode::Filtered, FirstFrame::HalfVisible, false), 5,
                    9.0);
+}
+
+TEST_F(CullFrameTest, AllStagesInOneKernelKeepTheImage) {
+  // Frustum, back-patch and occlusion in the same dispatch, from a camera close enough that
+  // parts of the scene leave the view.
+  auto close = [](uint32_t w, uint32_t h) {
+    return frame::Camera::lookAt({4.5, -3.0, 2.0}, {0.5, 1.0, 0.0}, {0, 0, 1}, 35.0, w, h, 0.05,
+                                 30.0);
+  };
+  const auto total = expectSameImages(
+      200, 150, allStages(options(CullDrawMode::Filtered, FirstFrame::AllVisible, false)), 3, 0.0,
+      close);
+  EXPECT_GT(total.culledFrustum, 0u);
+  EXPECT_GT(total.culledBackPatch, 0u);
+  EXPECT_GT(total.culledOcclusion, 0u);
+  const auto orbiting = expectSameImages(
+      200, 150, allStages(options(CullDrawMode::TessFactorZero, FirstFrame::NoneVisible, false)), 5,
+      8.0);
+  EXPECT_GT(orbiting.culledBackPatch, 0u);
+  EXPECT_GT(orbiting.culledOcclusion, 0u);
+}
+
+TEST_F(CullFrameTest, BigGuyWithAllStagesKeepsTheImage) {
+  OSD_CULL_REQUIRE_DATA();
+  useBigGuy(1);
+  ASSERT_TRUE(validity_.enabled) << validity_.reason;
+  const auto total = expectSameImages(
+      180, 180, allStages(options(CullDrawMode::Filtered, FirstFrame::AllVisible, false)), 5, 12.0);
+  EXPECT_GT(total.culledBackPatch, 0u);
+  EXPECT_GT(total.culledOcclusion, 0u);
 }
 
 TEST_F(CullFrameTest, TessFactorZeroFramesEqualTheUnculledImageOverAMovingCamera) {
@@ -205,14 +249,14 @@ void CullFrameTest::expectCulledPatchesInvisible(uint32_t w, uint32_t h, int vie
                                      occluders_, o.render.tessellation);
     const auto results = cull.readResults(0);
     for (uint32_t p = 0; p < results.size(); ++p) {
-      if ((results[p] & shader::kResultStageMask) != shader::kResultOcclusion) continue;
+      if ((results[p] & 0xFu) != shader::kStageOcclusion) continue;
       ++culled;
       EXPECT_EQ(counts.pixels[p], 0u) << "frame " << f << " patch " << p;
     }
     invisible += s.patchesTotal - counts.visiblePatchCount();
     EXPECT_EQ(s.culledOcclusion,
               static_cast<uint32_t>(std::count_if(results.begin(), results.end(), [](uint32_t r) {
-                return (r & shader::kResultStageMask) == shader::kResultOcclusion;
+                return (r & 0xFu) == shader::kStageOcclusion;
               })));
   }
   std::printf("occlusion-culled %u, oracle-invisible %u (%d views)\n", culled, invisible, views);

@@ -1,9 +1,11 @@
-// The GPU Hi-Z occlusion test (shaders/hiz/occlusion.glsl) against its double-precision
-// reference (bound::hizOcclusionTest) and the item-buffer oracle.
+// The Hi-Z occlusion stage of the cull kernel ("hiz": shaders/cull/occlusion_hiz.glsl with
+// shaders/hiz/occlusion.glsl) against its double-precision reference
+// (bound::hizOcclusionTest) and the item-buffer oracle.
 #include "osd_cull/bound/occlusion.h"
+#include "osd_cull/frame/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz_pyramid.h"
-#include "osd_cull/frame/occlusion_cull.h"
 #include "osd_cull/frame/visibility_oracle.h"
 #include "osd_cull/scene/default_scene.h"
 #include "support/vk_test_context.h"
@@ -19,6 +21,7 @@ namespace {
 class HiZOcclusionTest : public test::VkTest {
  protected:
   struct Comparison {
+    // tested: kept by the GPU and tested by the reference (the GPU reports their level).
     uint32_t gpuCulled = 0, cpuCulled = 0, tested = 0, sameLevel = 0;
   };
 
@@ -42,8 +45,13 @@ class HiZOcclusionTest : public test::VkTest {
     frame::HiZPyramid pyramid(context(), target.depth(),
                               {fullResolution, frame::HiZReduction::Auto, lookup});
     pyramid.build(context(), frame::RenderTarget::kDepthLayout);
-    frame::OcclusionCullKernel kernel(context());
-    const auto results = kernel.run(gpu, camera, pyramid);
+    frame::HiZCullStage stage(context(), pyramid);
+    frame::CullSettings settings;
+    settings.frustum = false;
+    settings.occlusion = "hiz";
+    frame::CullPass pass(context(), gpu, set, settings);
+    pass.run(camera, tess, stage.set());
+    const std::vector<uint32_t> codes(pass.results().begin(), pass.results().end());
     const bound::HiZPyramid ref = bound::buildHiZPyramid(target.readDepth(context()), camera.width,
                                                          camera.height, fullResolution);
     const glm::dmat4 vp = camera.viewProjection();
@@ -51,17 +59,19 @@ class HiZOcclusionTest : public test::VkTest {
     for (uint32_t p = 0; p < set.patchCount(); ++p) {
       const bound::OcclusionResult r =
           bound::hizOcclusionTest(set.controlPoints(p), vp, ref, lookup);
-      EXPECT_EQ(results[p].tested, r.tested) << "patch " << p;
-      if (results[p].culled) {
+      const bool culled = (codes[p] & 0xFu) == shader::kStageOcclusion;
+      const uint32_t verdict = (codes[p] >> shader::kResultShiftOcclusion) & 0xFFu;
+      EXPECT_EQ(verdict != shader::kOcclusionVerdictUntested, r.tested) << "patch " << p;
+      if (culled) {
         EXPECT_TRUE(r.culled) << "patch " << p << ": GPU culls, the reference does not";
         EXPECT_EQ(counts.pixels[p], 0u) << "patch " << p << " culled with visible pixels";
+      } else if (r.tested) {
+        const uint32_t level = verdict >> shader::kOcclusionVerdictLevelShift;
+        c.sameLevel += level == r.footprint.level;
+        EXPECT_GE(level, r.footprint.level) << "patch " << p;
       }
-      if (r.tested) {
-        ++c.tested;
-        c.sameLevel += results[p].level == r.footprint.level;
-        EXPECT_GE(results[p].level, r.footprint.level) << "patch " << p;
-      }
-      c.gpuCulled += results[p].culled;
+      c.tested += r.tested && !culled;
+      c.gpuCulled += culled;
       c.cpuCulled += r.culled;
     }
     return c;

@@ -31,12 +31,12 @@ uint32_t drawStatusOf(uint32_t status) {
   using namespace shader;
   if (status & kStatusNewlyVisible) return kDrawStatusNewlyVisible;
   if (status & kStatusVisible) return kDrawStatusVisible;
-  switch ((status >> kStatusStageShift) & kResultStageMask) {
-    case kResultFrustum:
+  switch ((status >> kStatusStageShift) & 0xFu) {
+    case kStageFrustum:
       return kDrawStatusFrustum;
-    case kResultBackPatch:
+    case kStageBackPatch:
       return kDrawStatusBackPatch;
-    case kResultOcclusion:
+    case kStageOcclusion:
       return kDrawStatusOccluded;
     default:
       return kDrawStatusNone;
@@ -57,9 +57,13 @@ CullFrame::CullFrame(vk::Context& context, Renderer& renderer, RenderTarget& tar
       meshes_(meshes.begin(), meshes.end()),
       options_(options),
       programs_(std::make_unique<VisibilityPrograms>(context)),
-      pyramid_(std::make_unique<HiZPyramid>(context, target.depth(), options.hiz)),
-      occlusion_(std::make_unique<OcclusionCullKernel>(context)),
       queries_(context, 2) {
+  const CullSettings& cull = options.cull;
+  if (!cull.occlusion.empty()) {
+    pyramid_ = std::make_unique<HiZPyramid>(context, target.depth(), options.hiz);
+    stage_ = std::make_unique<HiZCullStage>(context, *pyramid_);
+  }
+  const bool anyStage = cull.frustum || !cull.backPatch.empty() || !cull.occlusion.empty();
   uint32_t base = 0;
   for (const CullMesh& m : meshes_) {
     if (!m.gpu || !m.host) throw Error("CullFrame: a mesh without GpuPatchSet or PatchSet");
@@ -71,9 +75,19 @@ CullFrame::CullFrame(vk::Context& context, Renderer& renderer, RenderTarget& tar
     base += m.gpu->patchCount();
     visibility_.push_back(
         std::make_unique<VisibilityBuffer>(context, *programs_, *m.gpu, options.firstFrame));
-    results_.emplace_back(context, std::max<size_t>(4, size_t{m.gpu->patchCount()} * 4),
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    passes_.push_back(anyStage ? std::make_unique<CullPass>(context, *m.gpu, *m.host, cull)
+                               : nullptr);
   }
+  if (!anyStage) {
+    survivedResults_ = vk::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    vk::fill(context, survivedResults_, shader::kStageNone);
+  }
+}
+
+const HiZPyramid& CullFrame::pyramid() const {
+  if (!pyramid_) throw Error("CullFrame::pyramid: the frame runs no occlusion stage");
+  return *pyramid_;
 }
 
 CullFrame::~CullFrame() = default;
@@ -86,16 +100,18 @@ void CullFrame::reset(FirstFrame firstFrame) {
 void CullFrame::setOptions(const CullFrameOptions& options) {
   const HiZOptions hiz = options_.hiz;
   const FirstFrame first = options_.firstFrame;
+  const CullSettings cull = options_.cull;
   options_ = options;
   options_.hiz = hiz;
   options_.firstFrame = first;
+  options_.cull = cull;
 }
 
 CullFrame::Chunks CullFrame::chunks(size_t mesh) const {
   const GpuPatchSet& g = *meshes_[mesh].gpu;
   const TessellationOptions& t = options_.render.tessellation;
-  return {indirectDrawPatches(t, kBezierPoints, g.bezierCount()),
-          indirectDrawPatches(t, kGregoryPoints, g.gregoryCount())};
+  return {indirectDrawChunk(t, kBezierPoints, g.bezierCount()),
+          indirectDrawChunk(t, kGregoryPoints, g.gregoryCount())};
 }
 
 void CullFrame::recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool secondPass) {
@@ -156,22 +172,23 @@ CullFrameStats CullFrame::render(const Camera& camera,
   }
 
   // 2. The Hi-Z pyramid of that depth.
-  if (options_.occlusion)
+  if (pyramid_)
     s.pyramidMs = timedSubmit(
         context_, [&](VkCommandBuffer cmd) { pyramid_->record(cmd, RenderTarget::kDepthLayout); });
 
   // 3. Cull every patch, update the status, build the lists.
   s.cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {
     for (size_t m = 0; m < meshes_.size(); ++m) {
-      if (options_.occlusion) {
-        occlusion_->record(cmd, *meshes_[m].gpu, camera, *pyramid_, results_[m]);
-      } else {
-        vk::memoryBarrier(cmd, vk::scope::kAll, vk::scope::kTransferWrite);
-        vkCmdFillBuffer(cmd, results_[m].handle(), 0, VK_WHOLE_SIZE, shader::kResultSurvived);
-        vk::memoryBarrier(cmd, vk::scope::kTransferWrite, vk::scope::kComputeRead);
-      }
       const Chunks c = chunks(m);
-      visibility_[m]->recordUpdate(cmd, results_[m], c.bezier, c.gregory);
+      if (!passes_[m]) {
+        visibility_[m]->recordUpdate(cmd, survivedResults_, c.bezier, c.gregory);
+        continue;
+      }
+      // One dispatch: frustum → back-patch → Hi-Z occlusion, a result code per patch.
+      passes_[m]->record(cmd, camera, options_.render.tessellation,
+                         stage_ ? stage_->set() : VK_NULL_HANDLE);
+      vk::memoryBarrier(cmd, vk::scope::kComputeWrite, vk::scope::kComputeRead);
+      visibility_[m]->recordUpdate(cmd, passes_[m]->resultsBuffer(), c.bezier, c.gregory);
     }
   });
   for (auto& v : visibility_) {
@@ -202,9 +219,10 @@ CullFrameStats CullFrame::render(const Camera& camera,
 }
 
 std::vector<uint32_t> CullFrame::readResults(size_t mesh) const {
-  auto r = vk::readback<uint32_t>(context_, results_.at(mesh));
-  r.resize(meshes_.at(mesh).gpu->patchCount());
-  return r;
+  const uint32_t n = meshes_.at(mesh).gpu->patchCount();
+  if (!passes_[mesh]) return std::vector<uint32_t>(n, shader::kStageNone);
+  const auto r = passes_[mesh]->results();
+  return std::vector<uint32_t>(r.begin(), r.begin() + n);
 }
 
 FrameStats CullFrame::renderStatusView(RenderTarget& target, const Camera& camera,

@@ -4,7 +4,8 @@
 /// meshes and triangle occluders:
 ///   1. draw the occluders and the patches visible last frame            → depth
 ///   2. build the Hi-Z pyramid from that depth
-///   3. cull every patch (one kernel), update its status, build the draw lists
+///   3. cull every patch (one dispatch of the cull kernel, cull_pass.h: frustum, back-patch,
+///      Hi-Z occlusion), update its status, build the draw lists
 ///   4. draw the patches that became visible                             → final image
 /// The aggressive mode (§3.1) skips 4: patches that become visible appear one frame late.
 /// Each mesh keeps its own VisibilityBuffer for this view, so another CullFrame (a second
@@ -14,8 +15,9 @@
 /// variant (§5, TessFactorZero): every patch drawn, the ones not to be drawn with
 /// tessellation factors 0. Both give the same image; pipeline statistics tell the cost.
 
+#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz_pyramid.h"
-#include "osd_cull/frame/occlusion_cull.h"
 #include "osd_cull/frame/renderer.h"
 #include "osd_cull/frame/visibility_buffer.h"
 #include "osd_cull/vk/query.h"
@@ -38,8 +40,11 @@ const char* toString(CullDrawMode mode);
 
 /// \brief Options of a CullFrame.
 struct CullFrameOptions {
-  RenderOptions render;     ///< tessellation, colors (clear is set per pass)
-  bool occlusion = true;    ///< run the Hi-Z occlusion test (off: nothing is culled)
+  RenderOptions render;  ///< tessellation, colors (clear is set per pass)
+  /// The stages of the cull kernel: by default frustum and Hi-Z occlusion ("hiz"); a
+  /// back-patch method runs where `cull.backPatchValidity` allows it. With no stage at all
+  /// nothing is culled (every patch survives).
+  CullSettings cull{true, "", "hiz", {false, "mesh validity not given"}};
   bool aggressive = false;  ///< skip the second pass (§3.1)
   CullDrawMode drawMode = CullDrawMode::Filtered;
   FirstFrame firstFrame = FirstFrame::AllVisible;
@@ -75,8 +80,10 @@ struct CullMesh {
 /// \brief The frame pipeline of one view.
 class CullFrame {
  public:
-  /// \brief Status buffers for every mesh (initialized by options.firstFrame) and a pyramid
-  /// over `target`'s depth. `renderer`, `target` and the meshes must outlive the frame.
+  /// \brief Status buffers and a cull pass for every mesh (initialized by
+  /// options.firstFrame) and, with occlusion, a pyramid over `target`'s depth. `renderer`,
+  /// `target` and the meshes must outlive the frame.
+  /// \throws osd_cull::Error for unknown cull methods (see CullPass).
   CullFrame(vk::Context& context, Renderer& renderer, RenderTarget& target,
             std::span<const CullMesh> meshes, const CullFrameOptions& options);
   ~CullFrame();
@@ -91,10 +98,15 @@ class CullFrame {
   void reset(FirstFrame firstFrame);
 
   const CullFrameOptions& options() const { return options_; }
-  /// \brief Changes tessellation, draw mode or aggressiveness between frames (the pyramid
-  /// options and the first-frame policy are fixed at construction).
+  /// \brief Changes tessellation, draw mode or aggressiveness between frames (the cull
+  /// stages, the pyramid options and the first-frame policy are fixed at construction).
   void setOptions(const CullFrameOptions& options);
-  const HiZPyramid& pyramid() const { return *pyramid_; }
+  /// \brief True when the Hi-Z occlusion stage runs (a pyramid exists).
+  bool occlusion() const { return pyramid_ != nullptr; }
+  /// \throws osd_cull::Error without occlusion.
+  const HiZPyramid& pyramid() const;
+  /// \brief The cull pass of `mesh`, or nullptr when no stage is enabled.
+  const CullPass* cullPass(size_t mesh) const { return passes_.at(mesh).get(); }
   size_t meshCount() const { return meshes_.size(); }
   VisibilityBuffer& visibility(size_t mesh) { return *visibility_.at(mesh); }
   uint32_t itemBase(size_t mesh) const { return itemBases_.at(mesh); }
@@ -122,9 +134,10 @@ class CullFrame {
   std::vector<uint32_t> itemBases_;
   std::unique_ptr<VisibilityPrograms> programs_;
   std::vector<std::unique_ptr<VisibilityBuffer>> visibility_;
-  std::vector<vk::Buffer> results_;
+  std::vector<std::unique_ptr<CullPass>> passes_;  // null when no stage is enabled
+  vk::Buffer survivedResults_;                     // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
-  std::unique_ptr<OcclusionCullKernel> occlusion_;
+  std::unique_ptr<HiZCullStage> stage_;
   vk::PipelineStatisticsQuery queries_;
   std::vector<vk::Buffer> statusLists_;  // debug view lists, made on first use
   std::vector<VkDescriptorSet> statusSets_;

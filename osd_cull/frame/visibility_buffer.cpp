@@ -1,7 +1,6 @@
 #include "osd_cull/frame/visibility_buffer.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/frame/draw_chunks.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/descriptors.h"
@@ -55,16 +54,6 @@ const char* toString(FirstFrame policy) {
       return "none";
   }
   return "?";
-}
-
-uint32_t indirectDrawPatches(const TessellationOptions& tessellation, uint32_t controlPoints,
-                             uint32_t count) {
-  if (count == 0) return 1;
-  const uint32_t m = tessellation.mode == TessellationOptions::Mode::Uniform
-                         ? std::min(tessellation.uniformLevel * 2, tessellation.maxLevel)
-                         : tessellation.maxLevel;
-  const std::vector<uint32_t> bounds(count, (m + 1) * (m + 1));
-  return std::max(1u, planDrawChunks(bounds, controlPoints).front().count);
 }
 
 VisibilityPrograms::VisibilityPrograms(vk::Context& context)

@@ -44,12 +44,6 @@ enum class FirstFrame {
 /// \brief "all", "half", "none".
 const char* toString(FirstFrame policy);
 
-/// \brief Patches per indirect draw so that no lavapipe batch overflows (draw_chunks.h) at
-/// the largest vertex count `tessellation` can give a patch with `controlPoints` points
-/// (uniform: level 2N at transition edges, adaptive: maxLevel); in [1, max(count, 1)].
-uint32_t indirectDrawPatches(const TessellationOptions& tessellation, uint32_t controlPoints,
-                             uint32_t count);
-
 /// \brief The compute programs of the visibility pass, shared by every VisibilityBuffer.
 class VisibilityPrograms {
  public:

@@ -25,8 +25,8 @@ layout(std430, set = 0, binding = kVisBindingStats) buffer Stats { uint stats[];
 void main() {
   uint p = gl_GlobalInvocationID.x;
   if (p >= pc.patchCount) return;
-  uint stage = results[p] & kResultStageMask;
-  bool survived = stage == kResultSurvived;
+  uint stage = results[p] & 0xFu;  // kStage*
+  bool survived = stage == kStageNone;
   bool wasVisible = (status[p] & kStatusVisible) != 0u;
   bool newlyVisible = survived && !wasVisible;
   status[p] = survived ? (kStatusVisible | (newlyVisible ? kStatusNewlyVisible : 0u))
@@ -48,7 +48,7 @@ void main() {
   nextAll[p] = survived ? p | (kDrawStatusVisible << kDrawListStatusShift) : p | kDrawListCulled;
   freshAll[p] = newlyVisible ? p | (kDrawStatusNewlyVisible << kDrawListStatusShift)
                              : p | kDrawListCulled;
-  if (stage == kResultFrustum) atomicAdd(stats[kStatCulledFrustum], 1u);
-  if (stage == kResultBackPatch) atomicAdd(stats[kStatCulledBackPatch], 1u);
-  if (stage == kResultOcclusion) atomicAdd(stats[kStatCulledOcclusion], 1u);
+  if (stage == kStageFrustum) atomicAdd(stats[kStatCulledFrustum], 1u);
+  if (stage == kStageBackPatch) atomicAdd(stats[kStatCulledBackPatch], 1u);
+  if (stage == kStageOcclusion) atomicAdd(stats[kStatCulledOcclusion], 1u);
 }

@@ -69,31 +69,18 @@ struct HiZParams {
   uint lookup;   // kHiZLookupPaper or kHiZLookupTight
 };
 
-// The occlusion-only kernel (shaders/hiz/occlusion_cull.comp) writes one result code per
-// patch in the cull kernel's layout: bits 0-3 the stage that culled it (kResultOcclusion of
-// shared/visibility_layout.h, or 0: survived), bits 16-23 the occlusion verdict, bits 24-27
-// the pyramid level looked at (when tested).
-OSD_CULL_CONST uint kOcclusionVerdictOccluded = 0u;  // culled (every stage's verdict 0)
+// The occlusion verdict of the cull kernel's result code (bits 16-23, shared/cull_layout.h):
+// 0 culled as every stage's verdict, otherwise why the patch is kept; a visible verdict
+// carries the pyramid level looked at in bits 4-7 of the field.
+OSD_CULL_CONST uint kOcclusionVerdictOccluded = 0u;
 OSD_CULL_CONST uint kOcclusionVerdictVisible = 1u;   // tested, something may be in front
 OSD_CULL_CONST uint kOcclusionVerdictUntested = 2u;  // a point with w <= 0, NaN/Inf, or off screen
-OSD_CULL_CONST uint kOcclusionVerdictShift = 16u;
-OSD_CULL_CONST uint kOcclusionLevelShift = 24u;
-OSD_CULL_CONST uint kOcclusionGroupSize = 64u;
-
-struct OcclusionCullConstants {
-  mat4 viewProjection;  // world to clip space
-  HiZParams hiz;
-  uint bezierCount;  // patches [0, bezierCount) are Bezier (16 points), the rest Gregory (20)
-  uint patchCount;
-  uint pointStride;  // floats between control points
-  uint pointOffset;  // float index of control point 0
-};
+OSD_CULL_CONST uint kOcclusionVerdictLevelShift = 4u;
 
 OSD_CULL_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(osd_cull::shader::HiZReduceConstants) == 32);
 static_assert(sizeof(osd_cull::shader::HiZParams) == 32);
-static_assert(sizeof(osd_cull::shader::OcclusionCullConstants) == 112);
 #endif
 #endif

@@ -4,6 +4,7 @@
 // (osd_cull/frame/visibility_buffer, cull_frame) and GLSL.
 #ifndef OSD_CULL_SHARED_VISIBILITY_LAYOUT_H
 #define OSD_CULL_SHARED_VISIBILITY_LAYOUT_H
+#include "cull_layout.h"
 #include "glsl_compat.h"
 
 OSD_CULL_SHARED_BEGIN
@@ -12,15 +13,10 @@ OSD_CULL_SHARED_BEGIN
 OSD_CULL_CONST uint kStatusVisible = 1u;  // survived the last cull: drawn in the next first pass
 OSD_CULL_CONST uint kStatusNewlyVisible = 2u;  // survived, but was not visible before: drawn in
                                                // this frame's second pass
-OSD_CULL_CONST uint kStatusStageShift = 4u;    // bits 4-7: the stage that culled it (below)
+OSD_CULL_CONST uint kStatusStageShift = 4u;    // bits 4-7: the stage that culled it
 
-// The cull kernel's per-patch result code: its low 4 bits name the stage that culled the
-// patch, 0 when it survived (the kStage* values of the cull kernel's layout).
-OSD_CULL_CONST uint kResultStageMask = 0xFu;
-OSD_CULL_CONST uint kResultSurvived = 0u;
-OSD_CULL_CONST uint kResultFrustum = 1u;
-OSD_CULL_CONST uint kResultBackPatch = 2u;
-OSD_CULL_CONST uint kResultOcclusion = 3u;
+// The stage bits are the cull kernel's kStage* (shared/cull_layout.h): the low 4 bits of its
+// per-patch result code, kStageNone when the patch survived.
 
 // Counters of one draw list (survivors per type, then indirect draw counts per type read by
 // vkCmdDrawIndirectCount at byte offset 4 * kListDraws*).
