@@ -13,11 +13,13 @@
 //                   [--sequence 300] [--repeats 3] [--only 12345]
 //                   [--scenes default,bigguy0,bigguy1,bigguy2] [--device X]
 #include "adapters/load_mesh.h"
+#include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/patch/refiner.h"
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/vk/context.h"
 
@@ -89,6 +91,7 @@ struct Scene {
   std::vector<frame::TriangleMesh> occluders;
   glm::dvec3 up{0, 0, 1};
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
+  bound::BackPatchValidity validity;  ///< whether the back-patch stage may run
 };
 
 // A scene on the device: patches, occluders and a renderer.
@@ -117,9 +120,12 @@ glm::dvec3 upFor(const glm::dvec3& direction, const glm::dvec3& up) {
   return std::abs(glm::dot(glm::normalize(direction), up)) > 0.95 ? glm::dvec3(1, 0, 0) : up;
 }
 
-frame::CullFrameOptions cullOptions(uint32_t tess) {
+// The frame's default stages (frustum and Hi-Z occlusion) or, with `all`, frustum,
+// tangent-plane back-patch (where valid) and Hi-Z occlusion in the same kernel.
+frame::CullFrameOptions cullOptions(uint32_t tess, const Scene* all = nullptr) {
   frame::CullFrameOptions o;
   o.render.tessellation.uniformLevel = tess;
+  if (all) o.cull = {true, "tangent-plane", "hiz", all->validity};
   return o;
 }
 
@@ -136,8 +142,9 @@ void cullRates(vk::Context& context, const Scene& scene, const Options& o) {
   frame::CullFrameOptions tightOptions = cullOptions(4);
   tightOptions.hiz.lookup = bound::HiZLookup::Tight;
   frame::CullFrame tight(context, renderer, target, meshes, tightOptions);
+  frame::CullFrame all(context, renderer, target, meshes, cullOptions(4, &scene));
   std::mt19937_64 rng(2012);
-  uint64_t culled = 0, culledTight = 0, invisible = 0, total = 0;
+  uint64_t culled = 0, culledTight = 0, culledAll = 0, invisible = 0, total = 0;
   for (uint32_t v = 0; v < o.views; ++v) {
     const glm::dvec3 dir = randomDirection(rng);
     const frame::Camera cam =
@@ -146,15 +153,17 @@ void cullRates(vk::Context& context, const Scene& scene, const Options& o) {
     const auto s = cull.render(cam, g.occluders);
     tight.reset(frame::FirstFrame::AllVisible);
     culledTight += tight.render(cam, g.occluders).culledOcclusion;
+    all.reset(frame::FirstFrame::AllVisible);
+    culledAll += all.render(cam, g.occluders).culled();
     const auto counts = oracle.query(renderer, oracleTarget, cam, g.gpu, &scene.patches,
                                      g.occluders, cull.options().render.tessellation);
     culled += s.culledOcclusion;
     invisible += s.patchesTotal - counts.visiblePatchCount();
     total += s.patchesTotal;
   }
-  std::printf("| %s | %u | %u | %.1f%% | %.1f%% | %.1f%% |\n", scene.name.c_str(),
+  std::printf("| %s | %u | %u | %.1f%% | %.1f%% | %.1f%% | %.1f%% |\n", scene.name.c_str(),
               scene.patches.patchCount(), o.views, 100.0 * culled / total,
-              100.0 * culledTight / total, 100.0 * invisible / total);
+              100.0 * culledTight / total, 100.0 * culledAll / total, 100.0 * invisible / total);
   std::fflush(stdout);
 }
 
@@ -211,50 +220,54 @@ void frameCosts(vk::Context& context, const Scene& scene, const Options& o) {
       frame::frameBounds(g.bounds, scene.viewDirection, scene.up, 40.0, o.width, o.height);
   const frame::PatchDraw draw{&g.gpu, &scene.patches, 0};
   for (uint32_t tess : {4u, 16u, 32u})
-    for (frame::CullDrawMode mode :
-         {frame::CullDrawMode::Filtered, frame::CullDrawMode::TessFactorZero}) {
-      frame::CullFrameOptions co = cullOptions(tess);
-      co.drawMode = mode;
-      frame::CullFrame cull(context, renderer, target, meshes, co);
-      std::vector<double> ratio, overhead, culledMs, plainMs;
-      uint64_t tesCulled = 0, tesPlain = 0, fragCulled = 0, fragPlain = 0, culled = 0, total = 0;
-      uint64_t tcsCulled = 0, tcsPlain = 0;
-      renderer.render(plain, start, {&draw, 1}, g.occluders, co.render);  // JIT warm-up
-      cull.render(start, g.occluders);
-      const uint32_t frames = 12 * o.repeats;
-      for (uint32_t f = 0; f < frames; ++f) {
-        const auto cam = frame::orbit(start, g.bounds.center(), scene.up, 5.0 * f);
-        const auto p = renderer.render(plain, cam, {&draw, 1}, g.occluders, co.render);
-        const auto c = cull.render(cam, g.occluders);
-        plainMs.push_back(p.wallMs);
-        culledMs.push_back(c.totalMs());
-        ratio.push_back(c.totalMs() / p.wallMs);
-        overhead.push_back((c.pyramidMs + c.cullMs) / c.totalMs());
-        tesPlain += p.statistics.tessEvaluationInvocations;
-        tesCulled += c.pass1.tessEvaluationInvocations + c.pass2.tessEvaluationInvocations;
-        fragPlain += p.statistics.fragmentShaderInvocations;
-        tcsPlain += p.statistics.tessControlPatches;
-        tcsCulled += c.pass1.tessControlPatches + c.pass2.tessControlPatches;
-        fragCulled += c.pass1.fragmentShaderInvocations + c.pass2.fragmentShaderInvocations;
-        culled += c.culled();
-        total += c.patchesTotal;
+    for (bool allStages : {false, true})
+      for (frame::CullDrawMode mode :
+           {frame::CullDrawMode::Filtered, frame::CullDrawMode::TessFactorZero}) {
+        frame::CullFrameOptions co = cullOptions(tess, allStages ? &scene : nullptr);
+        co.drawMode = mode;
+        frame::CullFrame cull(context, renderer, target, meshes, co);
+        std::vector<double> ratio, overhead, culledMs, plainMs;
+        uint64_t tesCulled = 0, tesPlain = 0, fragCulled = 0, fragPlain = 0, culled = 0, total = 0;
+        uint64_t tcsCulled = 0, tcsPlain = 0;
+        renderer.render(plain, start, {&draw, 1}, g.occluders, co.render);  // JIT warm-up
+        cull.render(start, g.occluders);
+        const uint32_t frames = 12 * o.repeats;
+        for (uint32_t f = 0; f < frames; ++f) {
+          const auto cam = frame::orbit(start, g.bounds.center(), scene.up, 5.0 * f);
+          const auto p = renderer.render(plain, cam, {&draw, 1}, g.occluders, co.render);
+          const auto c = cull.render(cam, g.occluders);
+          plainMs.push_back(p.wallMs);
+          culledMs.push_back(c.totalMs());
+          ratio.push_back(c.totalMs() / p.wallMs);
+          overhead.push_back((c.pyramidMs + c.cullMs) / c.totalMs());
+          tesPlain += p.statistics.tessEvaluationInvocations;
+          tesCulled += c.pass1.tessEvaluationInvocations + c.pass2.tessEvaluationInvocations;
+          fragPlain += p.statistics.fragmentShaderInvocations;
+          tcsPlain += p.statistics.tessControlPatches;
+          tcsCulled += c.pass1.tessControlPatches + c.pass2.tessControlPatches;
+          fragCulled += c.pass1.fragmentShaderInvocations + c.pass2.fragmentShaderInvocations;
+          culled += c.culled();
+          total += c.patchesTotal;
+        }
+        std::printf(
+            "| %s | %u | %s | %s | %.1f%% | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f%% |\n",
+            scene.name.c_str(), tess, allStages ? "all" : "frustum + occlusion", toString(mode),
+            100.0 * culled / total, median(plainMs), median(culledMs), median(ratio),
+            double(tesCulled) / tesPlain, double(tcsCulled) / tcsPlain,
+            double(fragCulled) / fragPlain, 100.0 * median(overhead));
+        std::fflush(stdout);
       }
-      std::printf("| %s | %u | %s | %.1f%% | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f%% |\n",
-                  scene.name.c_str(), tess, toString(mode), 100.0 * culled / total, median(plainMs),
-                  median(culledMs), median(ratio), double(tesCulled) / tesPlain,
-                  double(fragCulled) / fragPlain, 100.0 * median(overhead));
-      std::fflush(stdout);
-    }
 }
 
 // 4. A long sequence with fast rotation (10 to 30 degrees per frame, changing direction):
 // pixels covered without culling but not with it, and pixels that differ at all.
-void sequence(vk::Context& context, const Scene& scene, const Options& o, bool aggressive) {
+void sequence(vk::Context& context, const Scene& scene, const Options& o, bool aggressive,
+              bool allStages) {
   GpuScene g(context, scene);
   frame::RenderTarget target(context, o.width, o.height), plain(context, o.width, o.height);
   frame::Renderer renderer(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrameOptions co = cullOptions(4);
+  frame::CullFrameOptions co = cullOptions(4, allStages ? &scene : nullptr);
   co.aggressive = aggressive;
   frame::CullFrame cull(context, renderer, target, meshes, co);
   frame::Camera cam =
@@ -287,8 +300,10 @@ void sequence(vk::Context& context, const Scene& scene, const Options& o, bool a
     maxDifferent = std::max(maxDifferent, d);
   }
   std::printf("| %s | %s | %u | %llu | %u | %llu | %u | %u | %.5f%% |\n", scene.name.c_str(),
-              aggressive ? "aggressive" : "two-pass", o.sequence,
-              static_cast<unsigned long long>(uncovered), framesUncovered,
+              (std::string(allStages ? "all stages, " : "frustum + occlusion, ") +
+               (aggressive ? "aggressive" : "two-pass"))
+                  .c_str(),
+              o.sequence, static_cast<unsigned long long>(uncovered), framesUncovered,
               static_cast<unsigned long long>(different), framesDifferent, maxDifferent,
               100.0 * different / pixels);
   std::fflush(stdout);
@@ -350,8 +365,13 @@ std::vector<Scene> scenes(const std::string& names) {
   while (std::getline(list, name, ',')) {
     if (name == "default") {
       scene::Scene demo = scene::defaultScene();
-      out.push_back({"default scene", std::move(demo.patches), std::move(demo.occluders), demo.up,
-                     demo.viewDirection});
+      // Closed cages with outward normals (scene/procedural.h), walls as occluders.
+      out.push_back({"default scene",
+                     std::move(demo.patches),
+                     std::move(demo.occluders),
+                     demo.up,
+                     demo.viewDirection,
+                     {true, "built-in scene: closed, outward cages"}});
     } else if (name.rfind("bigguy", 0) == 0 && name.size() == 7) {
       const auto path = dataDir() / "characters" / "bigguy.obj";
       if (!std::filesystem::exists(path)) {
@@ -360,11 +380,14 @@ std::vector<Scene> scenes(const std::string& names) {
       }
       PatchOptions options;
       options.isolationLevel = name[6] - '0';
+      const CageMesh cage = adapters::loadCage(path);
       Scene s{"BigGuy level " + name.substr(6),
-              extractPatches(adapters::loadCage(path), options).patches,
+              extractPatches(cage, options).patches,
               {},
               {0, 1, 0},
-              {0.3, 0.25, 1.0}};
+              {0.3, 0.25, 1.0},
+              bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)),
+                                       bound::signedVolume(cage))};
       out.push_back(std::move(s));
     } else {
       throw Error("--scenes: unknown scene '" + name + "'");
@@ -388,8 +411,9 @@ int main(int argc, char** argv) {
     if (want('1')) {
       std::printf("## Occlusion cull rate, whole-object views\n\n");
       std::printf(
-          "| scene | patches | views | occlusion cull rate | with tight lookup | oracle rate |\n");
-      std::printf("|---|---:|---:|---:|---:|---:|\n");
+          "| scene | patches | views | occlusion cull rate | with tight lookup | all stages | "
+          "oracle rate |\n");
+      std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
       for (const Scene& s : all) cullRates(context, s, o);
     }
     if (want('2')) {
@@ -404,9 +428,9 @@ int main(int argc, char** argv) {
       std::printf("\n## Frame cost with and without culling (medians over %u frames)\n\n",
                   12 * o.repeats);
       std::printf(
-          "| scene | tess | draw mode | culled | frame ms, no culling | frame ms, culling | "
-          "time ratio | TES ratio | TCS patch ratio | fragment ratio | pyramid + cull share |\n");
-      std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+          "| scene | tess | stages | draw mode | culled | frame ms, no culling | frame ms, culling "
+          "| time ratio | TES ratio | TCS patch ratio | fragment ratio | pyramid + cull share |\n");
+      std::printf("|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
       for (const Scene& s : all) frameCosts(context, s, o);
     }
     if (want('5')) {
@@ -424,8 +448,9 @@ int main(int argc, char** argv) {
           "frames with differences | max differing / frame | differing share |\n");
       std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
       for (const Scene& s : all) {
-        sequence(context, s, o, false);
-        sequence(context, s, o, true);
+        sequence(context, s, o, false, false);
+        sequence(context, s, o, false, true);
+        sequence(context, s, o, true, true);
       }
     }
     return 0;

@@ -3,6 +3,7 @@
 #include "osd_cull/error.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/descriptors.h"
 #include "osd_cull/vk/transfer.h"
 
 #include <shared/draw_layout.h>
@@ -227,12 +228,17 @@ std::vector<uint32_t> CullFrame::readResults(size_t mesh) const {
 
 FrameStats CullFrame::renderStatusView(RenderTarget& target, const Camera& camera,
                                        std::span<const GpuTriangleMesh* const> occluders) {
-  if (statusLists_.empty())
+  if (statusLists_.empty()) {
+    statusSetLayout_ = vk::createDescriptorSetLayout(context_, patchSetBindings());
+    statusPool_ = std::make_unique<vk::DescriptorPool>(
+        context_, static_cast<uint32_t>(meshes_.size()), patchSetBindings());
     for (const CullMesh& m : meshes_) {
       statusLists_.emplace_back(context_, std::max<size_t>(4, size_t{m.gpu->patchCount()} * 4),
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-      statusSets_.push_back(m.gpu->descriptorSetWithDrawList(context_, statusLists_.back()));
+      statusSets_.push_back(statusPool_->allocate(statusSetLayout_.get()));
+      m.gpu->writeDescriptorSet(context_.device(), statusSets_.back(), statusLists_.back());
     }
+  }
   std::vector<PatchDraw> draws;
   for (size_t m = 0; m < meshes_.size(); ++m) {
     const std::vector<uint32_t> status = visibility_[m]->readStatus(context_);

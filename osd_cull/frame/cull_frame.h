@@ -141,6 +141,8 @@ class CullFrame {
   vk::PipelineStatisticsQuery queries_;
   std::vector<vk::Buffer> statusLists_;  // debug view lists, made on first use
   std::vector<VkDescriptorSet> statusSets_;
+  vk::UniqueDescriptorSetLayout statusSetLayout_;
+  std::unique_ptr<vk::DescriptorPool> statusPool_;
 };
 
 }  // namespace osd_cull::frame

@@ -86,11 +86,19 @@ VisibilityBuffer::VisibilityBuffer(vk::Context& context, const VisibilityProgram
   const size_t maxCommands = size_t{gpu.bezierCount()} + gpu.gregoryCount() + 2;
   // Sets: per list one draws set, per parity one update set per results buffer (a few).
   pool_ = std::make_unique<vk::DescriptorPool>(context, 16, updateBindings());
+  // Six patch draw sets (three compact lists, three full lists), owned here.
+  drawSetLayout_ = vk::createDescriptorSetLayout(context, patchSetBindings());
+  drawPool_ = std::make_unique<vk::DescriptorPool>(context, 6, patchSetBindings());
+  auto drawSet = [&](const vk::Buffer& list) {
+    const VkDescriptorSet set = drawPool_->allocate(drawSetLayout_.get());
+    gpu.writeDescriptorSet(context.device(), set, list);
+    return set;
+  };
   auto makeList = [&](DrawListBuffers& l) {
     l.list = vk::Buffer(context, size_t{n} * 4, storage);
     l.counters = vk::Buffer(context, kListCounterCount * 4, indirect, vk::MemoryUse::Readback);
     l.commands = vk::Buffer(context, maxCommands * 16, indirect);
-    l.drawSet = gpu.descriptorSetWithDrawList(context, l.list);
+    l.drawSet = drawSet(l.list);
     l.draws = pool_->allocate(programs.draws().setLayout());
     vk::DescriptorWriter()
         .buffer(kDrawsBindingCounters, l.counters)
@@ -101,10 +109,10 @@ VisibilityBuffer::VisibilityBuffer(vk::Context& context, const VisibilityProgram
   makeList(secondPass_);
   for (uint32_t i = 0; i < 2; ++i) {
     all_[i] = vk::Buffer(context, size_t{n} * 4, storage);
-    allSets_[i] = gpu.descriptorSetWithDrawList(context, all_[i]);
+    allSets_[i] = drawSet(all_[i]);
   }
   secondAll_ = vk::Buffer(context, size_t{n} * 4, storage);
-  secondAllSet_ = gpu.descriptorSetWithDrawList(context, secondAll_);
+  secondAllSet_ = drawSet(secondAll_);
   reset(firstFrame);
 }
 

@@ -125,6 +125,8 @@ class VisibilityBuffer {
   std::array<VkDescriptorSet, 2> allSets_{};
   VkDescriptorSet secondAllSet_ = VK_NULL_HANDLE;
   std::unique_ptr<vk::DescriptorPool> pool_;
+  vk::UniqueDescriptorSetLayout drawSetLayout_;  // patchSetBindings(), for the draw sets
+  std::unique_ptr<vk::DescriptorPool> drawPool_;
   std::map<std::pair<VkBuffer, uint32_t>, VkDescriptorSet> updateSets_;  // (results, parity)
 };
 
