@@ -122,7 +122,7 @@ TEST(CullCommands, RenderWithCullingDrawsFewerPatchesAndSaysWhy) {
                                   " --width 96 --height 64 --tess 2 --cull all "
                                   "--backpatch-method tcone --validate");
   ASSERT_EQ(r.exitCode(), 0) << r.output;
-  EXPECT_NE(r.output.find("cull: all (frustum, tcone)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cull: all (frustum, tcone, hiz)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("culled "), std::string::npos) << r.output;
   const auto bad = test::runCommand(test::osdCullProgram().string() +
                                     " render --out x.png --cull all --backpatch-method frustum");
@@ -146,7 +146,7 @@ TEST(CullCommands, VerifyWritesJsonWithEveryApplicableMethod) {
   EXPECT_EQ(j["mesh"], "built-in:default");
   EXPECT_EQ(j["views"], 6);
   EXPECT_EQ(j["back_patch"]["enabled"], true);
-  ASSERT_EQ(j["methods"].size(), 5u);
+  ASSERT_EQ(j["methods"].size(), 6u);  // frustum, 4 back-patch methods, hiz
   for (const auto& m : j["methods"]) {
     EXPECT_EQ(m["culled_not_in_reference"], 0) << m["name"];
     EXPECT_EQ(m["sampling_violations"], 0) << m["name"];

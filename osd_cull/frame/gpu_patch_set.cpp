@@ -99,6 +99,15 @@ void GpuPatchSet::readPointsFrom(vk::Context& context, const vk::Buffer& points,
   vk::DescriptorWriter().buffer(0, points).update(context.device(), set_);
 }
 
+void GpuPatchSet::writeDescriptorSet(VkDevice device, VkDescriptorSet set,
+                                     const vk::Buffer& drawList) const {
+  vk::DescriptorWriter()
+      .buffer(0, *pointSource_)
+      .buffer(1, params_)
+      .buffer(2, drawList)
+      .update(device, set);
+}
+
 void GpuPatchSet::updatePoints(vk::Context& context, std::span<const glm::dvec3> points) {
   if (pointSource_ != &points_)
     throw Error(

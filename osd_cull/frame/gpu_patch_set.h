@@ -67,6 +67,10 @@ class GpuPatchSet {
   /// \throws osd_cull::Error when the sets are used up.
   VkDescriptorSet descriptorSetWithDrawList(vk::Context& context, const vk::Buffer& drawList);
   static constexpr uint32_t kMaxDrawListSets = 15;
+  /// \brief Writes points (the current source, see readPointsFrom()), params and `drawList`
+  /// into `set`, a set the caller allocated with a layout of patchSetBindings() (for
+  /// callers that own their sets and pools).
+  void writeDescriptorSet(VkDevice device, VkDescriptorSet set, const vk::Buffer& drawList) const;
 
  private:
   uint32_t bezierCount_ = 0;

@@ -23,7 +23,8 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
                          float(t.maxLevel));
   c.mode =
       t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
-  c.flags = options.debugColors ? shader::kFlagDebugColors : 0u;
+  c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
+            (options.statusColors ? shader::kFlagStatusColors : 0u);
   return c;
 }
 
