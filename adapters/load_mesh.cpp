@@ -8,20 +8,12 @@
 #include "osd_cull/error.h"
 
 #include <algorithm>
-#include <cctype>
 
 namespace osd_cull::adapters {
 
-namespace {
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return ext;
+bool isBezierPatchFile(const std::filesystem::path& path) {
+  return detail::lowerExtension(path) == ".bpt";
 }
-}  // namespace
-
-bool isBezierPatchFile(const std::filesystem::path& path) { return lowerExtension(path) == ".bpt"; }
 
 std::vector<std::string> cageFileExtensions() {
   std::vector<std::string> ext = {".obj", ".off"};
@@ -31,7 +23,7 @@ std::vector<std::string> cageFileExtensions() {
 
 CageMesh loadCage(const std::filesystem::path& path, const LoadOptions& options) {
   const std::string file = path.string();
-  const std::string ext = lowerExtension(path);
+  const std::string ext = detail::lowerExtension(path);
   if (ext == ".bpt")
     throw Error(file +
                 ": a BPT file holds Bézier patches, not a control cage (use loadBezierPatches)");

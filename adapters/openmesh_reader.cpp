@@ -135,13 +135,6 @@ class CapturedOmErr {
   bool logWasEnabled_ = false;
 };
 
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 }  // namespace
 
 bool haveOpenMesh() { return true; }

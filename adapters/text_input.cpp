@@ -1,6 +1,7 @@
 #include "adapters/text_input.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +27,13 @@ std::string readFileBytes(const std::filesystem::path& path) {
     bytes.append(buffer, static_cast<size_t>(in.gcount()));
   if (in.bad()) throw Error(name + ": read error");
   return bytes;
+}
+
+std::string lowerExtension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
 }
 
 void fail(const std::string& file, int line, const std::string& problem) {

@@ -19,6 +19,9 @@ namespace osd_cull::adapters::detail {
 /// directory, or cannot be read.
 std::string readFileBytes(const std::filesystem::path& path);
 
+/// \brief The file's extension in lower case, with the dot (".obj"); empty if it has none.
+std::string lowerExtension(const std::filesystem::path& path);
+
 /// \brief Throws Error "FILE:LINE: problem" (or "FILE: problem" when line <= 0).
 [[noreturn]] void fail(const std::string& file, int line, const std::string& problem);
 

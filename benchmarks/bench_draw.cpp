@@ -1,18 +1,25 @@
 // bench-draw: frame time and tessellation work of the patch draw path for tessellation
 // levels 1..64, with draws split by tessellated vertex count (chunked) and as one draw per
-// patch type, on a BigGuy-sized patch set. Prints a Markdown table; see docs/results/draw.md.
+// patch type, on BigGuy (isolation level 2, Gregory end caps). Prints Markdown tables; see
+// docs/results/draw.md.
 //
-//   bench-draw [--width 1280] [--height 720] [--repeats 3] [--max-one-draw-level 16]
-//              [--nu 96 --nv 58] [--device X]
+//   bench-draw [--mesh FILE] [--width 1280] [--height 720] [--repeats 3]
+//              [--max-one-draw-level 16] [--device X]
+//
+// FILE defaults to ../shared/data/characters/bigguy.obj beside the source tree; without it
+// (or with --mesh torus) a bicubic torus of BigGuy's size (--nu 96 --nv 58) stands in.
+#include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/vk/context.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -23,6 +30,7 @@ using namespace osd_cull;
 struct Options {
   uint32_t width = 1280, height = 720, repeats = 3, maxOneDrawLevel = 16, nu = 96, nv = 58;
   std::string device;
+  std::string mesh = std::string(OSD_CULL_SOURCE_DIR) + "/../shared/data/characters/bigguy.obj";
 };
 
 Options parse(int argc, char** argv) {
@@ -94,17 +102,25 @@ int main(int argc, char** argv) {
     vk::ContextOptions contextOptions;
     contextOptions.device = o.device;
     vk::Context context(contextOptions);
-    // BigGuy at isolation 2 has 5554 patches (shared/PLATFORM.md); until the mesh loaders
-    // and patch extraction are in this build, a bicubic torus of the same size stands in.
-    const PatchSet set = frame::convertToGregory(
-        frame::bsplineTorus({o.nu, o.nv, 1.0, 0.4, {0, 0, 0}, -1}),
-        [](uint32_t p) { return p % 7 == 3; });  // about the Gregory share of BigGuy (14%)
+    PatchSet set;
+    glm::dvec3 up(0, 1, 0), from(0.45, 0.35, 1.0);  // OBJ cages: y up, seen from the front
+    if (o.mesh != "torus" && std::filesystem::exists(o.mesh)) {
+      set = extractPatches(adapters::loadCage(o.mesh)).patches;
+    } else {
+      std::fprintf(stderr, "bench-draw: %s not found, using a torus of BigGuy's size\n",
+                   o.mesh.c_str());
+      // About BigGuy's patch count and Gregory share (5554 patches, 14% Gregory).
+      set = frame::convertToGregory(frame::bsplineTorus({o.nu, o.nv, 1.0, 0.4, {0, 0, 0}, -1}),
+                                    [](uint32_t p) { return p % 7 == 3; });
+      up = {0, 0, 1};
+      from = {0.4, -1.0, 0.8};
+    }
     frame::GpuPatchSet gpu(context, set);
     frame::RenderTarget target(context, o.width, o.height);
     frame::Renderer renderer(context);
     frame::VisibilityOracle oracle(context);
-    const auto camera = frame::frameBounds(frame::boundsOf(set.points), {0.4, -1.0, 0.8}, {0, 0, 1},
-                                           40.0, o.width, o.height);
+    const auto camera =
+        frame::frameBounds(frame::boundsOf(set.points), from, up, 40.0, o.width, o.height);
     std::printf(
         "device: %s\npatches: %s, %u Bezier + %u Gregory; image %ux%u; median of %u frames\n\n",
         context.info().name.c_str(), set.source.c_str(), set.bezierCount, set.gregoryCount, o.width,
@@ -118,8 +134,14 @@ int main(int argc, char** argv) {
       frame::RenderOptions options;
       options.tessellation.uniformLevel = level;
       const Row chunked = measure(renderer, oracle, target, camera, gpu, set, options, o.repeats);
-      std::printf("| %u | %u | %.1f | %.1f | %llu | %.0f | %llu | %u |", level, chunked.draws,
-                  chunked.wallMs, chunked.gpuMs, static_cast<unsigned long long>(chunked.tes),
+      const uint32_t used =
+          frame::effectiveOptions(options.tessellation, gpu.hasTransitionEdges()).uniformLevel;
+      const std::string levelText =
+          used == level ? std::to_string(level)
+                        : std::to_string(level) + " (clamped to " + std::to_string(used) + ")";
+      std::printf("| %s | %u | %.1f | %.1f | %llu | %.0f | %llu | %u |", levelText.c_str(),
+                  chunked.draws, chunked.wallMs, chunked.gpuMs,
+                  static_cast<unsigned long long>(chunked.tes),
                   double(chunked.tes) / set.patchCount(),
                   static_cast<unsigned long long>(chunked.fragments), chunked.visible);
       if (level <= o.maxOneDrawLevel) {

@@ -3,16 +3,14 @@
 #include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
 #include "osd_cull/patch/refiner.h"
+#include "support/temp_dir.h"
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <limits>
 #include <random>
@@ -25,23 +23,9 @@ namespace fs = std::filesystem;
 using adapters::loadBezierPatches;
 using adapters::loadCage;
 
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("osd_cull_bad_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  fs::path write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(path_ / name, std::ios::binary) << bytes;
-    return path_ / name;
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
+// A temp folder whose name says which suite wrote it.
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("osd_cull_bad_") {}
 };
 
 // Loads `file` (a cage, or patches for .bpt) and returns the error message; fails the test

@@ -14,7 +14,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 
 namespace osd_cull::bound {
@@ -224,25 +223,10 @@ TEST(BoundBackPatch, CollapsedPolePatchesAreCulledByPcntWhereNcntWouldKeepThem) 
   }
 }
 
-// Reads a BPT file (first line: count; per patch "3 3" and 16 points, u fastest).
-std::vector<Bezier> readBpt(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  int count = 0;
-  in >> count;
-  std::vector<Bezier> out(static_cast<size_t>(count));
-  for (Bezier& b : out) {
-    int du = 0, dv = 0;
-    in >> du >> dv;
-    EXPECT_EQ(du, 3);
-    for (glm::dvec3& p : b) in >> p.x >> p.y >> p.z;
-  }
-  EXPECT_TRUE(in.good() || in.eof());
-  return out;
-}
-
 TEST(BoundBackPatch, TeapotCollapsedPatchesAreClassifiedByPcnt) {
   OSD_CULL_REQUIRE_DATA();
-  const std::vector<Bezier> teapot = readBpt(osd_cull::test::dataDir() / "bezier" / "teapot.bpt");
+  const std::vector<Bezier> teapot =
+      test::bptPatches(osd_cull::test::dataDir() / "bezier" / "teapot.bpt");
   ASSERT_EQ(teapot.size(), 32u);
   // Lid-top (20-23: the knob, which wraps round and is never wholly back-facing from above
   // or below) and bottom (28-31: a disc whose first row collapses to the centre) patches.

@@ -25,16 +25,16 @@ using Clock = std::chrono::steady_clock;
 
 TEST(BoundBigGuyRates, BackPatchCullRatesOverSphereViewsAreConservative) {
   OSD_CULL_REQUIRE_DATA();
-  const CageMesh cage = test::readObjFaces(osd_cull::test::dataDir() / "characters" / "bigguy.obj");
+  const CageMesh cage = adapters::loadCage(osd_cull::test::dataDir() / "characters" / "bigguy.obj");
   const BackPatchValidity validity =
       backPatchValidity(summarize(*makeTopologyRefiner(cage)), signedVolume(cage));
   ASSERT_TRUE(validity.enabled) << validity.reason;
 
-  const test::OsdPatches osd = test::buildOsdPatches(cage, 2);
-  int skipped = 0;
-  const std::vector<Bezier> bezier = test::regularPatchesAsBezier(osd, &skipped);
-  const std::vector<Gregory> gregory = test::gregoryPatches(osd);
-  EXPECT_EQ(skipped, 0) << "BigGuy is closed: no boundary patches";
+  const test::CagePatches patches = test::cagePatches(cage, 2);
+  const ExtractionStats& stats = patches.extraction.stats;
+  EXPECT_EQ(stats.boundary + stats.corner, 0u) << "BigGuy is closed: no boundary patches";
+  const std::vector<Bezier>& bezier = patches.bezier;
+  const std::vector<Gregory>& gregory = patches.gregory;
   std::vector<SurfaceSamples> sb, sg;
   std::vector<ConeOfNormals> ncone, gcone;
   for (const Bezier& b : bezier)

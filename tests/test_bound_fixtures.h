@@ -5,28 +5,25 @@
 // kinds the cull tests must survive (around, inside the bounding box, close to the surface,
 // crossing the near plane, looking away), with y flips and mirrored views.
 
+#include "adapters/load_mesh.h"
 #include "osd_cull/bound/patch_eval.h"
+#include "osd_cull/patch/bspline_bezier.h"
 #include "osd_cull/patch/cage_mesh.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/procedural.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include <opensubdiv/far/patchMap.h>
-#include <opensubdiv/far/patchTable.h>
-#include <opensubdiv/far/patchTableFactory.h>
-#include <opensubdiv/far/stencilTableFactory.h>
-
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <memory>
 #include <numbers>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -153,23 +150,13 @@ inline std::vector<Bezier> bsplineTorus(int n, int m, double major = 1.0, double
     return glm::dvec3((major + minor * std::cos(psi)) * std::cos(phi),
                       (major + minor * std::cos(psi)) * std::sin(phi), minor * std::sin(psi));
   };
-  // Uniform cubic B-spline segment -> Bézier: rows of this matrix times p0..p3.
-  const double M[4][4] = {{1 / 6.0, 4 / 6.0, 1 / 6.0, 0},
-                          {0, 4 / 6.0, 2 / 6.0, 0},
-                          {0, 2 / 6.0, 4 / 6.0, 0},
-                          {0, 1 / 6.0, 4 / 6.0, 1 / 6.0}};
   std::vector<Bezier> out;
   for (int b = 0; b < m; ++b)
     for (int a = 0; a < n; ++a) {
-      Bezier p;
-      for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) {
-          glm::dvec3 s(0.0);
-          for (int y = 0; y < 4; ++y)
-            for (int x = 0; x < 4; ++x) s += M[i][x] * M[j][y] * cp(a + x - 1, b + y - 1);
-          p[4 * j + i] = s;
-        }
-      out.push_back(p);
+      std::array<glm::dvec3, 16> cv;
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) cv[4 * y + x] = cp(a + x - 1, b + y - 1);
+      out.push_back(bsplineToBezier(cv, 0u));
     }
   return out;
 }
@@ -283,128 +270,36 @@ inline void boundingSphere(const Points& pts, glm::dvec3* centre, double* radius
   *radius = 0.5 * glm::length(hi - lo);
 }
 
-// A cube cage with faces counter-clockwise seen from outside (positive signed volume).
-inline CageMesh cubeCage() {
-  CageMesh m;
-  m.source = "built-in:cube";
-  m.positions = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                 {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  m.faceSizes = {4, 4, 4, 4, 4, 4};
-  m.faceVertices = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
-  return m;
-}
-
-// OpenSubdiv's own adaptive patch table of a cage (Gregory-basis end caps) with the
-// positions of every vertex it indexes (all refinement levels, then the local points).
-struct OsdPatches {
-  std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> refiner;
-  std::unique_ptr<OpenSubdiv::Far::PatchTable> table;
-  std::vector<glm::dvec3> points;
+// The patches of a cage as osd_cull::extractPatches gives them (adaptive refinement to
+// `level`, Gregory-basis end caps), split into Bézier and Gregory point arrays.
+struct CagePatches {
+  PatchExtraction extraction;
+  std::vector<Bezier> bezier;
+  std::vector<Gregory> gregory;
 };
 
-inline OsdPatches buildOsdPatches(const CageMesh& cage, int level) {
-  namespace Far = OpenSubdiv::Far;
-  OsdPatches out;
-  out.refiner = makeTopologyRefiner(cage);
-  out.refiner->RefineAdaptive(Far::TopologyRefiner::AdaptiveOptions(level));
-  Far::PatchTableFactory::Options po(level);
-  po.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
-  out.table.reset(Far::PatchTableFactory::Create(*out.refiner, po));
-  Far::StencilTableFactory::Options so;
-  so.generateOffsets = true;
-  so.generateControlVerts = true;
-  so.generateIntermediateLevels = true;
-  std::unique_ptr<const Far::StencilTable> stencils(
-      Far::StencilTableFactory::Create(*out.refiner, so));
-  if (const Far::StencilTable* local = out.table->GetLocalPointStencilTable()) {
-    stencils.reset(Far::StencilTableFactory::AppendLocalPointStencilTable(*out.refiner,
-                                                                          stencils.get(), local));
-  }
-  out.points.assign(static_cast<size_t>(stencils->GetNumStencils()), glm::dvec3(0.0));
-  for (int s = 0; s < stencils->GetNumStencils(); ++s) {
-    const auto st = stencils->GetStencil(s);
-    for (int k = 0; k < st.GetSize(); ++k)
-      out.points[s] +=
-          static_cast<double>(st.GetWeights()[k]) * cage.positions[st.GetVertexIndices()[k]];
+inline CagePatches cagePatches(const CageMesh& cage, int level) {
+  PatchOptions options;
+  options.isolationLevel = level;
+  CagePatches out{extractPatches(cage, options), {}, {}};
+  const PatchSet& set = out.extraction.patches;
+  for (uint32_t p = 0; p < set.patchCount(); ++p) {
+    const std::span<const glm::dvec3> cps = set.controlPoints(p);
+    if (set.type(p) == PatchType::Bezier)
+      std::copy(cps.begin(), cps.end(), out.bezier.emplace_back().begin());
+    else
+      std::copy(cps.begin(), cps.end(), out.gregory.emplace_back().begin());
   }
   return out;
 }
 
-// The regular interior patches of an OpenSubdiv patch table (B-spline, no boundary) in
-// Bézier form: b = M p M^T per direction with the uniform B-spline -> Bézier matrix.
-inline std::vector<Bezier> regularPatchesAsBezier(const OsdPatches& osd, int* skipped) {
-  namespace Far = OpenSubdiv::Far;
-  const double M[4][4] = {{1 / 6.0, 4 / 6.0, 1 / 6.0, 0},
-                          {0, 4 / 6.0, 2 / 6.0, 0},
-                          {0, 2 / 6.0, 4 / 6.0, 0},
-                          {0, 1 / 6.0, 4 / 6.0, 1 / 6.0}};
-  std::vector<Bezier> out;
-  *skipped = 0;
-  for (int a = 0; a < osd.table->GetNumPatchArrays(); ++a) {
-    if (osd.table->GetPatchArrayDescriptor(a).GetType() != Far::PatchDescriptor::REGULAR) continue;
-    for (int p = 0; p < osd.table->GetNumPatches(a); ++p) {
-      if (osd.table->GetPatchParam(a, p).GetBoundary() != 0) {
-        ++*skipped;
-        continue;
-      }
-      const auto cvs = osd.table->GetPatchVertices(a, p);
-      Bezier b;
-      for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) {
-          glm::dvec3 s(0.0);
-          for (int y = 0; y < 4; ++y)
-            for (int x = 0; x < 4; ++x) s += M[i][x] * M[j][y] * osd.points[cvs[4 * y + x]];
-          b[4 * j + i] = s;
-        }
-      out.push_back(b);
-    }
-  }
+// The Bézier patches of a BPT file (adapters::loadBezierPatches).
+inline std::vector<Bezier> bptPatches(const std::filesystem::path& path) {
+  const PatchSet set = adapters::loadBezierPatches(path);
+  std::vector<Bezier> out(set.bezierCount);
+  for (uint32_t p = 0; p < set.bezierCount; ++p)
+    std::copy_n(set.controlPoints(p).begin(), kBezierPoints, out[p].begin());
   return out;
-}
-
-// The Gregory-basis patches of an OpenSubdiv patch table, 20 points each.
-inline std::vector<Gregory> gregoryPatches(const OsdPatches& osd) {
-  namespace Far = OpenSubdiv::Far;
-  std::vector<Gregory> out;
-  for (int a = 0; a < osd.table->GetNumPatchArrays(); ++a) {
-    if (osd.table->GetPatchArrayDescriptor(a).GetType() != Far::PatchDescriptor::GREGORY_BASIS)
-      continue;
-    for (int p = 0; p < osd.table->GetNumPatches(a); ++p) {
-      const auto cvs = osd.table->GetPatchVertices(a, p);
-      Gregory g;
-      for (int k = 0; k < 20; ++k) g[k] = osd.points[cvs[k]];
-      out.push_back(g);
-    }
-  }
-  return out;
-}
-
-// Reads the vertices and faces of an OBJ file (enough for topology and volume; the shapes
-// checked here carry no tags that change closedness).
-inline CageMesh readObjFaces(const std::filesystem::path& path) {
-  CageMesh m;
-  m.source = path.string();
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "v") {
-      glm::dvec3 p;
-      ls >> p.x >> p.y >> p.z;
-      m.positions.push_back(p);
-    } else if (tag == "f") {
-      int n = 0;
-      std::string corner;
-      while (ls >> corner) {
-        m.faceVertices.push_back(std::stoi(corner.substr(0, corner.find('/'))) - 1);
-        ++n;
-      }
-      m.faceSizes.push_back(n);
-    }
-  }
-  return m;
 }
 
 }  // namespace osd_cull::bound::test

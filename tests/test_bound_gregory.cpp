@@ -5,6 +5,7 @@
 #include "osd_cull/bound/patch_eval.h"
 #include "osd_cull/bound/sampling.h"
 #include "test_bound_fixtures.h"
+#include "test_patch_support.h"
 
 #include <gtest/gtest.h>
 
@@ -16,51 +17,34 @@ namespace {
 using test::Bezier;
 using test::Gregory;
 using test::Rng;
-namespace Far = OpenSubdiv::Far;
 
 TEST(BoundGregory, EvaluationMatchesOpenSubdivOnTheGregoryPatchesOfACube) {
-  const test::OsdPatches osd = test::buildOsdPatches(test::cubeCage(), 2);
-  const Far::PatchTable& table = *osd.table;
+  const CageMesh cube = scene::cube();
+  const test::CagePatches patches = test::cagePatches(cube, 2);
+  const PatchSet& set = patches.extraction.patches;
+  PatchOptions options;
+  options.isolationLevel = 2;
+  const osd_cull::test::OsdReference osd(cube, options);
   Rng rng(41);
-  int checked = 0, firstPatch = 0;
-  for (int a = 0; a < table.GetNumPatchArrays(); ++a) {
-    const Far::PatchDescriptor desc = table.GetPatchArrayDescriptor(a);
-    const int n = table.GetNumPatches(a);
-    if (desc.GetType() == Far::PatchDescriptor::GREGORY_BASIS) {
-      for (int p = 0; p < n; ++p) {
-        Far::PatchTable::PatchHandle handle;
-        handle.arrayIndex = a;
-        handle.patchIndex = firstPatch + p;                   // absolute
-        handle.vertIndex = p * desc.GetNumControlVertices();  // relative to the array
-        const auto cvs = table.GetPatchVertices(handle);
-        Gregory g;
-        for (int k = 0; k < 20; ++k) g[k] = osd.points[cvs[k]];
-        const Far::PatchParam param = table.GetPatchParam(handle);
-        for (int s = 0; s < 8; ++s) {
-          const double u = rng.uniform(), v = rng.uniform();
-          double fu = u, fv = v;  // OpenSubdiv takes coordinates of the base face
-          param.Unnormalize(fu, fv);
-          double w[20], wu[20], wv[20];
-          table.EvaluateBasis(handle, fu, fv, w, wu, wv);
-          glm::dvec3 expected(0.0);
-          for (int k = 0; k < 20; ++k) expected += w[k] * g[k];
-          const PatchSample mine = evaluateGregory(g, u, v);
-          EXPECT_NEAR(glm::length(mine.position - expected), 0.0, 1e-6);
-          // True derivatives: central differences of the positions.
-          const double h = 1e-6;
-          const glm::dvec3 fdU =
-              (evaluateGregory(g, u + h, v).position - evaluateGregory(g, u - h, v).position) /
-              (2 * h);
-          const glm::dvec3 fdV =
-              (evaluateGregory(g, u, v + h).position - evaluateGregory(g, u, v - h).position) /
-              (2 * h);
-          EXPECT_NEAR(glm::length(mine.du - fdU), 0.0, 1e-6 * (1.0 + glm::length(fdU)));
-          EXPECT_NEAR(glm::length(mine.dv - fdV), 0.0, 1e-6 * (1.0 + glm::length(fdV)));
-          ++checked;
-        }
-      }
+  int checked = 0;
+  for (uint32_t p = set.bezierCount; p < set.patchCount(); ++p) {
+    const Gregory& g = patches.gregory.at(p - set.bezierCount);
+    for (int s = 0; s < 8; ++s) {
+      const double u = rng.uniform(), v = rng.uniform();
+      SurfacePoint expected;  // OpenSubdiv's own basis on its own patch
+      ASSERT_TRUE(osd.evaluate(set.params[p], u, v, expected)) << "patch " << p;
+      const PatchSample mine = evaluateGregory(g, u, v);
+      EXPECT_NEAR(glm::length(mine.position - expected.position), 0.0, 1e-6);
+      // True derivatives: central differences of the positions.
+      const double h = 1e-6;
+      const glm::dvec3 fdU =
+          (evaluateGregory(g, u + h, v).position - evaluateGregory(g, u - h, v).position) / (2 * h);
+      const glm::dvec3 fdV =
+          (evaluateGregory(g, u, v + h).position - evaluateGregory(g, u, v - h).position) / (2 * h);
+      EXPECT_NEAR(glm::length(mine.du - fdU), 0.0, 1e-6 * (1.0 + glm::length(fdU)));
+      EXPECT_NEAR(glm::length(mine.dv - fdV), 0.0, 1e-6 * (1.0 + glm::length(fdV)));
+      ++checked;
     }
-    firstPatch += n;
   }
   EXPECT_EQ(checked, 24 * 8) << "a cube at level 2 has 3 Gregory patches at each of its 8 corners";
 }
@@ -155,8 +139,7 @@ TEST(BoundGregory, RandomGregoryPatchesAndViewsNeverCullAVisibleSample) {
 }
 
 TEST(BoundGregory, OpenSubdivCubeGregoryPatchesAreCulledConservatively) {
-  const test::OsdPatches osd = test::buildOsdPatches(test::cubeCage(), 2);
-  const std::vector<Gregory> patches = test::gregoryPatches(osd);
+  const std::vector<Gregory> patches = test::cagePatches(scene::cube(), 2).gregory;
   ASSERT_GE(patches.size(), 24u);
   std::vector<SurfaceSamples> samples;
   std::vector<ConeOfNormals> cones;

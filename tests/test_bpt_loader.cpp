@@ -1,12 +1,11 @@
 // BPT Bézier patch files: the Utah teapot from the shared data and small inline files.
 #include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
+#include "support/temp_dir.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -19,22 +18,9 @@ namespace {
 namespace fs = std::filesystem;
 using adapters::loadBezierPatches;
 
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("osd_cull_bpt_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  fs::path write(const std::string& name, const std::string& text) const {
-    std::ofstream(path_ / name, std::ios::binary) << text;
-    return path_ / name;
-  }
-
- private:
-  fs::path path_;
+// A temp folder whose name says which suite wrote it.
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("osd_cull_bpt_") {}
 };
 
 // The "x y z" lines of a BPT file, read naively (every line with three numbers).

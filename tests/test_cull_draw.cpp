@@ -4,6 +4,7 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/default_scene.h"
 #include "support/run_command.h"
 #include "support/vk_test_context.h"
 #include "support/vk_test_images.h"
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 class CullDrawTest : public test::VkTest {};
 
 TEST_F(CullDrawTest, CulledFrameDrawsTheSameImageWithFewerTessellatedVertices) {
-  const frame::DemoScene scene = frame::defaultDemoScene();
+  const scene::Scene scene = scene::defaultScene();
   frame::GpuPatchSet gpu(context(), scene.patches);
   std::vector<frame::GpuTriangleMesh> walls;
   for (const auto& m : scene.occluders) walls.emplace_back(context(), m);
@@ -121,7 +122,7 @@ TEST(CullCommands, RenderWithCullingDrawsFewerPatchesAndSaysWhy) {
                                   " --width 96 --height 64 --tess 2 --cull all "
                                   "--backpatch-method tcone --validate");
   ASSERT_EQ(r.exitCode(), 0) << r.output;
-  EXPECT_NE(r.output.find("cull: all (frustum, tcone)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cull: all (frustum, tcone, hiz)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("culled "), std::string::npos) << r.output;
   const auto bad = test::runCommand(test::osdCullProgram().string() +
                                     " render --out x.png --cull all --backpatch-method frustum");
@@ -145,7 +146,7 @@ TEST(CullCommands, VerifyWritesJsonWithEveryApplicableMethod) {
   EXPECT_EQ(j["mesh"], "built-in:default");
   EXPECT_EQ(j["views"], 6);
   EXPECT_EQ(j["back_patch"]["enabled"], true);
-  ASSERT_EQ(j["methods"].size(), 5u);
+  ASSERT_EQ(j["methods"].size(), 6u);  // frustum, 4 back-patch methods, hiz
   for (const auto& m : j["methods"]) {
     EXPECT_EQ(m["culled_not_in_reference"], 0) << m["name"];
     EXPECT_EQ(m["sampling_violations"], 0) << m["name"];

@@ -1,6 +1,8 @@
 // `osd-cull render`: the built-in scene renders with validation on, writes the images and
 // prints a line per frame.
 #include "osd_cull/frame/png_io.h"
+#include "support/run_command.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace osd_cull {
@@ -15,29 +18,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string output;
-};
+using test::runCommand;
 
-Result runCommand(const std::string& command) {
-  Result r;
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>&1").c_str(), "r"), pclose);
-  if (!pipe) return r;
-  std::array<char, 512> buffer;
-  while (fgets(buffer.data(), buffer.size(), pipe.get())) r.output += buffer.data();
-  r.status = pclose(pipe.release());
-  return r;
-}
-
-fs::path program() { return fs::path(OSD_CULL_BINARY_DIR) / "samples" / "osd-cull"; }
+fs::path program() { return test::osdCullProgram(); }
 
 TEST(RenderCommand, DrawsTheBuiltInSceneAndWritesImages) {
   if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built (OSD_CULL_BUILD_SAMPLES=OFF?)";
   const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cli";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const Result r = runCommand(
+  const auto r = runCommand(
       program().string() + " render --out " + (dir / "scene.png").string() +
       " --width 96 --height 64 --tess 2 --frames 2 --orbit 30 --ids --validate --out-dir " +
       (dir / "frames").string());
@@ -60,9 +50,30 @@ TEST(RenderCommand, DrawsTheBuiltInSceneAndWritesImages) {
   EXPECT_EQ(frame::readPng(dir / "scene.png").samples8, b.samples8);
 }
 
+TEST(RenderCommand, DrawsTheTeapotBezierPatchFile) {
+  OSD_CULL_REQUIRE_DATA();
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_teapot";
+  fs::create_directories(dir);
+  const auto r = runCommand(program().string() + " render " +
+                              (test::dataDir() / "bezier" / "teapot.bpt").string() + " --out " +
+                              (dir / "teapot.png").string() +
+                              " --width 96 --height 64 --adaptive 4 --ids --validate");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("32 Bezier + 0 Gregory"), std::string::npos) << r.output;
+  const auto ids = frame::readPng(dir / "teapot_ids.png");
+  std::set<uint32_t> patches;
+  for (size_t i = 0; i + 2 < ids.samples8.size(); i += 3) {
+    const uint32_t v = ids.samples8[i] | ids.samples8[i + 1] << 8 | ids.samples8[i + 2] << 16;
+    ASSERT_LE(v, 32u);
+    if (v) patches.insert(v - 1);
+  }
+  EXPECT_GE(patches.size(), 16u);  // rim, body, handle, spout and lid seen from above
+}
+
 TEST(RenderCommand, RejectsBadOptionsWithAClearMessage) {
   if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
-  Result r = runCommand(program().string() + " render --width 64");
+  auto r = runCommand(program().string() + " render --width 64");
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
   r = runCommand(program().string() + " render --out x.png --tess 3 --adaptive 4");

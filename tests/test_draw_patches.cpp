@@ -71,6 +71,28 @@ TEST_F(DrawTest, FlatGregoryPatchCoversExactlyItsRectangle) {
   EXPECT_EQ(stats.statistics.tessEvaluationInvocations, 36u);
 }
 
+TEST_F(DrawTest, PointsCanComeFromAnotherBufferWithAnyStride) {
+  // As an evaluator writes them: packed x, y, z after 5 floats of something else.
+  const PatchSet set = flatRectangle();
+  frame::GpuPatchSet gpu(context(), set);
+  std::vector<float> packed(5, -1.0f);
+  for (const auto& p : set.points)
+    packed.insert(packed.end(), {float(p.x), float(p.y), float(p.z)});
+  vk::Buffer external(context(), packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vk::upload<float>(context(), external, packed);
+  // Poison the set's own copy, so a draw that read it would miss the rectangle.
+  std::vector<glm::dvec3> elsewhere(set.points.size(), glm::dvec3(100.0, 100.0, -3.0));
+  gpu.updatePoints(context(), elsewhere);
+  gpu.readPointsFrom(context(), external, 3, 5);
+  EXPECT_EQ(&gpu.points(), &external);
+  frame::RenderTarget target(context(), 64, 48);
+  frame::Renderer renderer(context());
+  renderer.render(target, test::pixelCamera(64, 48), gpu, &set, {});
+  expectRectangle(target.readItems(context()), 64, 48);
+  EXPECT_THROW(gpu.updatePoints(context(), set.points), Error);
+  EXPECT_THROW(gpu.readPointsFrom(context(), external, 4, 5), Error);  // too small for stride 4
+}
+
 TEST_F(DrawTest, UniformLevelGivesPatchesTimesLevelPlusOneSquaredEvaluations) {
   const PatchSet sphere = frame::convertToGregory(frame::bezierSphere({0, 0, 0}, 1.0, 2),
                                                   [](uint32_t p) { return p % 3 == 0; });
@@ -314,28 +336,44 @@ TEST_F(DrawTest, AdaptiveLevelsGrowWithScreenSizeAndMatchTheHostMirror) {
     const auto camera =
         frame::Camera::lookAt({0.2, 0.3, distance}, {0, 0, 0}, {0, 1, 0}, 40.0, 128, 128, 0.1, 20);
     const auto stats = renderer.render(target, camera, gpu, &sphere, options);
-    // Expected evaluations from the host mirror: equal spacing rounds levels up; a quad
-    // with an inner level of 1 and some outer level above 1 uses inner level 2.
+    // Expected evaluations from the host mirror of the levels.
     uint64_t expected = 0;
-    for (uint32_t p = 0; p < sphere.patchCount(); ++p) {
-      const auto levels = frame::patchTessLevels(sphere, p, camera.viewProjection(), {128.0, 128.0},
-                                                 options.tessellation);
-      double o[4], in[2] = {std::ceil(levels.inner(0)), std::ceil(levels.inner(1))};
-      bool allOne = in[0] == 1 && in[1] == 1;
-      for (int e = 0; e < 4; ++e) {
-        o[e] = std::ceil(levels.outer(e));
-        allOne = allOne && o[e] == 1;
-      }
-      if (allOne) {
-        expected += 4;
-        continue;
-      }
-      for (double& i : in) i = std::max(i, 2.0);
-      expected += uint64_t((in[0] - 1) * (in[1] - 1) + o[0] + o[1] + o[2] + o[3]);
-    }
+    for (uint32_t p = 0; p < sphere.patchCount(); ++p)
+      expected += frame::patchTessLevels(sphere, p, camera.viewProjection(), {128.0, 128.0},
+                                         options.tessellation)
+                      .vertexCount();
     EXPECT_EQ(stats.statistics.tessEvaluationInvocations, expected) << "distance " << distance;
     EXPECT_GT(stats.statistics.tessEvaluationInvocations, previous);
     previous = stats.statistics.tessEvaluationInvocations;
+  }
+}
+
+TEST_F(DrawTest, TransitionEdgesTessellateAsTheHostMirrorPredicts) {
+  frame::TorusOptions o;
+  o.refinePatch = 10;
+  const PatchSet torus = frame::bsplineTorus(o);
+  frame::GpuPatchSet gpu(context(), torus);
+  frame::RenderTarget target(context(), 64, 64);
+  frame::Renderer renderer(context());
+  const auto camera =
+      frame::Camera::lookAt({0, -3, 2}, {0, 0, 0}, {0, 0, 1}, 45.0, 64, 64, 0.1, 10);
+  ASSERT_TRUE(gpu.hasTransitionEdges());
+  for (uint32_t level : {1u, 3u, 6u, 40u}) {
+    RenderOptions options;
+    options.tessellation.uniformLevel = level;
+    const auto stats = renderer.render(target, camera, gpu, &torus, options);
+    // Above half the maximum level (64) the set's uniform level is clamped to 32, so that
+    // transition edges hold two halves that match their finer neighbours.
+    const auto effective = frame::effectiveOptions(options.tessellation, true);
+    const uint32_t used = std::min(level, 32u);
+    EXPECT_EQ(effective.uniformLevel, used);
+    uint64_t expected = 0;
+    for (uint32_t p = 0; p < torus.patchCount(); ++p)
+      expected += frame::patchTessLevels(torus, p, camera.viewProjection(), {64, 64}, effective)
+                      .vertexCount();
+    // 51 patches at (level + 1)^2, plus the transition edges' extra segments.
+    EXPECT_GT(expected, 51u * (used + 1) * (used + 1));
+    EXPECT_EQ(stats.statistics.tessEvaluationInvocations, expected) << "level " << level;
   }
 }
 

@@ -3,13 +3,11 @@
 #include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
 #include "osd_cull/patch/refiner.h"
+#include "support/temp_dir.h"
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-#include <atomic>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 namespace osd_cull {
@@ -19,23 +17,9 @@ namespace fs = std::filesystem;
 using adapters::loadCage;
 using Options = OpenSubdiv::Sdc::Options;
 
-// A folder under the system temp dir, removed with everything in it at the end of a test.
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("osd_cull_obj_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  fs::path write(const std::string& name, const std::string& text) const {
-    std::ofstream(path_ / name, std::ios::binary) << text;
-    return path_ / name;
-  }
-
- private:
-  fs::path path_;
+// A temp folder whose name says which suite wrote it.
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("osd_cull_obj_") {}
 };
 
 // A 3x3 grid of quads on 4x4 vertices (vertex r*4+c); edges 4-5, 5-6, 6-7 are interior.

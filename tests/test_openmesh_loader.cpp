@@ -3,16 +3,14 @@
 #include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
 #include "osd_cull/patch/refiner.h"
+#include "support/temp_dir.h"
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-#include <atomic>
 #include <bit>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -22,22 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 using adapters::loadCage;
 
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("osd_cull_om_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  fs::path write(const std::string& name, const std::string& bytes) const {
-    std::ofstream(path_ / name, std::ios::binary) << bytes;
-    return path_ / name;
-  }
-
- private:
-  fs::path path_;
+// A temp folder whose name says which suite wrote it.
+struct TempDir : test::TempDir {
+  TempDir() : test::TempDir("osd_cull_om_") {}
 };
 
 // Little helpers to build binary files byte by byte.

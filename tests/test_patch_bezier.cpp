@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include <algorithm>
 #include <random>
 
 namespace osd_cull {
@@ -170,6 +171,30 @@ TEST(GregoryEval, FacePointsBlendByDistanceToTheirEdges) {
   EXPECT_LE(glm::length(evaluateGregory(g, 1.0, 0.0).position - g[5]), 1e-15);
   EXPECT_LE(glm::length(evaluateGregory(g, 1.0, 1.0).position - g[10]), 1e-15);
   EXPECT_LE(glm::length(evaluateGregory(g, 0.0, 1.0).position - g[15]), 1e-15);
+}
+
+TEST(GregoryEval, ExactDerivativesAreThoseOfTheRationalSurface) {
+  auto g = gregoryFromBezier(randomPoints(8));
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> uni(-0.3, 0.3);
+  for (int k : {3, 4, 8, 9, 13, 14, 18, 19}) g[k] += glm::dvec3(uni(rng), uni(rng), uni(rng));
+  const double h = 1e-6;
+  double conventionGap = 0.0;
+  for (double u : {0.1, 0.45, 0.8})
+    for (double v : {0.25, 0.7}) {
+      const SurfacePoint exact = evaluateGregoryExact(g, u, v);
+      const SurfacePoint osd = evaluateGregory(g, u, v);
+      EXPECT_EQ(exact.position, osd.position);
+      const glm::dvec3 fu =
+          (evaluateGregory(g, u + h, v).position - evaluateGregory(g, u - h, v).position) / (2 * h);
+      const glm::dvec3 fv =
+          (evaluateGregory(g, u, v + h).position - evaluateGregory(g, u, v - h).position) / (2 * h);
+      EXPECT_LE(glm::length(exact.du - fu), 1e-8);
+      EXPECT_LE(glm::length(exact.dv - fv), 1e-8);
+      conventionGap = std::max(conventionGap, glm::length(osd.du - exact.du));
+    }
+  // OpenSubdiv's convention omits the multipliers' derivatives: it differs where Fp != Fm.
+  EXPECT_GT(conventionGap, 1e-3);
 }
 
 TEST(PatchEval, RejectsPatchOutOfRange) {

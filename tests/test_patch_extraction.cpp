@@ -26,7 +26,7 @@ PatchExtraction extractAndCompare(const CageMesh& cage, const PatchOptions& opti
 }
 
 TEST(PatchExtraction, TorusGivesOnlyRegularBezierPatches) {
-  const PatchExtraction ex = extractAndCompare(test::torusCage(8, 6), {});
+  const PatchExtraction ex = extractAndCompare(scene::torus(8, 6, 2.0, 0.7), {});
   EXPECT_EQ(ex.patches.bezierCount, 48u);
   EXPECT_EQ(ex.patches.gregoryCount, 0u);
   EXPECT_EQ(ex.stats.regular, 48u);
@@ -36,7 +36,7 @@ TEST(PatchExtraction, TorusGivesOnlyRegularBezierPatches) {
 }
 
 TEST(PatchExtraction, CubeAtLevelTwoHasGregoryPatchesAroundEachCorner) {
-  const PatchExtraction ex = extractAndCompare(test::cubeCage(), {});
+  const PatchExtraction ex = extractAndCompare(scene::cube(), {});
   // Each face: 16 sub-faces at level 2, of which the 4 at the face corners touch a valence-3
   // vertex; 12 regular patches per face.
   EXPECT_EQ(ex.stats.regular, 72u);
@@ -53,7 +53,7 @@ TEST(PatchExtraction, CubeAtLevelTwoHasGregoryPatchesAroundEachCorner) {
 TEST(PatchExtraction, BSplineEndCapsBecomeBezierPatches) {
   PatchOptions options;
   options.endCaps = EndCap::BSplineBasis;
-  const PatchExtraction ex = extractAndCompare(test::cubeCage(), options);
+  const PatchExtraction ex = extractAndCompare(scene::cube(), options);
   EXPECT_EQ(ex.patches.gregoryCount, 0u);
   EXPECT_EQ(ex.stats.regular, 72u);
   EXPECT_EQ(ex.stats.bsplineEndCaps, 24u);
@@ -63,7 +63,7 @@ TEST(PatchExtraction, BSplineEndCapsBecomeBezierPatches) {
 TEST(PatchExtraction, LevelZeroCubeIsSixGregoryPatches) {
   PatchOptions options;
   options.isolationLevel = 0;
-  const PatchExtraction ex = extractAndCompare(test::cubeCage(), options);
+  const PatchExtraction ex = extractAndCompare(scene::cube(), options);
   EXPECT_EQ(ex.patches.bezierCount, 0u);
   EXPECT_EQ(ex.patches.gregoryCount, 6u);
 }
@@ -72,7 +72,7 @@ TEST(PatchExtraction, HigherLevelsIsolateFurther) {
   for (int level = 1; level <= 4; ++level) {
     PatchOptions options;
     options.isolationLevel = level;
-    const PatchExtraction ex = extractAndCompare(test::cubeCage(), options);
+    const PatchExtraction ex = extractAndCompare(scene::cube(), options);
     // Each level splits the sub-face at each of the 24 face corners into one new corner
     // sub-face (Gregory) and three regular patches.
     EXPECT_EQ(ex.stats.gregory, 24u) << level;
@@ -100,7 +100,7 @@ TEST(PatchExtraction, PolesOfAnyValenceMatchOpenSubdiv) {
 }
 
 TEST(PatchExtraction, CreasesCornersAndHolesMatchOpenSubdiv) {
-  CageMesh cube = test::cubeCage();
+  CageMesh cube = scene::cube();
   cube.creases = {{0, 1, 2.5f}, {1, 2, 10.0f}, {2, 3, 0.5f}, {4, 5, 10.0f}, {5, 6, 10.0f}};
   cube.corners = {{6, 10.0f}, {0, 1.5f}};
   cube.holes = {1};
@@ -135,7 +135,7 @@ TEST(PatchMatrix, RowsSumToOne) {
 }
 
 TEST(PatchMatrix, OffsetsAndSizesDescribeTheRows) {
-  const PatchExtraction ex = extractPatches(test::cubeCage(), {});
+  const PatchExtraction ex = extractPatches(scene::cube(), {});
   const PatchPointMatrix& m = ex.matrix;
   ASSERT_EQ(m.sizes().size(), m.offsets().size());
   int offset = 0;
@@ -254,7 +254,7 @@ TEST(PatchMatrix, EndCapRowsEqualOpenSubdivsAppendedLocalPointStencils) {
 }
 
 TEST(PatchMatrix, UpdateRejectsWrongSizes) {
-  const PatchExtraction ex = extractPatches(test::cubeCage(), {});
+  const PatchExtraction ex = extractPatches(scene::cube(), {});
   std::vector<glm::dvec3> cage(7), points(ex.patches.points.size());
   EXPECT_THROW(ex.matrix.update(cage, points), Error);
   cage.resize(8);
@@ -279,7 +279,7 @@ TEST(PatchExtractionErrors, LoopAndBilinearAreRefusedWithAClearMessage) {
         << e.what();
     EXPECT_NE(std::string(e.what()).find("built-in:tetra"), std::string::npos) << e.what();
   }
-  CageMesh bilinear = test::cubeCage();
+  CageMesh bilinear = scene::cube();
   bilinear.scheme = Scheme::Bilinear;
   try {
     extractPatches(bilinear, {});
@@ -297,12 +297,12 @@ TEST(PatchExtractionErrors, LoopAndBilinearAreRefusedWithAClearMessage) {
 TEST(PatchExtractionErrors, BadOptionsAndInputsAreRefused) {
   PatchOptions options;
   options.isolationLevel = 11;
-  EXPECT_THROW(extractPatches(test::cubeCage(), options), Error);
+  EXPECT_THROW(extractPatches(scene::cube(), options), Error);
   options.isolationLevel = -1;
-  EXPECT_THROW(extractPatches(test::cubeCage(), options), Error);
+  EXPECT_THROW(extractPatches(scene::cube(), options), Error);
   options.isolationLevel = 2;
   options.secondaryLevel = 3;
-  EXPECT_THROW(extractPatches(test::cubeCage(), options), Error);
+  EXPECT_THROW(extractPatches(scene::cube(), options), Error);
 
   // Level 0 cannot make patches for non-quad faces.
   CageMesh pyramid;
@@ -315,7 +315,7 @@ TEST(PatchExtractionErrors, BadOptionsAndInputsAreRefused) {
   EXPECT_NO_THROW(extractPatches(pyramid, {}));
 
   // A refiner that was refined already, and positions that do not fit the cage.
-  const CageMesh cube = test::cubeCage();
+  const CageMesh cube = scene::cube();
   auto refiner = makeTopologyRefiner(cube);
   EXPECT_THROW(extractPatches(*refiner, std::span<const glm::dvec3>(cube.positions).first(7), {}),
                Error);

@@ -6,6 +6,7 @@
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/patch_eval.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/procedural.h"
 
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>
@@ -24,39 +25,8 @@
 namespace osd_cull::test {
 
 // ---------------------------------------------------------------------------------------
-// Cages built in code
+// Open cages built in code (closed ones come from osd_cull/scene/procedural.h)
 // ---------------------------------------------------------------------------------------
-
-/// A cube [-1,1]^3: 8 vertices of valence 3, closed.
-inline CageMesh cubeCage() {
-  CageMesh m;
-  m.source = "built-in:cube";
-  m.positions = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                 {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  m.faceSizes = {4, 4, 4, 4, 4, 4};
-  m.faceVertices = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
-  return m;
-}
-
-/// A torus of nu x nv quads: every vertex has valence 4, so every patch is regular.
-inline CageMesh torusCage(int nu = 8, int nv = 6, double major = 2.0, double minor = 0.7) {
-  CageMesh m;
-  m.source = "built-in:torus";
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      const double a = 2.0 * std::numbers::pi * i / nu, b = 2.0 * std::numbers::pi * j / nv;
-      m.positions.push_back({(major + minor * std::cos(b)) * std::cos(a),
-                             (major + minor * std::cos(b)) * std::sin(a), minor * std::sin(b)});
-    }
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      m.faceSizes.push_back(4);
-      const int i1 = (i + 1) % nu, j1 = (j + 1) % nv;
-      m.faceVertices.insert(m.faceVertices.end(),
-                            {j * nu + i, j * nu + i1, j1 * nu + i1, j1 * nu + i});
-    }
-  return m;
-}
 
 /// An open disk of `valence` quads around a centre vertex (a pole of that valence), with a
 /// second ring of quads outside so the pole is away from the boundary. Boundary and

@@ -1,5 +1,6 @@
 #include "osd_cull/error.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/procedural.h"
 
 #include <gtest/gtest.h>
 
@@ -9,16 +10,7 @@
 namespace osd_cull {
 namespace {
 
-// A unit cube: 8 vertices, 6 quads, closed.
-CageMesh cube() {
-  CageMesh m;
-  m.source = "built-in:cube";
-  m.positions = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                 {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  m.faceSizes = {4, 4, 4, 4, 4, 4};
-  m.faceVertices = {0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5, 2, 3, 7, 6, 3, 0, 4, 7};
-  return m;
-}
+using scene::cube;
 
 TEST(Refiner, CubeIsClosedWithEightValenceThreeVertices) {
   auto refiner = makeTopologyRefiner(cube());

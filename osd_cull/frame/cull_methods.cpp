@@ -19,7 +19,7 @@ const char* toString(CullStage stage) {
 std::span<const CullMethod> cullMethods() {
   static const std::vector<CullMethod> methods = {
       frustumCullMethod(),      tconeCullMethod(),          nconeCullMethod(),
-      tangentPlaneCullMethod(), tangentPlane16CullMethod(),
+      tangentPlaneCullMethod(), tangentPlane16CullMethod(), hizCullMethod(),
   };
   return methods;
 }

@@ -1,7 +1,7 @@
 #pragma once
 /// \file cull_methods.h
 /// \brief The registry of cull methods the cull kernel can run (frustum, tcone, ncone,
-/// tangent-plane, tangent-plane-16, and later occlusion).
+/// tangent-plane, tangent-plane-16, hiz).
 ///
 /// A method is one GLSL file under shaders/cull/ defining its stage function (see
 /// shaders/cull/cull_main.glsl for the signatures) and one C++ function returning its
@@ -65,5 +65,6 @@ CullMethod tconeCullMethod();
 CullMethod nconeCullMethod();
 CullMethod tangentPlaneCullMethod();
 CullMethod tangentPlane16CullMethod();
+CullMethod hizCullMethod();
 
 }  // namespace osd_cull::frame

@@ -291,10 +291,10 @@ uint32_t CullPass::recordDraws(VkCommandBuffer cmd, Renderer& renderer, const Ca
 
 FrameStats renderCulled(Renderer& renderer, RenderTarget& target, const Camera& camera,
                         CullPass& pass, std::span<const GpuTriangleMesh* const> occluders,
-                        const RenderOptions& options) {
+                        const RenderOptions& options, VkDescriptorSet stageSet) {
   FrameStats stats = renderer.renderWith(
       target, camera, occluders, options,
-      [&](VkCommandBuffer cmd) { pass.record(cmd, camera, options.tessellation); },
+      [&](VkCommandBuffer cmd) { pass.record(cmd, camera, options.tessellation, stageSet); },
       [&](VkCommandBuffer cmd) { return pass.recordDraws(cmd, renderer, camera, options); });
   stats.patchesDrawn = pass.counts().survivors();
   return stats;

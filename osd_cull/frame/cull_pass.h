@@ -114,6 +114,9 @@ class CullPass {
   uint32_t recordDraws(VkCommandBuffer cmd, Renderer& renderer, const Camera& camera,
                        const RenderOptions& options, uint32_t itemBase = 0);
 
+  /// \brief The result codes as a buffer (one uint per patch), e.g. for a pass that reads
+  /// them on the GPU after record() (the temporal visibility update of CullFrame).
+  const vk::Buffer& resultsBuffer() const { return results_; }
   const vk::Buffer& drawList() const { return drawList_; }
   const vk::Buffer& commands() const { return commands_; }
   const vk::Buffer& counters() const { return counters_; }
@@ -152,9 +155,9 @@ class CullPass {
 
 /// \brief One frame with culling, in one submission: the cull pass, then the occluders and
 /// the surviving patches drawn into `target`. FrameStats::patchesDrawn is the survivor
-/// count; the rest as Renderer::render.
+/// count; the rest as Renderer::render. `stageSet` as in CullPass::record.
 FrameStats renderCulled(Renderer& renderer, RenderTarget& target, const Camera& camera,
                         CullPass& pass, std::span<const GpuTriangleMesh* const> occluders,
-                        const RenderOptions& options);
+                        const RenderOptions& options, VkDescriptorSet stageSet = VK_NULL_HANDLE);
 
 }  // namespace osd_cull::frame

@@ -1,6 +1,7 @@
 #include "osd_cull/frame/cull_verification.h"
 
 #include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/bound/occlusion.h"
 #include "osd_cull/error.h"
 
 #include <shared/cull_layout.h>
@@ -49,8 +50,10 @@ CullVerifier::CullVerifier(vk::Context& context, const PatchSet& host,
   std::vector<const CullMethod*> run;
   for (const std::string& name : methods) {
     const CullMethod& m = cullMethod(name);
-    if (m.stage == CullStage::Occlusion) {
-      skipped_.push_back({name, "occlusion methods need their Hi-Z inputs; not verified here"});
+    if (m.stage == CullStage::Occlusion && !options.oracle) {
+      skipped_.push_back({name,
+                          "occlusion is tested against the depth of the oracle's draw; "
+                          "enable the oracle"});
     } else if (m.stage == CullStage::BackPatch && !validity.enabled) {
       skipped_.push_back({name, "back-patch culling is off for this mesh: " + validity.reason});
     } else {
@@ -64,6 +67,7 @@ CullVerifier::CullVerifier(vk::Context& context, const PatchSet& host,
     CullSettings settings;
     settings.frustum = run[i]->stage == CullStage::Frustum;
     if (run[i]->stage == CullStage::BackPatch) settings.backPatch = run[i]->name;
+    if (run[i]->stage == CullStage::Occlusion) settings.occlusion = run[i]->name;
     settings.backPatchValidity = validity;
     m->pass = std::make_unique<CullPass>(context, gpu_, host, settings);
     m->totals = &totals_[i];
@@ -101,8 +105,18 @@ void CullVerifier::verifyView(const Camera& camera) {
   const uint32_t n = host_.patchCount();
   const bool reference = options_.referenceStride > 0 && viewIndex_ % options_.referenceStride == 0;
   ++viewIndex_;
-  if (!target_ || target_->width() != camera.width || target_->height() != camera.height)
+  const bool occlusion = std::any_of(methods_.begin(), methods_.end(), [](const auto& m) {
+    return m->method->stage == CullStage::Occlusion;
+  });
+  if (!target_ || target_->width() != camera.width || target_->height() != camera.height) {
+    hizStage_.reset();
+    pyramid_.reset();
     target_ = std::make_unique<RenderTarget>(context_, camera.width, camera.height);
+    if (occlusion) {
+      pyramid_ = std::make_unique<HiZPyramid>(context_, target_->depth(), options_.hiz);
+      hizStage_ = std::make_unique<HiZCullStage>(context_, *pyramid_);
+    }
+  }
 
   VisibilityCounts counts;
   std::vector<uint32_t> fullItems;
@@ -110,13 +124,24 @@ void CullVerifier::verifyView(const Camera& camera) {
     counts = oracle_.query(renderer_, *target_, camera, gpu_, &host_, {}, options_.tessellation);
     if (options_.imageCheck) fullItems = target_->readItems(context_);
   }
+  // Occlusion: the pyramid of the full draw's depth (before the image checks draw over it),
+  // and its double-precision twin for the reference.
+  bound::HiZPyramid hizReference;
+  if (occlusion) {
+    pyramid_->build(context_, RenderTarget::kDepthLayout);
+    if (reference)
+      hizReference = bound::buildHiZPyramid(target_->readDepth(context_), camera.width,
+                                            camera.height, options_.hiz.fullResolution);
+  }
   const bound::CullView view = bound::makeCullView(camera.viewProjection());
   RenderOptions drawOptions;
   drawOptions.tessellation = options_.tessellation;
 
   for (auto& m : methods_) {
     MethodTotals& t = *m->totals;
-    t.wallMs.push_back(m->pass->run(camera, options_.tessellation));
+    const bool hiz = m->method->stage == CullStage::Occlusion;
+    t.wallMs.push_back(
+        m->pass->run(camera, options_.tessellation, hiz ? hizStage_->set() : VK_NULL_HANDLE));
     const std::vector<uint32_t> results(m->pass->results().begin(), m->pass->results().end());
     ++t.views;
     t.patchViews += n;
@@ -128,8 +153,17 @@ void CullVerifier::verifyView(const Camera& camera) {
       ++(host_.type(p) == PatchType::Bezier ? t.culledBezier : t.culledGregory);
     }
     if (reference) {
-      const std::vector<uint32_t> codes =
-          bound::referenceCull(host_, view, m->pass->referenceTests(), m->pass->cones());
+      std::vector<uint32_t> codes;
+      if (hiz) {
+        codes.resize(n, shader::kStageNone);
+        for (uint32_t p = 0; p < n; ++p)
+          if (bound::hizOcclusionTest(host_.controlPoints(p), view.viewProj, hizReference,
+                                      options_.hiz.lookup)
+                  .culled)
+            codes[p] = shader::kStageOcclusion;
+      } else {
+        codes = bound::referenceCull(host_, view, m->pass->referenceTests(), m->pass->cones());
+      }
       ++t.referenceViews;
       t.referencePatchViews += n;
       for (uint32_t p = 0; p < n; ++p) {
@@ -153,7 +187,8 @@ void CullVerifier::verifyView(const Camera& camera) {
     }
     if (!samples_.empty()) checkSampling(*m, camera, results);
     if (options_.imageCheck) {
-      renderCulled(renderer_, *target_, camera, *m->pass, {}, drawOptions);
+      renderCulled(renderer_, *target_, camera, *m->pass, {}, drawOptions,
+                   hiz ? hizStage_->set() : VK_NULL_HANDLE);
       const std::vector<uint32_t> items = target_->readItems(context_);
       ++t.imageViews;
       for (size_t i = 0; i < items.size(); ++i) {

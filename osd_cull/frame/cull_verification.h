@@ -10,12 +10,16 @@
 ///   clip volume, a back-patch-culled patch no front-facing sample;
 /// - the image: drawing only the survivors leaves no pixel uncovered that the full draw
 ///   covers.
-/// Each method runs alone (frustum alone, each back-patch method alone), so its rate is its
-/// own.
+/// Each method runs alone (frustum alone, each back-patch method alone, the occlusion method
+/// alone), so its rate is its own. An occlusion method ("hiz") tests against the Hi-Z pyramid
+/// of the full draw's depth (what a static camera settles at, Niessner & Loop §3); its CPU
+/// reference is bound::hizOcclusionTest on the same depth, read back.
 
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/bound/sampling.h"
 #include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/hiz_cull_stage.h"
+#include "osd_cull/frame/hiz_pyramid.h"
 #include "osd_cull/frame/visibility_oracle.h"
 
 #include <cstdint>
@@ -35,6 +39,8 @@ struct VerifyOptions {
   int samplingGrid = 0;
   /// Draw survivors and compare coverage with the full draw (needs oracle).
   bool imageCheck = false;
+  /// Pyramid of the occlusion methods (half resolution, the paper's lookup by default).
+  HiZOptions hiz;
 };
 
 /// \brief Totals of one method over all views so far.
@@ -107,6 +113,8 @@ class CullVerifier {
   Renderer renderer_;
   VisibilityOracle oracle_;
   std::unique_ptr<RenderTarget> target_;
+  std::unique_ptr<HiZPyramid> pyramid_;  // over target_'s depth, with occlusion methods
+  std::unique_ptr<HiZCullStage> hizStage_;
   std::vector<std::unique_ptr<Method>> methods_;
   std::vector<MethodTotals> totals_;
   std::vector<std::pair<std::string, std::string>> skipped_;

@@ -239,29 +239,4 @@ PatchSet bsplineTorus(const TorusOptions& o) {
   return result;
 }
 
-DemoScene defaultDemoScene() {
-  TorusOptions big;
-  big.nu = 12;
-  big.nv = 8;
-  big.majorRadius = 1.2;
-  big.minorRadius = 0.45;
-  big.refinePatch = 13;
-  TorusOptions small;
-  small.nu = 8;
-  small.nv = 6;
-  small.majorRadius = 0.6;
-  small.minorRadius = 0.25;
-  small.center = {1.6, 1.4, 0.1};
-  PatchSet scene = convertToGregory(bsplineTorus(big), [](uint32_t p) { return p % 5 == 2; });
-  scene = concatenate(scene, bsplineTorus(small));
-  scene = concatenate(scene, bezierSphere({-1.0, 2.5, 0.3}, 0.7, 3));
-  scene.source = "built-in:demo-scene";
-  DemoScene demo;
-  demo.patches = std::move(scene);
-  // A wall between the viewer and the sphere, and a ground slab under everything.
-  demo.occluders.push_back(boxMesh({-1.7, 1.72, -0.6}, {-0.1, 1.78, 0.75}));
-  demo.occluders.push_back(boxMesh({-3.0, -2.5, -0.75}, {3.0, 3.6, -0.6}));
-  return demo;
-}
-
 }  // namespace osd_cull::frame

@@ -3,7 +3,6 @@
 /// \brief Patch sets generated in code: closed Bézier surfaces with and without Gregory
 /// patches and transition edges, for tests, the default scene and benchmarks.
 
-#include "osd_cull/frame/triangle_mesh.h"
 #include "osd_cull/patch/patch_set.h"
 
 #include <glm/vec3.hpp>
@@ -59,17 +58,5 @@ struct TorusOptions {
 /// converted to Bézier form (neighbours' shared edge points agree up to rounding, as in
 /// patches converted from Far::PatchTable).
 PatchSet bsplineTorus(const TorusOptions& options);
-
-/// \brief The built-in scene of `osd-cull render` without a mesh: two bicubic tori (one
-/// with a refined patch, transition edges and Gregory patches), a patch sphere partly
-/// behind a triangle wall, and a ground slab; z is up. Some patches face away, some are
-/// hidden behind others or the wall, so culling has work to do.
-struct DemoScene {
-  PatchSet patches;
-  std::vector<TriangleMesh> occluders;
-  glm::dvec3 up{0.0, 0.0, 1.0};
-  glm::dvec3 viewDirection{0.55, -1.0, 0.45};  ///< from the scene center towards the eye
-};
-DemoScene defaultDemoScene();
 
 }  // namespace osd_cull::frame

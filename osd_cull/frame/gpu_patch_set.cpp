@@ -1,6 +1,7 @@
 #include "osd_cull/frame/gpu_patch_set.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/tess_levels.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/transfer.h"
 
@@ -31,7 +32,8 @@ std::vector<float> packPoints(std::span<const glm::dvec3> points) {
 GpuPatchSet::GpuPatchSet(vk::Context& context, const PatchSet& patches)
     : bezierCount_(patches.bezierCount),
       gregoryCount_(patches.gregoryCount),
-      pointCount_(static_cast<uint32_t>(patches.points.size())) {
+      pointCount_(static_cast<uint32_t>(patches.points.size())),
+      transitionEdges_(frame::hasTransitionEdges(patches)) {
   const uint32_t n = patches.patchCount();
   const size_t expectedPoints =
       size_t{patches.bezierCount} * kBezierPoints + size_t{patches.gregoryCount} * kGregoryPoints;
@@ -76,14 +78,40 @@ VkDescriptorSet GpuPatchSet::descriptorSetWithDrawList(vk::Context& context,
   const VkDescriptorSet set = pool_->allocate(setLayout_.get());
   ++extraSets_;
   vk::DescriptorWriter()
-      .buffer(0, points_)
+      .buffer(0, *pointSource_)
       .buffer(1, params_)
       .buffer(2, drawList)
       .update(context.device(), set);
   return set;
 }
 
+void GpuPatchSet::readPointsFrom(vk::Context& context, const vk::Buffer& points, uint32_t stride,
+                                 uint32_t offset) {
+  const uint64_t needed = (uint64_t{offset} + uint64_t{pointCount_} * stride) * sizeof(float);
+  if (stride < 3 || points.size() < needed)
+    throw Error("GpuPatchSet::readPointsFrom: " + std::to_string(pointCount_) +
+                " points of stride " + std::to_string(stride) + " from float " +
+                std::to_string(offset) + " need " + std::to_string(needed) +
+                " bytes (stride >= 3), the buffer has " + std::to_string(points.size()));
+  pointSource_ = &points;
+  pointStride_ = stride;
+  pointOffset_ = offset;
+  vk::DescriptorWriter().buffer(0, points).update(context.device(), set_);
+}
+
+void GpuPatchSet::writeDescriptorSet(VkDevice device, VkDescriptorSet set,
+                                     const vk::Buffer& drawList) const {
+  vk::DescriptorWriter()
+      .buffer(0, *pointSource_)
+      .buffer(1, params_)
+      .buffer(2, drawList)
+      .update(device, set);
+}
+
 void GpuPatchSet::updatePoints(vk::Context& context, std::span<const glm::dvec3> points) {
+  if (pointSource_ != &points_)
+    throw Error(
+        "GpuPatchSet::updatePoints: the set reads its points from another buffer (readPointsFrom)");
   if (points.size() != pointCount_)
     throw Error("GpuPatchSet::updatePoints: got " + std::to_string(points.size()) +
                 " points, the set has " + std::to_string(pointCount_));

@@ -21,29 +21,41 @@ namespace osd_cull::frame {
 /// \brief Device copy of a PatchSet, in the layout the draw and cull shaders read
 /// (shaders/shared/draw_layout.h):
 /// - points(): float array, control point i at floats [pointOffset() + i*pointStride(), +3)
-///   (stride 4 here: x, y, z, 1); PatchSet point order. An evaluator (e.g. GPU stencils)
-///   may write this buffer directly.
+///   (stride 4 for the set's own buffer: x, y, z, 1); PatchSet point order. An evaluator
+///   may write this buffer directly, or readPointsFrom() makes the set read another buffer
+///   (e.g. osd::GpuPointUpdate::points(), stride 3 or 4).
 /// - params(): two uints per patch, Far::PatchParam field0 and field1.
 /// - drawList(): patch indices, all Bézier patches then all Gregory (identity order); a
 ///   draw of slots [first, first + n) draws drawList[first .. first + n).
 class GpuPatchSet {
  public:
   GpuPatchSet(vk::Context& context, const PatchSet& patches);
+  GpuPatchSet(const GpuPatchSet&) = delete;
+  GpuPatchSet& operator=(const GpuPatchSet&) = delete;
 
   /// \brief Replaces all control points (same count and layout), e.g. after animation.
-  /// \throws osd_cull::Error when the count differs.
+  /// \throws osd_cull::Error when the count differs or readPointsFrom() is in effect.
   void updatePoints(vk::Context& context, std::span<const glm::dvec3> points);
 
   uint32_t bezierCount() const { return bezierCount_; }
   uint32_t gregoryCount() const { return gregoryCount_; }
   uint32_t patchCount() const { return bezierCount_ + gregoryCount_; }
   uint32_t pointCount() const { return pointCount_; }
-  uint32_t pointStride() const { return 4; }
-  uint32_t pointOffset() const { return 0; }
+  /// \brief Whether any patch has a transition edge (see effectiveOptions()).
+  bool hasTransitionEdges() const { return transitionEdges_; }
+  /// \brief Makes every draw read control points from `points` (borrowed: it must outlive
+  /// the set's use) with `stride` floats per point from float `offset` on, instead of the
+  /// set's own buffer. Call between frames (not while a draw using the set is pending).
+  /// \throws osd_cull::Error when stride < 3 or the buffer is too small for pointCount().
+  void readPointsFrom(vk::Context& context, const vk::Buffer& points, uint32_t stride,
+                      uint32_t offset = 0);
+  uint32_t pointStride() const { return pointStride_; }
+  uint32_t pointOffset() const { return pointOffset_; }
   /// \brief Draw-list slot of the first Gregory patch (== bezierCount()).
   uint32_t firstGregorySlot() const { return bezierCount_; }
 
-  const vk::Buffer& points() const { return points_; }
+  /// \brief The buffer draws read control points from (the set's own, or readPointsFrom's).
+  const vk::Buffer& points() const { return *pointSource_; }
   const vk::Buffer& params() const { return params_; }
   const vk::Buffer& drawList() const { return drawList_; }
   /// \brief A descriptor set with points, params and draw list at the bindings of
@@ -55,12 +67,20 @@ class GpuPatchSet {
   /// \throws osd_cull::Error when the sets are used up.
   VkDescriptorSet descriptorSetWithDrawList(vk::Context& context, const vk::Buffer& drawList);
   static constexpr uint32_t kMaxDrawListSets = 15;
+  /// \brief Writes points (the current source, see readPointsFrom()), params and `drawList`
+  /// into `set`, a set the caller allocated with a layout of patchSetBindings() (for
+  /// callers that own their sets and pools).
+  void writeDescriptorSet(VkDevice device, VkDescriptorSet set, const vk::Buffer& drawList) const;
 
  private:
   uint32_t bezierCount_ = 0;
   uint32_t gregoryCount_ = 0;
   uint32_t pointCount_ = 0;
+  bool transitionEdges_ = false;
   vk::Buffer points_;
+  const vk::Buffer* pointSource_ = &points_;
+  uint32_t pointStride_ = 4;
+  uint32_t pointOffset_ = 0;
   vk::Buffer params_;
   vk::Buffer drawList_;
   vk::UniqueDescriptorSetLayout setLayout_;

@@ -23,7 +23,8 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
                          float(t.maxLevel));
   c.mode =
       t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
-  c.flags = options.debugColors ? shader::kFlagDebugColors : 0u;
+  c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
+            (options.statusColors ? shader::kFlagStatusColors : 0u);
   return c;
 }
 
@@ -153,7 +154,9 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const Patc
   const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
                           nullptr);
-  shader::DrawConstants c = drawConstants(camera, options);
+  RenderOptions effective = options;
+  effective.tessellation = effectiveOptions(options.tessellation, gpu.hasTransitionEdges());
+  shader::DrawConstants c = drawConstants(camera, effective);
   c.bezierCount = gpu.bezierCount();
   c.pointStride = gpu.pointStride();
   c.pointOffset = gpu.pointOffset();

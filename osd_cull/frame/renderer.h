@@ -29,6 +29,9 @@ struct RenderOptions {
   bool chunkDraws = true;
   /// Color each patch by a hash of its index instead of one material color.
   bool debugColors = false;
+  /// Color each patch by the status field of its draw-list entry (kDrawStatus* in
+  /// shaders/shared/draw_layout.h): the debug view of the cull frame.
+  bool statusColors = false;
   /// Cull triangles facing away (surface normal dPdu x dPdv pointing away from the eye).
   bool cullBackFaces = false;
   /// Clear the target first; false draws over its contents (a second pass).

@@ -34,11 +34,28 @@ double curveLevel(const std::array<glm::dvec3, 4>& b, const glm::dmat4& vp,
 
 }  // namespace
 
-uint32_t PatchTessLevels::vertexBound() const {
-  double m = 0.0;
-  for (int e = 0; e < 4; ++e) m = std::max(m, std::ceil(outer(e)));
-  m = std::max({m, std::ceil(inner(0)), std::ceil(inner(1)), 1.0});
-  return static_cast<uint32_t>((m + 1.0) * (m + 1.0));
+uint32_t PatchTessLevels::vertexCount() const {
+  double o[4], in[2] = {std::ceil(inner(0)), std::ceil(inner(1))};
+  bool allOne = in[0] <= 1.0 && in[1] <= 1.0;
+  for (int e = 0; e < 4; ++e) {
+    o[e] = std::max(1.0, std::ceil(outer(e)));
+    allOne = allOne && o[e] == 1.0;
+  }
+  if (allOne) return 4;
+  for (double& i : in) i = std::max(i, 2.0);
+  return static_cast<uint32_t>((in[0] - 1.0) * (in[1] - 1.0) + o[0] + o[1] + o[2] + o[3]);
+}
+
+bool hasTransitionEdges(const PatchSet& patches) {
+  for (const auto& p : patches.params)
+    if (p.GetTransition() != 0) return true;
+  return false;
+}
+
+TessellationOptions effectiveOptions(const TessellationOptions& options, bool transitionEdges) {
+  TessellationOptions out = options;
+  if (transitionEdges) out.uniformLevel = std::min(out.uniformLevel, options.maxLevel / 2);
+  return out;
 }
 
 std::array<std::array<uint32_t, 4>, 4> edgeCurveIndices(PatchType type) {
@@ -82,7 +99,8 @@ PatchTessLevels patchTessLevels(const PatchSet& patches, uint32_t patch,
 
 std::vector<uint32_t> tessVertexBounds(const PatchSet& patches, const glm::dmat4& viewProjection,
                                        const glm::dvec2& viewport,
-                                       const TessellationOptions& options) {
+                                       const TessellationOptions& requested) {
+  const TessellationOptions options = effectiveOptions(requested, hasTransitionEdges(patches));
   std::vector<uint32_t> bounds(patches.patchCount());
   const bool adaptive = options.mode == TessellationOptions::Mode::Adaptive;
   for (uint32_t p = 0; p < patches.patchCount(); ++p) {
@@ -95,7 +113,7 @@ std::vector<uint32_t> tessVertexBounds(const PatchSet& patches, const glm::dmat4
         if (levels.hi[e] > 0.0) levels.hi[e] = std::min(levels.hi[e] + 1.0, half);
       }
     }
-    bounds[p] = levels.vertexBound();
+    bounds[p] = levels.vertexCount();
   }
   return bounds;
 }

@@ -17,8 +17,10 @@ namespace osd_cull::frame {
 struct TessellationOptions {
   enum class Mode { Uniform, Adaptive };
   Mode mode = Mode::Uniform;
-  /// Uniform: segments per patch edge (a transition edge gets this many per half).
-  /// Levels above maxLevel/2 cannot be crack-free at transition edges and are clamped there.
+  /// Uniform: segments per patch edge (a transition edge gets this many per half). On a
+  /// patch set with transition edges the level is clamped to maxLevel/2 everywhere, so that
+  /// both halves of a transition edge fit and still match their finer neighbours
+  /// (effectiveOptions()).
   uint32_t uniformLevel = 4;
   /// Adaptive: target length of one segment of an edge's screen-space control polygon.
   double pixelsPerSegment = 8.0;
@@ -36,21 +38,32 @@ struct PatchTessLevels {
   double inner(int i) const {
     return i == 0 ? 0.5 * (outer(1) + outer(3)) : 0.5 * (outer(0) + outer(2));
   }
-  /// \brief Vertices the tessellator can emit for these levels (equal spacing, quads):
-  /// (m + 1)^2 with m the largest level after rounding up.
-  uint32_t vertexBound() const;
+  /// \brief Vertices the tessellator emits for these levels (quads, equal spacing: levels
+  /// round up; an inner level of 1 becomes 2 unless all levels are 1):
+  /// (inner0 - 1)(inner1 - 1) + the four outer levels, 4 when all levels are 1. At most
+  /// (m + 1)^2 for the largest level m. Equals the TES invocations lavapipe reports.
+  uint32_t vertexCount() const;
 };
+
+/// \brief True when any patch has a transition edge (Far::PatchParam transition bits).
+bool hasTransitionEdges(const PatchSet& patches);
+
+/// \brief The options the shaders apply to a set: uniformLevel clamped to maxLevel/2 when
+/// the set has transition edges. patchTessLevels() expects options made by this.
+TessellationOptions effectiveOptions(const TessellationOptions& options, bool transitionEdges);
 
 /// \brief The boundary-curve point indices of each edge (same table as the shaders).
 std::array<std::array<uint32_t, 4>, 4> edgeCurveIndices(PatchType type);
 
-/// \brief The levels the shaders compute for `patch`, in double precision.
+/// \brief The levels the shaders compute for `patch`, in double precision, given the
+/// effective options of its set.
 PatchTessLevels patchTessLevels(const PatchSet& patches, uint32_t patch,
                                 const glm::dmat4& viewProjection, const glm::dvec2& viewport,
                                 const TessellationOptions& options);
 
 /// \brief An upper bound of the tessellated vertices of each patch for this view,
-/// allowing for fp32 rounding in the shader (one extra segment per adaptive level).
+/// allowing for fp32 rounding in the shader (one extra segment per adaptive level);
+/// applies effectiveOptions() itself.
 std::vector<uint32_t> tessVertexBounds(const PatchSet& patches, const glm::dmat4& viewProjection,
                                        const glm::dvec2& viewport,
                                        const TessellationOptions& options);

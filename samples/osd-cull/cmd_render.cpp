@@ -2,8 +2,14 @@
 // writes PNG images and prints per-frame statistics.
 #include "command.h"
 #include "cull_options.h"
+#include "cull_report.h"
 #include "mesh_patches.h"
+#include "mesh_source.h"
 
+#include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/default_scene.h"
+
+#include "adapters/load_occluder.h"
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_pass.h"
@@ -15,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -27,13 +34,18 @@ const char* kUsageHead = R"(Usage: osd-cull render [MESH] --out FILE.png [option
 
 Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
 triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
+MESH: OBJ (with OpenSubdiv tags), OFF, PLY, STL (Catmull-Clark cages, refined adaptively
+into Bézier and Gregory patches) or BPT (Bézier patches, e.g. the Utah teapot).
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
 and fragment-shader invocations (pipeline statistics), and with --cull how many patches
 each test culled.
 
-MESH      OBJ (with OpenSubdiv tags), OFF, PLY, STL, or BPT (Bezier patches)
 Options:
+  --level N              adaptive isolation level, 0..10 (default 2)
+  --endcap gregory|bspline  end caps of irregular patches (default gregory)
+  --scheme catmark|loop|bilinear  override the scheme (default: file-name prefix)
   --out FILE.png         image of the last frame (required)
+  --occluders F[,F...]   OBJ files drawn as triangle occluders (before the patches)
   --width W --height H   image size (default 640 x 480)
   --tess N               uniform tessellation, N segments per patch edge (default 4)
   --adaptive PIXELS      screen-space adaptive tessellation, PIXELS per segment
@@ -50,6 +62,13 @@ Options:
   --validate             enable the Vulkan validation layers
   --level N              adaptive isolation level of MESH, 0..10 (default 2)
   --scheme S             override the subdivision scheme of MESH
+  --stats FILE.json      write the per-frame figures as JSON
+  --status-view          with occlusion: also write FILE_status.png, patches colored by
+                         their status (green visible, yellow newly visible, blue frustum-,
+                         purple back-patch-, red occlusion-culled) from the camera, and
+                         FILE_status_side.png from 90 degrees around the up axis
+  --pyramid-dir DIR      with occlusion: write the Hi-Z levels of the last frame as
+                         DIR/hiz_level_NN.png
 )";
 
 std::string usage() { return std::string(kUsageHead) + kCullOptionsUsage; }
@@ -64,22 +83,26 @@ struct Scene {
 
 Scene loadScene(const MeshSource& source, const PatchOptions& options) {
   if (!source.path) {
-    frame::DemoScene demo = frame::defaultDemoScene();
-    // Tori and sphere are closed surfaces with outward normals by construction (the
-    // triangle walls are occluders, not patches).
-    return {std::move(demo.patches),
-            std::move(demo.occluders),
-            demo.up,
-            demo.viewDirection,
-            {true, "built-in scene: closed tori and sphere, normals outward by construction"}};
+    scene::Scene demo = scene::defaultScene(options);
+    Scene s{std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection, {}};
+    // Every object is a closed manifold cage with outward normals (scene/procedural.h
+    // tests this), and the walls are occluders, not patches.
+    s.backPatch = {true, "built-in scene: closed cages, normals outward by construction"};
+    return s;
   }
   if (!fs::exists(*source.path)) throw Error(*source.path + ": no such file");
-  MeshPatches mesh = meshPatches(loadMeshSource(source), options);
+  const LoadedMesh loaded = loadMeshSource(source);
+  MeshPatches mesh = meshPatches(loaded, options);
   Scene scene;
   scene.patches = std::move(mesh.patches);
   scene.backPatch = mesh.backPatch;
-  scene.up = {0, 1, 0};  // OBJ convention: y up
-  scene.viewDirection = {0.45, 0.35, 1.0};
+  if (loaded.bezier) {  // BPT files (the teapot) are z up
+    scene.up = {0, 0, 1};
+    scene.viewDirection = {0.6, -1.0, 0.5};
+  } else {  // OBJ and the other cage formats are mostly y up
+    scene.up = {0, 1, 0};
+    scene.viewDirection = {0.45, 0.35, 1.0};
+  }
   return scene;
 }
 
@@ -118,15 +141,26 @@ int run(Args& args) {
   const bool debugColors = args.flag("debug-colors");
   const bool validate = args.flag("validate");
   const auto device = args.value("device");
-  PatchOptions patchOptions;
-  patchOptions.isolationLevel = static_cast<int>(args.integer("level", 0, 10).value_or(2));
+  const PatchOptions patchOptions = patchOptionsFromArgs(args);
   const CullChoice cull = cullChoiceFromArgs(args);
+  const auto statsPath = args.value("stats");
+  const auto occluderFiles = args.value("occluders");
+  const bool statusView = args.flag("status-view");
+  const auto pyramidDir = args.value("pyramid-dir");
   const MeshSource source = meshSourceFromArgs(args);
   args.finish();
   if (!out) throw Error("--out FILE.png is required");
   if (tess && adaptive) throw Error("--tess and --adaptive exclude each other");
+  if ((statusView || pyramidDir) && !cull.occlusion())
+    throw Error("--status-view and --pyramid-dir need --cull occlusion or --cull all");
 
-  const Scene scene = loadScene(source, patchOptions);
+  Scene scene = loadScene(source, patchOptions);
+  if (occluderFiles) {
+    std::stringstream list(*occluderFiles);
+    std::string file;
+    while (std::getline(list, file, ','))
+      if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
+  }
   vk::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
@@ -174,35 +208,73 @@ int run(Args& args) {
 
   frame::RenderTarget target(context, width, height);
   frame::Renderer renderer(context);
+  // Without occlusion: one pass, the cull kernel before it. With occlusion: the two-pass
+  // frame with temporal visibility (frame::CullFrame), the same kernel in its third step.
   std::unique_ptr<frame::CullPass> pass;
-  if (cull.enabled()) {
-    pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches,
-                                             cullSettings(cull, scene.backPatch));
+  std::unique_ptr<frame::CullFrame> cullFrame;
+  const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
+  frame::CullFrameOptions frameOptions = cull.frame;
+  frameOptions.render = options;
+  frameOptions.cull = cullSettings(cull, scene.backPatch);
+  const std::vector<const frame::CullMethod*>* stages = nullptr;
+  if (cull.occlusion()) {
+    cullFrame = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, frameOptions);
+    stages = &cullFrame->cullPass(0)->stages();
+  } else if (cull.enabled()) {
+    pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches, frameOptions.cull);
+    stages = &pass->stages();
+  }
+  if (stages) {
     std::cout << "cull: " << cull.mode;
-    for (const frame::CullMethod* m : pass->stages())
-      std::cout << (m == pass->stages().front() ? " (" : ", ") << m->name;
-    std::cout << (pass->stages().empty() ? "" : ")") << "\n";
-    if (!pass->backPatchNote().empty()) std::cout << "note: " << pass->backPatchNote() << "\n";
+    for (const frame::CullMethod* m : *stages)
+      std::cout << (m == stages->front() ? " (" : ", ") << m->name;
+    std::cout << (stages->empty() ? "" : ")") << "\n";
+    const frame::CullPass& p = pass ? *pass : *cullFrame->cullPass(0);
+    if (!p.backPatchNote().empty()) std::cout << "note: " << p.backPatchNote() << "\n";
+  }
+  if (cullFrame) {
+    const auto& layout = cullFrame->pyramid().layout();
+    std::cout << "occlusion: " << (frameOptions.aggressive ? "aggressive" : "two passes")
+              << ", draw mode " << toString(frameOptions.drawMode) << ", first frame "
+              << toString(frameOptions.firstFrame) << "; Hi-Z " << layout.levelCount
+              << " levels from " << layout.levelWidth(0) << "x" << layout.levelHeight(0) << ", "
+              << (cullFrame->pyramid().usesSampler() ? "min/max sampler" : "4-tap")
+              << " reduction, "
+              << (frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper")
+              << " lookup\n";
   }
   if (outDir) fs::create_directories(*outDir);
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
+  nlohmann::json jsonFrames = nlohmann::json::array();
+  frame::Camera view = camera;
   for (uint32_t f = 0; f < frames; ++f) {
-    const frame::Camera view = frame::orbit(camera, pivot, up, orbitDegrees * f);
-    const frame::FrameStats stats =
-        pass ? frame::renderCulled(renderer, target, view, *pass, occluders, options)
-             : renderer.render(target, view, {&draw, 1}, occluders, options);
-    std::printf(
-        "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
-        "fragment invocations %llu\n",
-        f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
-        static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
-        static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
-    if (pass) {
-      uint32_t byStage[4] = {0, 0, 0, 0};
-      for (uint32_t code : pass->results()) ++byStage[bound::CullCode{code}.stage() & 3u];
-      std::printf("  culled %u of %u: frustum %u, back-patch %u\n",
-                  scene.patches.patchCount() - stats.patchesDrawn, scene.patches.patchCount(),
-                  byStage[1], byStage[2]);
+    view = frame::orbit(camera, pivot, up, orbitDegrees * f);
+    if (cullFrame) {
+      const frame::CullFrameStats stats = cullFrame->render(view, occluders);
+      std::printf("%s\n", cullFrameLine(f, stats).c_str());
+      jsonFrames.push_back(cullFrameJson(f, stats));
+    } else {
+      const frame::FrameStats stats =
+          pass ? frame::renderCulled(renderer, target, view, *pass, occluders, options)
+               : renderer.render(target, view, {&draw, 1}, occluders, options);
+      std::printf(
+          "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
+          "fragment invocations %llu\n",
+          f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
+          static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
+          static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+      nlohmann::json j = plainFrameJson(f, stats);
+      if (pass) {
+        uint32_t byStage[4] = {0, 0, 0, 0};
+        for (uint32_t code : pass->results()) ++byStage[bound::CullCode{code}.stage() & 3u];
+        std::printf("  culled %u of %u: frustum %u, back-patch %u\n",
+                    scene.patches.patchCount() - stats.patchesDrawn, scene.patches.patchCount(),
+                    byStage[1], byStage[2]);
+        j["patches"] = scene.patches.patchCount();
+        j["drawn"] = stats.patchesDrawn;
+        j["culled"] = {{"frustum", byStage[1]}, {"backPatch", byStage[2]}, {"occlusion", 0}};
+      }
+      jsonFrames.push_back(std::move(j));
     }
     const bool last = f + 1 == frames;
     if (!outDir && !last) continue;
@@ -225,6 +297,40 @@ int run(Args& args) {
       }
     }
   }
+  if (statsPath) {
+    nlohmann::json doc{{"device", context.info().name},
+                       {"scene", scene.patches.source},
+                       {"width", width},
+                       {"height", height},
+                       {"cull", cull.mode},
+                       {"frames", jsonFrames}};
+    if (cullFrame)
+      doc["options"] = {
+          {"aggressive", frameOptions.aggressive},
+          {"drawMode", toString(frameOptions.drawMode)},
+          {"firstFrame", toString(frameOptions.firstFrame)},
+          {"hizFullResolution", frameOptions.hiz.fullResolution},
+          {"hizLookup", frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper"},
+          {"hizSampler", cullFrame->pyramid().usesSampler()}};
+    std::ofstream file(*statsPath);
+    if (!(file << doc.dump(2) << "\n")) throw Error(*statsPath + ": cannot write");
+    std::cout << "wrote " << *statsPath << "\n";
+  }
+  if (cullFrame && statusView) {
+    frame::RenderTarget viewTarget(context, width, height);
+    const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
+    for (const auto& [statusCamera, suffix] :
+         {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
+      cullFrame->renderStatusView(viewTarget, statusCamera, occluders);
+      frame::writePng(sibling(*out, suffix),
+                      frame::colorImage(width, height, viewTarget.readColor(context)));
+      std::cout << "wrote " << sibling(*out, suffix).string() << "\n";
+    }
+  }
+  if (cullFrame && pyramidDir) {
+    const uint32_t n = writePyramidLevels(*pyramidDir, cullFrame->pyramid(), context);
+    std::cout << "wrote " << n << " pyramid levels to " << *pyramidDir << "\n";
+  }
   if (const vk::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
     return 1;
@@ -236,7 +342,7 @@ const Registration kRegistration(
     {"render",
      "draw a mesh or the built-in scene to PNG (optionally culled), print frame statistics",
      usage(),
-     {"ids", "debug-colors", "validate"},
+     {"ids", "debug-colors", "validate", "status-view", "aggressive", "hiz-full", "hiz-tight"},
      run});
 
 }  // namespace

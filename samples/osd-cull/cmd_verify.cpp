@@ -22,8 +22,9 @@ namespace {
 
 const char* kUsage = R"(Usage: osd-cull verify [MESH] [options]
 
-Runs each cull method alone (the frustum test, each back-patch method) on random views of
-MESH (default: the built-in mesh) and checks every view: GPU culls must be culls of the
+Runs each cull method alone (the frustum test, each back-patch method, the Hi-Z occlusion
+test against the pyramid of the full draw's depth) on random views of MESH (default: the
+built-in mesh) and checks every view: GPU culls must be culls of the
 double-precision CPU reference, culled patches must have no pixel in the visibility oracle
 (item buffer of the unculled draw), and optionally no visible sample on a dense sampling of
 the patch and no pixel lost in the image drawn from the survivors. Prints a table (progress
@@ -40,9 +41,12 @@ Options:
   --views N             number of views (default 100)
   --seed S              random seed of the views (default 1)
   --view-set SET        sphere or whole-object (default sphere)
-  --methods A,B,...     methods to run (default: every registered frustum and back-patch
-                        method; back-patch methods are skipped with the reason when the mesh
-                        is not a closed, outward-oriented solid)
+  --methods A,B,...     methods to run (default: every registered method: frustum,
+                        back-patch and occlusion (hiz); back-patch methods are skipped with the
+                        reason when the mesh is not a closed, outward-oriented solid, hiz
+                        without the oracle)
+  --hiz-full            Hi-Z top level at full resolution (default: half, as the paper)
+  --hiz-tight           Hi-Z lookup one level finer where 2x2 texels still cover the box
   --tess N              uniform tessellation level of the oracle draws (default 4)
   --level L             adaptive isolation level of the patches (default 2)
   --width W --height H  image size (default 256 x 256)
@@ -111,6 +115,8 @@ int run(Args& args) {
   const bool noOracle = args.flag("no-oracle");
   const int sample = static_cast<int>(args.integer("sample", 0, 256).value_or(0));
   const bool imageCheck = args.flag("image-check");
+  const bool hizFull = args.flag("hiz-full");
+  const bool hizTight = args.flag("hiz-tight");
   const auto jsonPath = args.value("json");
   const auto device = args.value("device");
   const bool validate = args.flag("validate");
@@ -124,7 +130,8 @@ int run(Args& args) {
     methods = splitList(*methodsText);
     for (const auto& m : methods) frame::cullMethod(m);  // reject unknown names early
   } else {
-    for (auto stage : {frame::CullStage::Frustum, frame::CullStage::BackPatch})
+    for (auto stage :
+         {frame::CullStage::Frustum, frame::CullStage::BackPatch, frame::CullStage::Occlusion})
       for (const auto& m : frame::cullMethodNames(stage)) methods.push_back(m);
   }
 
@@ -142,6 +149,8 @@ int run(Args& args) {
   options.referenceStride = referenceEvery;
   options.samplingGrid = sample;
   options.imageCheck = imageCheck;
+  options.hiz.fullResolution = hizFull;
+  options.hiz.lookup = hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
   frame::CullVerifier verifier(context, patches, methods, mesh.backPatch, options);
 
   frame::ViewSetOptions viewOptions;
@@ -262,7 +271,7 @@ const Registration kRegistration(
     {"verify",
      "check every cull method against the CPU reference and the oracle on random views",
      kUsage,
-     {"no-oracle", "image-check", "validate"},
+     {"no-oracle", "image-check", "validate", "hiz-full", "hiz-tight"},
      run});
 
 }  // namespace

@@ -1,11 +1,12 @@
 #pragma once
 /// \file cull_options.h
-/// \brief The culling options of osd-cull subcommands, parsed in one place: `--cull` and
-/// `--backpatch-method` (occlusion options are added here too).
+/// \brief The culling options of osd-cull subcommands, parsed in one place: `--cull`,
+/// `--backpatch-method` and the options of the two-pass occlusion frame.
 
 #include "command.h"
 
 #include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/cull_pass.h"
 
 #include <optional>
@@ -18,13 +19,22 @@ extern const char* const kCullOptionsUsage;
 
 /// \brief What the user asked to cull.
 struct CullChoice {
-  std::string mode = "none";                      ///< none, frustum, backpatch, all
+  std::string mode = "none";                      ///< none, frustum, backpatch, occlusion, all
   std::string backPatchMethod = "tangent-plane";  ///< a registered back-patch method
+  /// The two-pass frame's options (used when occlusion() is true): aggressive, draw mode,
+  /// first-frame policy, pyramid options.
+  frame::CullFrameOptions frame;
   bool enabled() const { return mode != "none"; }
+  /// \brief True when the Hi-Z occlusion stage runs (mode occlusion or all): frames are
+  /// drawn by frame::CullFrame in two passes with temporal visibility.
+  bool occlusion() const { return mode == "occlusion" || mode == "all"; }
 };
 
-/// \brief Reads `--cull MODE` and `--backpatch-method NAME`.
-/// \throws osd_cull::Error for unknown modes or methods.
+/// \brief Reads `--cull MODE`, `--backpatch-method NAME` and, for occlusion, `--aggressive`,
+/// `--draw-mode`, `--first-frame`, `--hiz-full`, `--hiz-tight`, `--hiz-reduction` (a command
+/// using this lists aggressive, hiz-full and hiz-tight among its Command::flags).
+/// \throws osd_cull::Error for unknown modes, methods or values, and for occlusion options
+/// without an occlusion mode.
 CullChoice cullChoiceFromArgs(Args& args);
 
 /// \brief The cull-pass settings of a choice on a mesh with the given validity (back-patch

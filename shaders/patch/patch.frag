@@ -12,8 +12,17 @@ layout(location = 2) flat in uint tePatch;
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out uint outItem;
 
+// Debug-view colors of kDrawStatus* (index = status).
+const vec3 kStatusColors[6] = vec3[6](vec3(0.80, 0.78, 0.72), vec3(0.35, 0.75, 0.35),
+                                      vec3(0.95, 0.85, 0.25), vec3(0.35, 0.55, 0.95),
+                                      vec3(0.70, 0.40, 0.90), vec3(0.95, 0.35, 0.30));
+
 void main() {
-  vec3 base = (pc.flags & kFlagDebugColors) != 0u ? debugColor(tePatch) : vec3(0.80, 0.78, 0.72);
+  uint patchIndex = tePatch & kDrawListPatchMask;
+  vec3 base = vec3(0.80, 0.78, 0.72);
+  if ((pc.flags & kFlagDebugColors) != 0u) base = debugColor(patchIndex);
+  if ((pc.flags & kFlagStatusColors) != 0u)
+    base = kStatusColors[min((tePatch >> kDrawListStatusShift) & 7u, 5u)];
   outColor = vec4(shade(base, tePosition, teNormal, pc.eye.xyz), 1.0);
-  outItem = pc.itemBase + tePatch + 1u;
+  outItem = pc.itemBase + patchIndex + 1u;
 }

@@ -1,5 +1,6 @@
 #version 450
-// Fetches one control point: draw slot = vertex / PATCH_POINTS, patch = drawList[slot].
+// Fetches one control point: draw slot = vertex / PATCH_POINTS, patch = drawList[slot]
+// (an entry: index and flags, shared/draw_layout.h kDrawList*, passed on to the later stages).
 // Non-indexed draws with firstVertex = firstSlot * PATCH_POINTS.
 #include "patch_common.glsl"
 
@@ -9,7 +10,7 @@ layout(location = 1) flat out uint vPatch;
 void main() {
   uint slot = uint(gl_VertexIndex) / uint(PATCH_POINTS);
   uint k = uint(gl_VertexIndex) % uint(PATCH_POINTS);
-  uint patchIndex = drawList[slot];
-  vPoint = controlPoint(firstPoint(patchIndex) + k);
-  vPatch = patchIndex;
+  uint entry = drawList[slot];
+  vPoint = controlPoint(firstPoint(entry & kDrawListPatchMask) + k);
+  vPatch = entry;
 }

@@ -16,7 +16,22 @@ OSD_CULL_CONST uint kTessUniform = 0u;
 OSD_CULL_CONST uint kTessAdaptive = 1u;
 
 // DrawConstants.flags
-OSD_CULL_CONST uint kFlagDebugColors = 1u;  // color each patch by a hash of its index
+OSD_CULL_CONST uint kFlagDebugColors = 1u;   // color each patch by a hash of its index
+OSD_CULL_CONST uint kFlagStatusColors = 2u;  // color each patch by its draw-list status field
+
+// A draw-list entry: the patch index in the low 28 bits, a status for the debug view in
+// bits 28-30 (kDrawStatus*) and, in bit 31, "culled": the control shader sets every
+// tessellation factor to 0 (the tess-factor-0 variant of Niessner & Loop §5), skipping the
+// factor computation. Plain indices (flags 0) draw as before.
+OSD_CULL_CONST uint kDrawListPatchMask = 0x0FFFFFFFu;
+OSD_CULL_CONST uint kDrawListStatusShift = 28u;
+OSD_CULL_CONST uint kDrawListCulled = 0x80000000u;
+OSD_CULL_CONST uint kDrawStatusNone = 0u;
+OSD_CULL_CONST uint kDrawStatusVisible = 1u;       // drawn in the first pass
+OSD_CULL_CONST uint kDrawStatusNewlyVisible = 2u;  // drawn in the second pass
+OSD_CULL_CONST uint kDrawStatusFrustum = 3u;       // culled by the view frustum
+OSD_CULL_CONST uint kDrawStatusBackPatch = 4u;     // culled as back-facing
+OSD_CULL_CONST uint kDrawStatusOccluded = 5u;      // culled by the Hi-Z test
 
 // Item-buffer values: 0 is background, patch p of a set with itemBase b writes b + p + 1,
 // triangle occluders write kItemOccluder.

@@ -10,3 +10,12 @@ add_test(NAME InstalledPackage.ConsumerBuildsAndRuns
     -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/consumer_check.cmake)
 set_tests_properties(InstalledPackage.ConsumerBuildsAndRuns PROPERTIES
   TIMEOUT 600 PASS_REGULAR_EXPRESSION "consumer: cube patches=96 shift=10.000000")
+
+# The minimal integration example runs and draws every patch of the built-in mesh.
+if(TARGET osd-cull-minimal)
+  file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/minimal-check)
+  add_test(NAME Samples.MinimalDrawsEveryPatchOfTheBuiltInMesh COMMAND osd-cull-minimal
+    WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/minimal-check)
+  set_tests_properties(Samples.MinimalDrawsEveryPatchOfTheBuiltInMesh PROPERTIES
+    PASS_REGULAR_EXPRESSION "504 Bezier \\+ 24 Gregory patches[^\n]*\ndrew 528 patches")
+endif()

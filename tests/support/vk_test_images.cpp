@@ -1,6 +1,7 @@
 #include "support/vk_test_images.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace osd_cull::test {
 
@@ -10,18 +11,22 @@ std::map<uint32_t, uint32_t> itemHistogram(std::span<const uint32_t> items) {
   return h;
 }
 
-uint32_t countPinholes(std::span<const uint32_t> items, uint32_t width, uint32_t height) {
-  uint32_t holes = 0;
+uint32_t countCracks(std::span<const uint32_t> items, std::span<const float> depth,
+                     std::span<const uint32_t> unculledItems, uint32_t width, uint32_t height,
+                     float maxDepthSpread) {
+  uint32_t gaps = 0;
+  auto covered = [&](uint32_t x, uint32_t y) { return items[y * width + x] != 0; };
+  auto d = [&](uint32_t x, uint32_t y) { return depth[y * width + x]; };
   for (uint32_t y = 1; y + 1 < height; ++y)
     for (uint32_t x = 1; x + 1 < width; ++x) {
-      if (items[y * width + x] != 0) continue;
-      bool surrounded = true;
-      for (int dy = -1; dy <= 1 && surrounded; ++dy)
-        for (int dx = -1; dx <= 1 && surrounded; ++dx)
-          if ((dx || dy) && items[(y + dy) * width + (x + dx)] == 0) surrounded = false;
-      holes += surrounded;
+      if (covered(x, y) || unculledItems[y * width + x] == 0) continue;
+      const bool horizontal = covered(x - 1, y) && covered(x + 1, y) &&
+                              std::abs(d(x - 1, y) - d(x + 1, y)) < maxDepthSpread;
+      const bool vertical = covered(x, y - 1) && covered(x, y + 1) &&
+                            std::abs(d(x, y - 1) - d(x, y + 1)) < maxDepthSpread;
+      gaps += horizontal || vertical;
     }
-  return holes;
+  return gaps;
 }
 
 uint32_t countEnclosedBackground(std::span<const uint32_t> items, uint32_t width, uint32_t height) {

@@ -1,0 +1,258 @@
+#include "osd_cull/frame/cull_frame.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/vk/commands.h"
+#include "osd_cull/vk/context.h"
+#include "osd_cull/vk/descriptors.h"
+#include "osd_cull/vk/transfer.h"
+
+#include <shared/draw_layout.h>
+#include <shared/visibility_layout.h>
+
+#include <chrono>
+
+namespace osd_cull::frame {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Submits, waits, returns the wall time of recording, submission and execution.
+double timedSubmit(vk::Context& context, const std::function<void(VkCommandBuffer)>& record) {
+  const auto start = Clock::now();
+  context.submit(record);
+  return msSince(start);
+}
+
+uint32_t drawStatusOf(uint32_t status) {
+  using namespace shader;
+  if (status & kStatusNewlyVisible) return kDrawStatusNewlyVisible;
+  if (status & kStatusVisible) return kDrawStatusVisible;
+  switch ((status >> kStatusStageShift) & 0xFu) {
+    case kStageFrustum:
+      return kDrawStatusFrustum;
+    case kStageBackPatch:
+      return kDrawStatusBackPatch;
+    case kStageOcclusion:
+      return kDrawStatusOccluded;
+    default:
+      return kDrawStatusNone;
+  }
+}
+
+}  // namespace
+
+const char* toString(CullDrawMode mode) {
+  return mode == CullDrawMode::Filtered ? "filtered" : "tf0";
+}
+
+CullFrame::CullFrame(vk::Context& context, Renderer& renderer, RenderTarget& target,
+                     std::span<const CullMesh> meshes, const CullFrameOptions& options)
+    : context_(context),
+      renderer_(renderer),
+      target_(target),
+      meshes_(meshes.begin(), meshes.end()),
+      options_(options),
+      programs_(std::make_unique<VisibilityPrograms>(context)),
+      queries_(context, 2) {
+  const CullSettings& cull = options.cull;
+  if (!cull.occlusion.empty()) {
+    pyramid_ = std::make_unique<HiZPyramid>(context, target.depth(), options.hiz);
+    stage_ = std::make_unique<HiZCullStage>(context, *pyramid_);
+  }
+  const bool anyStage = cull.frustum || !cull.backPatch.empty() || !cull.occlusion.empty();
+  uint32_t base = 0;
+  for (const CullMesh& m : meshes_) {
+    if (!m.gpu || !m.host) throw Error("CullFrame: a mesh without GpuPatchSet or PatchSet");
+    if (m.gpu->patchCount() != m.host->patchCount())
+      throw Error("CullFrame: mesh '" + m.host->source + "' has " +
+                  std::to_string(m.host->patchCount()) + " host and " +
+                  std::to_string(m.gpu->patchCount()) + " device patches");
+    itemBases_.push_back(base);
+    base += m.gpu->patchCount();
+    visibility_.push_back(
+        std::make_unique<VisibilityBuffer>(context, *programs_, *m.gpu, options.firstFrame));
+    passes_.push_back(anyStage ? std::make_unique<CullPass>(context, *m.gpu, *m.host, cull)
+                               : nullptr);
+  }
+  if (!anyStage) {
+    survivedResults_ = vk::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    vk::fill(context, survivedResults_, shader::kStageNone);
+  }
+}
+
+const HiZPyramid& CullFrame::pyramid() const {
+  if (!pyramid_) throw Error("CullFrame::pyramid: the frame runs no occlusion stage");
+  return *pyramid_;
+}
+
+CullFrame::~CullFrame() = default;
+
+void CullFrame::reset(FirstFrame firstFrame) {
+  options_.firstFrame = firstFrame;
+  for (auto& v : visibility_) v->reset(firstFrame);
+}
+
+void CullFrame::setOptions(const CullFrameOptions& options) {
+  const HiZOptions hiz = options_.hiz;
+  const FirstFrame first = options_.firstFrame;
+  const CullSettings cull = options_.cull;
+  options_ = options;
+  options_.hiz = hiz;
+  options_.firstFrame = first;
+  options_.cull = cull;
+}
+
+CullFrame::Chunks CullFrame::chunks(size_t mesh) const {
+  const GpuPatchSet& g = *meshes_[mesh].gpu;
+  const TessellationOptions& t = options_.render.tessellation;
+  return {indirectDrawChunk(t, kBezierPoints, g.bezierCount()),
+          indirectDrawChunk(t, kGregoryPoints, g.gregoryCount())};
+}
+
+void CullFrame::recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool secondPass) {
+  for (size_t m = 0; m < meshes_.size(); ++m) {
+    VisibilityBuffer& v = *visibility_[m];
+    const GpuPatchSet& g = *meshes_[m].gpu;
+    PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
+    if (options_.drawMode == CullDrawMode::TessFactorZero) {
+      draw.set = secondPass ? v.secondPassAll() : v.firstPassAll();
+      renderer_.recordSlots(cmd, camera, draw, PatchType::Bezier, 0, g.bezierCount(), {},
+                            options_.render);
+      renderer_.recordSlots(cmd, camera, draw, PatchType::Gregory, g.firstGregorySlot(),
+                            g.gregoryCount(), {}, options_.render);
+      continue;
+    }
+    DrawListBuffers& list = secondPass ? v.secondPass() : v.firstPass();
+    draw.set = list.drawSet;
+    const Chunks c = chunks(m);
+    const uint32_t maxBezier = v.maxDraws(PatchType::Bezier, c.bezier);
+    renderer_.recordIndirect(cmd, camera, draw, PatchType::Bezier, list.commands, 0, list.counters,
+                             4 * shader::kListDrawsBezier, maxBezier, options_.render);
+    renderer_.recordIndirect(cmd, camera, draw, PatchType::Gregory, list.commands,
+                             VkDeviceSize{maxBezier} * sizeof(VkDrawIndirectCommand), list.counters,
+                             4 * shader::kListDrawsGregory,
+                             v.maxDraws(PatchType::Gregory, c.gregory), options_.render);
+  }
+}
+
+CullFrameStats CullFrame::render(const Camera& camera,
+                                 std::span<const GpuTriangleMesh* const> occluders) {
+  if (camera.width != target_.width() || camera.height != target_.height())
+    throw Error("CullFrame: camera viewport " + std::to_string(camera.width) + "x" +
+                std::to_string(camera.height) + " differs from the render target " +
+                std::to_string(target_.width()) + "x" + std::to_string(target_.height()));
+  CullFrameStats s;
+  const bool filtered = options_.drawMode == CullDrawMode::Filtered;
+  RenderOptions pass = options_.render;
+
+  // 1. Occluders and the patches visible last frame.
+  s.pass1Ms = timedSubmit(context_, [&](VkCommandBuffer cmd) {
+    queries_.reset(cmd);
+    if (filtered)
+      for (size_t m = 0; m < meshes_.size(); ++m) {
+        const Chunks c = chunks(m);
+        visibility_[m]->recordFirstPassCommands(cmd, c.bezier, c.gregory);
+      }
+    pass.clear = true;
+    renderer_.beginPass(cmd, target_, pass);
+    queries_.begin(cmd, 0);
+    renderer_.recordOccluders(cmd, camera, occluders);
+    recordPatchDraws(cmd, camera, false);
+    queries_.end(cmd, 0);
+    renderer_.endPass(cmd);
+  });
+  for (auto& v : visibility_) {
+    s.patchesTotal += v->patchCount();
+    s.drawnPass1 += v->firstPass().bezier() + v->firstPass().gregory();
+  }
+
+  // 2. The Hi-Z pyramid of that depth.
+  if (pyramid_)
+    s.pyramidMs = timedSubmit(
+        context_, [&](VkCommandBuffer cmd) { pyramid_->record(cmd, RenderTarget::kDepthLayout); });
+
+  // 3. Cull every patch, update the status, build the lists.
+  s.cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {
+    for (size_t m = 0; m < meshes_.size(); ++m) {
+      const Chunks c = chunks(m);
+      if (!passes_[m]) {
+        visibility_[m]->recordUpdate(cmd, survivedResults_, c.bezier, c.gregory);
+        continue;
+      }
+      // One dispatch: frustum → back-patch → Hi-Z occlusion, a result code per patch.
+      passes_[m]->record(cmd, camera, options_.render.tessellation,
+                         stage_ ? stage_->set() : VK_NULL_HANDLE);
+      vk::memoryBarrier(cmd, vk::scope::kComputeWrite, vk::scope::kComputeRead);
+      visibility_[m]->recordUpdate(cmd, passes_[m]->resultsBuffer(), c.bezier, c.gregory);
+    }
+  });
+  for (auto& v : visibility_) {
+    const auto st = v->stats();
+    s.culledFrustum += st[shader::kStatCulledFrustum];
+    s.culledBackPatch += st[shader::kStatCulledBackPatch];
+    s.culledOcclusion += st[shader::kStatCulledOcclusion];
+    s.newlyVisible += st[shader::kStatNewlyVisible];
+    s.survivors += st[shader::kStatSurvivors];
+  }
+
+  // 4. The patches that became visible.
+  if (!options_.aggressive) {
+    s.pass2Ms = timedSubmit(context_, [&](VkCommandBuffer cmd) {
+      pass.clear = false;
+      renderer_.beginPass(cmd, target_, pass);
+      queries_.begin(cmd, 1);
+      recordPatchDraws(cmd, camera, true);
+      queries_.end(cmd, 1);
+      renderer_.endPass(cmd);
+    });
+    s.drawnPass2 = s.newlyVisible;
+    s.pass2 = queries_.result(1);
+  }
+  s.pass1 = queries_.result(0);
+  for (auto& v : visibility_) v->advance();
+  return s;
+}
+
+std::vector<uint32_t> CullFrame::readResults(size_t mesh) const {
+  const uint32_t n = meshes_.at(mesh).gpu->patchCount();
+  if (!passes_[mesh]) return std::vector<uint32_t>(n, shader::kStageNone);
+  const auto r = passes_[mesh]->results();
+  return std::vector<uint32_t>(r.begin(), r.begin() + n);
+}
+
+FrameStats CullFrame::renderStatusView(RenderTarget& target, const Camera& camera,
+                                       std::span<const GpuTriangleMesh* const> occluders) {
+  if (statusLists_.empty()) {
+    statusSetLayout_ = vk::createDescriptorSetLayout(context_, patchSetBindings());
+    statusPool_ = std::make_unique<vk::DescriptorPool>(
+        context_, static_cast<uint32_t>(meshes_.size()), patchSetBindings());
+    for (const CullMesh& m : meshes_) {
+      statusLists_.emplace_back(context_, std::max<size_t>(4, size_t{m.gpu->patchCount()} * 4),
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+      statusSets_.push_back(statusPool_->allocate(statusSetLayout_.get()));
+      m.gpu->writeDescriptorSet(context_.device(), statusSets_.back(), statusLists_.back());
+    }
+  }
+  std::vector<PatchDraw> draws;
+  for (size_t m = 0; m < meshes_.size(); ++m) {
+    const std::vector<uint32_t> status = visibility_[m]->readStatus(context_);
+    std::vector<uint32_t> list(std::max<size_t>(1, status.size()));
+    for (uint32_t p = 0; p < status.size(); ++p)
+      list[p] = p | (drawStatusOf(status[p]) << shader::kDrawListStatusShift);
+    vk::upload<uint32_t>(context_, statusLists_[m], list);
+    draws.push_back({meshes_[m].gpu, meshes_[m].host, itemBases_[m], statusSets_[m]});
+  }
+  RenderOptions o = options_.render;
+  o.clear = true;
+  o.statusColors = true;
+  o.debugColors = false;
+  return renderer_.render(target, camera, draws, occluders, o);
+}
+
+}  // namespace osd_cull::frame

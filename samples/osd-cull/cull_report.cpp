@@ -1,0 +1,80 @@
+#include "cull_report.h"
+
+#include "osd_cull/frame/png_io.h"
+
+#include <cstdio>
+
+namespace osd_cull::cli {
+
+namespace {
+
+unsigned long long u64(uint64_t v) { return static_cast<unsigned long long>(v); }
+
+}  // namespace
+
+std::string cullFrameLine(uint32_t frame, const frame::CullFrameStats& s) {
+  char line[512];
+  std::snprintf(
+      line, sizeof(line),
+      "frame %u: %u patches, drawn pass 1 %u, pass 2 %u; culled frustum %u, back-patch %u, "
+      "occlusion %u; TES invocations %llu (pass 1 %llu, pass 2 %llu), fragment invocations "
+      "%llu; ms: pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f, total %.2f",
+      frame, s.patchesTotal, s.drawnPass1, s.drawnPass2, s.culledFrustum, s.culledBackPatch,
+      s.culledOcclusion, u64(s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations),
+      u64(s.pass1.tessEvaluationInvocations), u64(s.pass2.tessEvaluationInvocations),
+      u64(s.pass1.fragmentShaderInvocations + s.pass2.fragmentShaderInvocations), s.pass1Ms,
+      s.pyramidMs, s.cullMs, s.pass2Ms, s.totalMs());
+  return line;
+}
+
+nlohmann::json cullFrameJson(uint32_t frame, const frame::CullFrameStats& s) {
+  auto pass = [](const vk::PipelineStatistics& p) {
+    return nlohmann::json{{"tessControlPatches", p.tessControlPatches},
+                          {"tessEvaluationInvocations", p.tessEvaluationInvocations},
+                          {"fragmentShaderInvocations", p.fragmentShaderInvocations},
+                          {"clippingPrimitives", p.clippingPrimitives}};
+  };
+  return {{"frame", frame},
+          {"patches", s.patchesTotal},
+          {"drawnPass1", s.drawnPass1},
+          {"drawnPass2", s.drawnPass2},
+          {"survivors", s.survivors},
+          {"newlyVisible", s.newlyVisible},
+          {"culled",
+           {{"frustum", s.culledFrustum},
+            {"backPatch", s.culledBackPatch},
+            {"occlusion", s.culledOcclusion}}},
+          {"pass1", pass(s.pass1)},
+          {"pass2", pass(s.pass2)},
+          {"ms",
+           {{"pass1", s.pass1Ms},
+            {"pyramid", s.pyramidMs},
+            {"cull", s.cullMs},
+            {"pass2", s.pass2Ms},
+            {"total", s.totalMs()}}}};
+}
+
+nlohmann::json plainFrameJson(uint32_t frame, const frame::FrameStats& s) {
+  return {{"frame", frame},
+          {"patches", s.patchesDrawn},
+          {"drawCalls", s.drawCalls},
+          {"tessEvaluationInvocations", s.statistics.tessEvaluationInvocations},
+          {"fragmentShaderInvocations", s.statistics.fragmentShaderInvocations},
+          {"ms", {{"wall", s.wallMs}, {"gpu", s.gpuMs}}}};
+}
+
+uint32_t writePyramidLevels(const std::filesystem::path& dir, const frame::HiZPyramid& pyramid,
+                            vk::Context& context) {
+  std::filesystem::create_directories(dir);
+  const auto levels = pyramid.readLevels(context);
+  const auto& layout = pyramid.layout();
+  for (uint32_t l = 0; l < levels.size(); ++l) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "hiz_level_%02u.png", l);
+    frame::writePng(dir / name,
+                    frame::depthImage(layout.levelWidth(l), layout.levelHeight(l), levels[l]));
+  }
+  return static_cast<uint32_t>(levels.size());
+}
+
+}  // namespace osd_cull::cli

@@ -1,0 +1,30 @@
+// The Hi-Z occlusion stage of the cull kernel (cull_main.glsl's occlusion hook): Niessner &
+// Loop §4.1.1 with the functions of hiz/occlusion.glsl, against the pyramid of the frame's
+// first pass. Resources (descriptor set 1, frame/hiz_cull_stage.h): the pyramid (all
+// levels, read with texelFetch) and its HiZParams.
+#ifndef OSD_CULL_CULL_OCCLUSION_HIZ_GLSL
+#define OSD_CULL_CULL_OCCLUSION_HIZ_GLSL
+#include "cull_common.glsl"
+#include "hiz/occlusion.glsl"
+
+layout(set = 1, binding = 0) uniform sampler2D hizPyramid;
+layout(std140, set = 1, binding = 1) uniform HiZUniform { HiZParams hizParams; };
+
+// 0 (kOcclusionVerdictOccluded) when occluded; otherwise kOcclusionVerdictUntested (a point
+// at or behind the eye, NaN/Inf, off screen) or kOcclusionVerdictVisible with the pyramid
+// level looked at in bits 4-7.
+uint occlusionVerdict(uint patchIndex, PatchClipBounds bounds) {
+  if (!bounds.finite) return kOcclusionVerdictUntested;
+  HiZBox box = hizBoxBegin();
+  uint first = firstPoint(patchIndex), n = pointCount(patchIndex);
+  for (uint k = 0u; k < n; ++k) {
+    vec3 p = controlPoint(first + k);
+    hizBoxAdd(box, clipPoint(p), absClipPoint(p));
+  }
+  int level;
+  ivec2 t0, t1;
+  if (!hizFootprint(box, hizParams, level, t0, t1)) return kOcclusionVerdictUntested;
+  if (hizOccluded(box, hizParams, hizPyramid)) return kOcclusionVerdictOccluded;
+  return kOcclusionVerdictVisible | (uint(level) << kOcclusionVerdictLevelShift);
+}
+#endif

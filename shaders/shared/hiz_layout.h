@@ -1,0 +1,86 @@
+// Constants and push-constant blocks of the Hi-Z pyramid build (shaders/hiz/hiz_reduce.comp)
+// and of the Hi-Z occlusion test (shaders/hiz/occlusion.glsl), shared by C++
+// (osd_cull/bound/occlusion, osd_cull/frame/hiz_pyramid) and GLSL.
+//
+// Pyramid layout (Niessner & Loop §4.1; bound::HiZLayout computes it on the host): the depth
+// image W x H is padded to P = max(bit_ceil(W), 2^s) x max(bit_ceil(H), 2^s), s = baseShift
+// (1: the top level has half resolution as in the paper, 0: full resolution). Level l is
+// max(1, P >> (l + s)) texels per axis; a texel holds the farthest (largest) depth of its
+// footprint, [x 2^(l+s), (x+1) 2^(l+s)) clipped to the padded size. Pixels outside the image
+// count as far (depth 1), so padding never makes a region look nearer.
+#ifndef OSD_CULL_SHARED_HIZ_LAYOUT_H
+#define OSD_CULL_SHARED_HIZ_LAYOUT_H
+#include "glsl_compat.h"
+
+OSD_CULL_SHARED_BEGIN
+
+OSD_CULL_CONST uint kHiZGroupSize = 8u;  // 8 x 8 texels per workgroup of the build
+
+// HiZReduceConstants.mode
+OSD_CULL_CONST uint kHiZCopy = 0u;       // dst = src texel (full-resolution top level)
+OSD_CULL_CONST uint kHiZReduce2x2 = 1u;  // dst = max of the 2x2 src texels below it
+
+// Depth of "nothing drawn": the clear value and the value of pixels outside the image.
+OSD_CULL_CONST float kHiZFar = 1.0f;
+
+// Margins of the occlusion test. The test decides whether the patch's rasterized fragments
+// can pass the depth test (LESS) anywhere in its screen box; the rasterizer evaluates the
+// patch in fp32, so the nearest depth and the box are widened:
+// - per control point, by kHiZRelativeError (about 64 fp32 ulps) times the magnitudes its
+//   clip coordinates are summed from (|viewProj| (|p|, 1)), divided by w;
+// - the nearest depth by kHiZDepthBias more (16 ulps of depth 1: interpolation in the
+//   rasterizer), the box by kHiZPixelMargin pixels (vertex snapping is 1/256 pixel).
+// The GPU kernel computes in fp32 and uses twice these margins, so that it culls a subset of
+// what the double-precision reference (bound::hizOcclusionTest) culls.
+OSD_CULL_CONST float kHiZRelativeError = 3.814697265625e-6f;  // 2^-18
+OSD_CULL_CONST float kHiZDepthBias = 9.5367431640625e-7f;     // 2^-20
+OSD_CULL_CONST float kHiZPixelMargin = 0.015625f;             // 1/64
+OSD_CULL_CONST float kHiZGpuMarginScale = 2.0f;
+
+// HiZParams.lookup: the level a box is looked up at. Paper (§4.1.1): ceil(log2(n)) for an
+// n-pixel box, where 2x2 texels always cover it. Tight: one level finer when the box, as it
+// happens to lie, still touches at most 2x2 texels there (no coarser level can be needed,
+// so it never looks at more texels, and a finer texel's depth is never farther).
+OSD_CULL_CONST uint kHiZLookupPaper = 0u;
+OSD_CULL_CONST uint kHiZLookupTight = 1u;
+
+// Push constants of one reduction step (one pyramid level).
+struct HiZReduceConstants {
+  uint srcWidth;  // source level (or depth image) size in texels
+  uint srcHeight;
+  uint dstWidth;  // level written
+  uint dstHeight;
+  uint mode;        // kHiZCopy or kHiZReduce2x2
+  uint srcBounded;  // 1: source texels outside srcWidth x srcHeight read as kHiZFar (the
+                    //    depth image); 0: reads clamp to the last texel (pyramid levels)
+  uint pad0;
+  uint pad1;
+};
+
+// What the occlusion test needs to know about the pyramid (part of the cull constants).
+struct HiZParams {
+  uint width;  // depth image size in pixels (the screen the box is clamped to)
+  uint height;
+  uint baseShift;    // log2 of the pixels per top-level texel (1: half resolution)
+  uint levelCount;   // mip levels of the pyramid image
+  uint level0Width;  // size of level 0 in texels; level l is max(1, size >> l)
+  uint level0Height;
+  uint enabled;  // 0: no pyramid bound, never occlusion-culled
+  uint lookup;   // kHiZLookupPaper or kHiZLookupTight
+};
+
+// The occlusion verdict of the cull kernel's result code (bits 16-23, shared/cull_layout.h):
+// 0 culled as every stage's verdict, otherwise why the patch is kept; a visible verdict
+// carries the pyramid level looked at in bits 4-7 of the field.
+OSD_CULL_CONST uint kOcclusionVerdictOccluded = 0u;
+OSD_CULL_CONST uint kOcclusionVerdictVisible = 1u;   // tested, something may be in front
+OSD_CULL_CONST uint kOcclusionVerdictUntested = 2u;  // a point with w <= 0, NaN/Inf, or off screen
+OSD_CULL_CONST uint kOcclusionVerdictLevelShift = 4u;
+
+OSD_CULL_SHARED_END
+
+#ifdef __cplusplus
+static_assert(sizeof(osd_cull::shader::HiZReduceConstants) == 32);
+static_assert(sizeof(osd_cull::shader::HiZParams) == 32);
+#endif
+#endif

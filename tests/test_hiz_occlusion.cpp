@@ -1,0 +1,127 @@
+// The Hi-Z occlusion stage of the cull kernel ("hiz": shaders/cull/occlusion_hiz.glsl with
+// shaders/hiz/occlusion.glsl) against its double-precision reference
+// (bound::hizOcclusionTest) and the item-buffer oracle.
+#include "osd_cull/bound/occlusion.h"
+#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/hiz_cull_stage.h"
+#include "osd_cull/frame/hiz_pyramid.h"
+#include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/scene/default_scene.h"
+#include "support/vk_test_context.h"
+#include "support/vk_test_images.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+namespace osd_cull {
+namespace {
+
+class HiZOcclusionTest : public test::VkTest {
+ protected:
+  struct Comparison {
+    // tested: kept by the GPU and tested by the reference (the GPU reports their level).
+    uint32_t gpuCulled = 0, cpuCulled = 0, tested = 0, sameLevel = 0;
+  };
+
+  // Draws everything, builds the pyramid from that depth, runs the GPU test and the
+  // reference on the read-back depth, and checks GPU culled => reference culled and GPU
+  // culled => zero oracle pixels.
+  Comparison compare(const PatchSet& set, std::span<const frame::TriangleMesh> meshes,
+                     const frame::Camera& camera, bool fullResolution,
+                     bound::HiZLookup lookup = bound::HiZLookup::Paper) {
+    frame::GpuPatchSet gpu(context(), set);
+    std::vector<frame::GpuTriangleMesh> gpuMeshes;
+    for (const auto& m : meshes) gpuMeshes.emplace_back(context(), m);
+    std::vector<const frame::GpuTriangleMesh*> occluders;
+    for (const auto& m : gpuMeshes) occluders.push_back(&m);
+    frame::RenderTarget target(context(), camera.width, camera.height);
+    frame::Renderer renderer(context());
+    frame::VisibilityOracle oracle(context());
+    frame::TessellationOptions tess;
+    tess.uniformLevel = 6;
+    const auto counts = oracle.query(renderer, target, camera, gpu, &set, occluders, tess);
+    frame::HiZPyramid pyramid(context(), target.depth(),
+                              {fullResolution, frame::HiZReduction::Auto, lookup});
+    pyramid.build(context(), frame::RenderTarget::kDepthLayout);
+    frame::HiZCullStage stage(context(), pyramid);
+    frame::CullSettings settings;
+    settings.frustum = false;
+    settings.occlusion = "hiz";
+    frame::CullPass pass(context(), gpu, set, settings);
+    pass.run(camera, tess, stage.set());
+    const std::vector<uint32_t> codes(pass.results().begin(), pass.results().end());
+    const bound::HiZPyramid ref = bound::buildHiZPyramid(target.readDepth(context()), camera.width,
+                                                         camera.height, fullResolution);
+    const glm::dmat4 vp = camera.viewProjection();
+    Comparison c;
+    for (uint32_t p = 0; p < set.patchCount(); ++p) {
+      const bound::OcclusionResult r =
+          bound::hizOcclusionTest(set.controlPoints(p), vp, ref, lookup);
+      const bool culled = (codes[p] & 0xFu) == shader::kStageOcclusion;
+      const uint32_t verdict = (codes[p] >> shader::kResultShiftOcclusion) & 0xFFu;
+      EXPECT_EQ(verdict != shader::kOcclusionVerdictUntested, r.tested) << "patch " << p;
+      if (culled) {
+        EXPECT_TRUE(r.culled) << "patch " << p << ": GPU culls, the reference does not";
+        EXPECT_EQ(counts.pixels[p], 0u) << "patch " << p << " culled with visible pixels";
+      } else if (r.tested) {
+        const uint32_t level = verdict >> shader::kOcclusionVerdictLevelShift;
+        c.sameLevel += level == r.footprint.level;
+        EXPECT_GE(level, r.footprint.level) << "patch " << p;
+      }
+      c.tested += r.tested && !culled;
+      c.gpuCulled += culled;
+      c.cpuCulled += r.culled;
+    }
+    return c;
+  }
+};
+
+TEST_F(HiZOcclusionTest, GpuCullsWhatTheReferenceCullsOnTheDemoScene) {
+  const scene::Scene scene = scene::defaultScene();
+  const frame::Bounds bounds = frame::boundsOf(scene.patches.points);
+  Comparison total;
+  int view = 0;
+  for (const auto& size : {std::pair{333u, 517u}, std::pair{160u, 96u}})
+    for (double degrees : {0.0, 70.0, 160.0, 250.0}) {
+      const frame::Camera base =
+          frame::frameBounds(bounds, scene.viewDirection, scene.up, 40.0, size.first, size.second);
+      const frame::Camera camera = frame::orbit(base, bounds.center(), scene.up, degrees);
+      const Comparison c =
+          compare(scene.patches, scene.occluders, camera, view % 2 == 1,
+                  view % 4 < 2 ? bound::HiZLookup::Paper : bound::HiZLookup::Tight);
+      ++view;
+      total.gpuCulled += c.gpuCulled;
+      total.cpuCulled += c.cpuCulled;
+      total.tested += c.tested;
+      total.sameLevel += c.sameLevel;
+    }
+  std::printf("occlusion-culled: gpu %u, reference %u of %u tested; same level %u\n",
+              total.gpuCulled, total.cpuCulled, total.tested, total.sameLevel);
+  // The scene has occluded patches (the sphere behind the wall, far sides of the tori).
+  EXPECT_GT(total.cpuCulled, 40u);
+  // fp32 margins are twice the reference's: they may keep a few patches more, not many.
+  EXPECT_GE(total.gpuCulled * 100, total.cpuCulled * 97);
+  EXPECT_GE(total.sameLevel * 100, total.tested * 97);
+}
+
+TEST_F(HiZOcclusionTest, PatchesBehindAWallAreCulledExactlyWhereTheyShouldBe) {
+  // Four 16 x 16 patches at z = -5 in a row; a wall at z = -3 over columns 0..39 of 64x32.
+  std::vector<std::array<glm::dvec3, 16>> row;
+  for (int i = 0; i < 4; ++i)
+    row.push_back(
+        frame::flatBezierPatch({16.0 * i + 0.1, -(8 + 15.8), -5}, {15.8, 0, 0}, {0, 15.8, 0}));
+  const PatchSet set = frame::bezierPatchSet(row, "test:row");
+  const frame::TriangleMesh wall =
+      frame::quadMesh({-4, 4, -3}, {40, 4, -3}, {40, -40, -3}, {-4, -40, -3});
+  for (bool full : {false, true}) {
+    const Comparison c = compare(set, {&wall, 1}, test::pixelCamera(64, 32), full);
+    // Patches 0 and 1 (pixels 0..31) are behind the wall; patch 2 (32..47) is half visible.
+    EXPECT_EQ(c.gpuCulled, 2u);
+    EXPECT_EQ(c.cpuCulled, 2u);
+  }
+}
+
+}  // namespace
+}  // namespace osd_cull

@@ -1,0 +1,154 @@
+// The Hi-Z pyramid built in compute equals the double-precision reference texel for texel,
+// with the min/max sampler reduction and with four texel fetches, at half and full
+// resolution, for power-of-two, odd and tiny sizes.
+#include "osd_cull/bound/occlusion.h"
+#include "osd_cull/frame/hiz_pyramid.h"
+#include "osd_cull/vk/buffer.h"
+#include "osd_cull/vk/commands.h"
+#include "osd_cull/vk/context.h"
+#include "osd_cull/vk/image.h"
+#include "support/vk_test_context.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+namespace osd_cull {
+namespace {
+
+using frame::HiZReduction;
+
+class HiZPyramidTest : public test::VkTest {
+ protected:
+  // A sampled D32_SFLOAT image holding `depth` (rows top to bottom), left in GENERAL.
+  vk::Image depthImage(uint32_t w, uint32_t h, const std::vector<float>& depth) {
+    vk::Image image(context(),
+                    {w, h, VK_FORMAT_D32_SFLOAT,
+                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+    upload(image, depth, VK_IMAGE_LAYOUT_UNDEFINED);
+    return image;
+  }
+
+  // Replaces the image's contents; it goes from `layout` to GENERAL.
+  void upload(const vk::Image& image, const std::vector<float>& depth, VkImageLayout layout) {
+    vk::Buffer staging(context(), depth.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                       vk::MemoryUse::Upload);
+    std::memcpy(staging.mapped(), depth.data(), depth.size() * 4);
+    context().submit([&](VkCommandBuffer cmd) {
+      vk::imageBarrier(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, vk::scope::kAll,
+                       vk::scope::kTransferWrite);
+      VkBufferImageCopy region{};
+      region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+      region.imageExtent = {image.width(), image.height(), 1};
+      vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(),
+                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+      vk::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                       vk::scope::kTransferWrite, vk::scope::kAll);
+    });
+  }
+
+  static std::vector<float> randomDepth(uint32_t w, uint32_t h, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<float> d(size_t{w} * h);
+    // Steps with noise: a few distinct regions, so coarse levels differ.
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x)
+        d[size_t{y} * w + x] = (x * 3 < w ? 0.3f : (y * 2 < h ? 0.6f : 0.45f)) * u(rng) + 0.1f;
+    return d;
+  }
+
+  // Builds on the GPU and compares every texel with the reference; returns the levels.
+  std::vector<std::vector<float>> buildAndCompare(uint32_t w, uint32_t h,
+                                                  const std::vector<float>& depth, bool full,
+                                                  HiZReduction reduction) {
+    const vk::Image image = depthImage(w, h, depth);
+    frame::HiZPyramid pyramid(context(), image, {full, reduction});
+    if (reduction != HiZReduction::Auto) {
+      EXPECT_EQ(pyramid.usesSampler(), reduction == HiZReduction::Sampler);
+    }
+    pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
+    const auto levels = pyramid.readLevels(context());
+    const bound::HiZPyramid ref = bound::buildHiZPyramid(depth, w, h, full);
+    EXPECT_EQ(levels.size(), ref.levels.size());
+    for (size_t l = 0; l < std::min(levels.size(), ref.levels.size()); ++l) {
+      EXPECT_EQ(levels[l].size(), ref.levels[l].size()) << "level " << l;
+      const uint32_t lw = ref.layout.levelWidth(uint32_t(l));
+      size_t mismatches = 0;
+      for (size_t i = 0; i < std::min(levels[l].size(), ref.levels[l].size()); ++i)
+        if (double{levels[l][i]} != ref.levels[l][i] && mismatches++ < 5)
+          ADD_FAILURE() << w << "x" << h << (full ? " full" : " half") << " level " << l
+                        << " texel (" << i % lw << ", " << i / lw << "): gpu " << levels[l][i]
+                        << ", reference " << ref.levels[l][i];
+    }
+    return levels;
+  }
+
+  void requireSampler() {
+    if (!frame::supportsMinmaxReduction(context()))
+      GTEST_SKIP() << "device has no min/max sampler reduction";
+  }
+};
+
+struct Size {
+  uint32_t w, h;
+};
+const Size kSizes[] = {{1, 1}, {2, 3}, {5, 5}, {64, 64}, {1, 17}, {40, 1}, {333, 517}};
+
+TEST_F(HiZPyramidTest, FourTapReductionEqualsTheReference) {
+  for (const Size s : kSizes)
+    for (bool full : {false, true})
+      buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w * 31 + s.h), full, HiZReduction::FourTap);
+}
+
+TEST_F(HiZPyramidTest, MinmaxSamplerReductionEqualsTheReference) {
+  requireSampler();
+  for (const Size s : kSizes)
+    for (bool full : {false, true})
+      buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w * 31 + s.h), full, HiZReduction::Sampler);
+}
+
+TEST_F(HiZPyramidTest, SamplerAndFourTapAgreeOnARenderedStep) {
+  requireSampler();
+  // A step with one far pixel in the last row and column of an odd-sized image: the
+  // border texels must come out far in both.
+  const uint32_t w = 37, h = 23;
+  std::vector<float> d(w * h, 0.25f);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = w / 2; x < w; ++x) d[y * w + x] = 0.75f;
+  d[(h - 1) * w + (w - 1)] = 1.0f;
+  for (bool full : {false, true}) {
+    const auto a = buildAndCompare(w, h, d, full, HiZReduction::Sampler);
+    const auto b = buildAndCompare(w, h, d, full, HiZReduction::FourTap);
+    EXPECT_EQ(a, b);
+  }
+}
+
+TEST_F(HiZPyramidTest, PlaneGivesThePlaneDepthInsideAndFarInThePadding) {
+  const uint32_t w = 48, h = 32;  // padded to 64 x 32
+  const std::vector<float> d(w * h, 0.5f);
+  const auto levels = buildAndCompare(w, h, d, false, HiZReduction::Auto);
+  ASSERT_EQ(levels.size(), 6u);  // 32x16 ... 1x1
+  EXPECT_EQ(levels[0][0], 0.5f);
+  EXPECT_EQ(levels[0][23], 0.5f);  // pixels 46..47: the last real column pair
+  EXPECT_EQ(levels[0][24], 1.0f);  // pixels 48..49: padding
+  EXPECT_EQ(levels[3][0], 0.5f);   // pixels 0..15
+  EXPECT_EQ(levels[3][2], 0.5f);   // pixels 32..47
+  EXPECT_EQ(levels[3][3], 1.0f);   // pixels 48..63
+  EXPECT_EQ(levels[5][0], 1.0f);
+}
+
+TEST_F(HiZPyramidTest, RebuildAfterTheDepthChangedUsesTheNewDepth) {
+  const uint32_t w = 16, h = 16;
+  const vk::Image image = depthImage(w, h, std::vector<float>(w * h, 0.25f));
+  frame::HiZPyramid pyramid(context(), image, {});
+  pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(pyramid.readLevels(context()).back()[0], 0.25f);
+  upload(image, std::vector<float>(w * h, 0.75f), VK_IMAGE_LAYOUT_GENERAL);
+  pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
+  EXPECT_EQ(pyramid.readLevels(context()).back()[0], 0.75f);
+}
+
+}  // namespace
+}  // namespace osd_cull
