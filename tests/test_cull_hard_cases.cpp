@@ -46,6 +46,7 @@ TEST_F(CullHardCasesTest, TeapotCollapsedPatchesAreClassifiedByPcnt) {
     settings.frustum = false;
     settings.backPatch = method;
     settings.backPatchValidity = {true, "per-patch classification test"};
+    settings.drawnTriangles = false;  // the surface classification (Pcnt) is under test
     frame::CullPass pass(context(), gpu, teapot, settings);
     for (double z : {30.0, -30.0}) {
       const glm::dvec3 eye(0.4, -0.3, z);
@@ -114,9 +115,13 @@ TEST_F(CullHardCasesTest, CatmarkPole64) {
   test::expectNoViolations(forced, mesh.name + " (per patch)");
   // Bézier patches are classified; the thin Gregory patches around the pole never fit a
   // Gregory TCONE narrower than 90 degrees (kept: WideCone), which is conservative.
-  for (const std::string m : {"tcone", "ncone", "tangent-plane", "tangent-plane-16"})
-    EXPECT_GT(test::totalsOf(forced, m).culledBezier, test::totalsOf(forced, m).bezierViews / 5)
-        << m;
+  // The drawn-triangle bound keeps most of the thin patches near the pole (their chords
+  // deviate far from the surface at this tessellation); the surface tests cull a fifth.
+  for (const std::string m : {"tcone", "ncone", "tangent-plane", "tangent-plane-16"}) {
+    const frame::MethodTotals& t = test::totalsOf(forced, m);
+    EXPECT_GT(t.culledBezier + t.keptForDrawnTriangles, t.bezierViews / 5) << m;
+    EXPECT_GT(t.culledBezier, t.bezierViews / 50) << m;
+  }
 }
 
 // Cameras just outside the surface of BigGuy (1e-3 to 3e-2 of its radius along the
@@ -149,7 +154,7 @@ TEST_F(CullHardCasesTest, CameraInsideTheBoundingBoxCloseToTheSurface) {
   options.imageCheck = true;
   frame::CullVerifier verifier(context(), mesh.patches, kAllMethods, mesh.validity, options);
   for (const auto& camera : cameras) verifier.verifyView(camera);
-  test::expectNoViolations(verifier, mesh.name, 0.1);
+  test::expectNoViolations(verifier, mesh.name);
   // Close up, most of the mesh is outside the view.
   EXPECT_GT(test::totalsOf(verifier, "frustum").cullRate(), 0.5);
 }
@@ -226,7 +231,7 @@ TEST_F(CullHardCasesTest, CoordinatesScaledBy1eMinus4And1e5KeepDecisions) {
     uint64_t culled = 0;
     for (const auto& t : verifier.totals()) culled += t.culled;
     culledAtScale.push_back(culled);
-    EXPECT_GT(test::totalsOf(verifier, "tangent-plane").cullRate(), 0.3) << scale;
+    EXPECT_GT(test::totalsOf(verifier, "tangent-plane").cullRate(), 0.2) << scale;
   }
   for (size_t i = 1; i < culledAtScale.size(); ++i)
     EXPECT_NEAR(double(culledAtScale[i]), double(culledAtScale[0]), 0.002 * culledAtScale[0]);

@@ -67,8 +67,8 @@ TEST_F(CullViewsTest, BigGuyNeverCullsWhatTheReferenceOrTheOracleKeeps) {
   for (const auto& camera : cameras) verifier.verifyView(camera);
   test::expectNoViolations(verifier, mesh.name);
 
-  // Rates in line with the double reference (docs/algorithms/back-patch.md: tangent plane
-  // 44.7%, NCONE 42.2%, TCONE 36.4% of the Bézier patches on sphere views), and the
+  // Rates in line with the double reference (docs/algorithms/back-patch.md, surface-exact:
+  // tangent plane 44.7%, NCONE 42.2%, TCONE 36.4% of the Bézier patches on sphere views), the
   // fp32 kernel agreeing with the reference on nearly every patch.
   for (const auto& t : verifier.totals()) {
     EXPECT_GT(t.referenceAgreement(), t.name == "frustum" ? 0.9999 : 0.99) << t.name;
@@ -79,7 +79,11 @@ TEST_F(CullViewsTest, BigGuyNeverCullsWhatTheReferenceOrTheOracleKeeps) {
     const auto& t = test::totalsOf(verifier, m);
     return double(t.culledBezier) / double(t.bezierViews);
   };
-  EXPECT_GT(bezierRate("tangent-plane"), 0.38);
+  // The surface test culls what the paper's does; the drawn-triangle bound keeps part of it
+  // at this coarse tessellation (docs/results/backpatch.md).
+  const auto& tp = test::totalsOf(verifier, "tangent-plane");
+  EXPECT_GT(double(tp.culled + tp.keptForDrawnTriangles) / double(tp.patchViews), 0.33);
+  EXPECT_GT(bezierRate("tangent-plane"), 0.12);
   EXPECT_GT(bezierRate("tangent-plane"), bezierRate("ncone"));
   EXPECT_GT(bezierRate("ncone"), bezierRate("tcone"));
   EXPECT_EQ(test::totalsOf(verifier, "tangent-plane").culled,
@@ -107,6 +111,7 @@ TEST_F(CullViewsTest, BigGuyCulledPatchesHaveNoVisibleSampleAndCullingLosesNoPix
 TEST_F(CullViewsTest, EveryCatmarkShapeNeverCullsWhatTheReferenceOrTheOracleKeeps) {
   OSD_CULL_REQUIRE_DATA();
   uint32_t closedShapes = 0;
+  uint64_t drawnCulled = 0, drawnPatchViews = 0;
   for (const auto& path : test::catmarkShapes()) {
     const test::CullMesh mesh = test::loadCullMesh(path);
     if (mesh.patches.patchCount() == 0) continue;
@@ -125,10 +130,17 @@ TEST_F(CullViewsTest, EveryCatmarkShapeNeverCullsWhatTheReferenceOrTheOracleKeep
     for (const auto& camera : cameras) verifier.verifyView(camera);
     test::expectNoViolations(verifier, mesh.name);
     if (mesh.validity.enabled) {
-      EXPECT_GT(test::totalsOf(verifier, "tangent-plane").cullRate(), 0.1) << mesh.name;
+      // The surface test culls a tenth or more (culled, or kept only for the drawn
+      // triangles at this coarse tessellation); the drawn-triangle bound keeps some of it.
+      const frame::MethodTotals& tp = test::totalsOf(verifier, "tangent-plane");
+      EXPECT_GT(double(tp.culled + tp.keptForDrawnTriangles) / double(tp.patchViews), 0.1)
+          << mesh.name;
+      drawnCulled += tp.culled;
+      drawnPatchViews += tp.patchViews;
     }
   }
   EXPECT_GE(closedShapes, 10u);
+  EXPECT_GT(double(drawnCulled) / double(drawnPatchViews), 0.05);
 }
 
 }  // namespace

@@ -20,6 +20,8 @@ const char* toString(BackPatchVerdict verdict) {
       return "wide-cone";
     case BackPatchVerdict::NoFiniteEye:
       return "no-finite-eye";
+    case BackPatchVerdict::DrawnTriangles:
+      return "drawn-triangles";
   }
   return "unknown";
 }

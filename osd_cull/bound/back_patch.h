@@ -24,6 +24,8 @@ enum class BackPatchVerdict : uint32_t {
   NoNormal = 5,              ///< kept (cones): no tangent/normal direction survives rounding
   WideCone = 6,              ///< kept (cones): the normals do not fit in a cone narrower than 90°
   NoFiniteEye = 7,           ///< kept (tangent plane): the projection has no finite eye
+  DrawnTriangles = 8,        ///< kept: the surface faces away, but a drawn triangle may not
+                             ///< (drawn_triangles.h)
 };
 
 /// \brief Result of a back-patch test.

@@ -103,12 +103,15 @@ ConeOfNormals withApex(const glm::dvec3& axis, double gamma, std::span<const glm
     const double rho = glm::length(d - h * axis);
     t = std::max(t, rho * tanGamma - h);
     radius = std::max(radius, glm::length(d));
+    cone.maxRadius = std::max(cone.maxRadius, rho);
   }
+  cone.maxRadius += kRelativeMargin * (radius + glm::length(centre));
   // Rounding of d, h, rho is below a few ulps of |P| + |c|; widen by far more.
   t += kRelativeMargin * (radius + glm::length(centre)) * (1.0 + tanGamma);
   cone.apex = centre - t * axis;
   cone.axis = axis;
   cone.sinAngle = std::sin(gamma);
+  cone.angle = gamma;
   cone.valid = std::isfinite(cone.apex.x) && std::isfinite(cone.apex.y) &&
                std::isfinite(cone.apex.z) && std::isfinite(cone.sinAngle);
   cone.reason = cone.valid ? BackPatchVerdict::BackFacing : BackPatchVerdict::NonFinite;
@@ -142,6 +145,26 @@ ConeOfNormals combineTangentCones(const DirectionCone& tu, const DirectionCone& 
   const double gamma = std::asin(std::sqrt(sin2)) + kConeAngleMargin;
   if (!(gamma < kHalfPi)) return invalidCone(BackPatchVerdict::WideCone);
   return withApex(c / sinTheta, gamma, points);
+}
+
+// A lower bound of |Bu x Bv| for TCONE: Bu = 3 Σ w_k du_k (convex weights) has
+// |Bu| >= Bu . a_u >= 3 min du_k . a_u, the same for Bv, and the angle between Bu and Bv lies
+// in [θ - α - β, θ + α + β] (θ between the axes), so its sine is at least the smaller sine of
+// the two ends when both lie in (0, π).
+double tangentConesMinNormal(std::span<const glm::dvec3> du, std::span<const glm::dvec3> dv,
+                             const DirectionCone& cu, const DirectionCone& cv) {
+  double mu = std::numeric_limits<double>::infinity(), mv = mu, scale = 0.0;
+  for (const glm::dvec3& d : du)
+    mu = std::min(mu, glm::dot(d, cu.axis)), scale = std::max(scale, glm::length(d));
+  for (const glm::dvec3& d : dv)
+    mv = std::min(mv, glm::dot(d, cv.axis)), scale = std::max(scale, glm::length(d));
+  mu -= kRelativeMargin * scale;
+  mv -= kRelativeMargin * scale;
+  const double theta = angleBetween(cu.axis, cv.axis);
+  const double low = theta - cu.angle - cv.angle, high = theta + cu.angle + cv.angle;
+  if (!(mu > 0.0 && mv > 0.0 && low > 0.0 && high < std::numbers::pi)) return 0.0;
+  const double sinMin = std::min(std::sin(low), std::sin(high)) - 1e-12;
+  return sinMin > 0.0 ? 9.0 * mu * mv * sinMin : 0.0;
 }
 
 // The tangent cone of a Gregory patch in one direction. With the Bézier net at (u,v),
@@ -229,7 +252,13 @@ ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier) {
   for (double& e : err) e *= kRelativeMargin;
   const DirectionCone cone = boundDirections(n, err);
   if (!cone.valid) return invalidCone(cone.reason);
-  return withApex(cone.axis, cone.angle, bezier);
+  ConeOfNormals result = withApex(cone.axis, cone.angle, bezier);
+  // N(u,v) is a convex combination of the coefficients: N . a >= min (n_k . a - err_k).
+  double minNormal = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < n.size(); ++k)
+    minNormal = std::min(minNormal, glm::dot(n[k], cone.axis) - 2.0 * err[k]);
+  result.minNormal = std::max(0.0, minNormal);
+  return result;
 }
 
 ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier) {
@@ -244,7 +273,10 @@ ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier) {
   // Differences of doubles are exact to an ulp: their directions are covered by the angle
   // margin, so no per-vector error is needed.
   const std::array<double, 12> zero{};
-  return combineTangentCones(boundDirections(du, zero), boundDirections(dv, zero), bezier);
+  const DirectionCone cu = boundDirections(du, zero), cv = boundDirections(dv, zero);
+  ConeOfNormals result = combineTangentCones(cu, cv, bezier);
+  if (result.valid) result.minNormal = tangentConesMinNormal(du, dv, cu, cv);
+  return result;
 }
 
 ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> gregory) {

@@ -36,7 +36,14 @@ struct ConeOfNormals {
   glm::dvec3 apex{0.0};
   glm::dvec3 axis{0.0, 0.0, 1.0};  ///< unit
   double sinAngle = 1.0;           ///< sine of the half-angle γ, rounded up, < 1 if valid
-  bool valid = false;              ///< false: never cull (reason says why)
+  double angle = 0.0;              ///< γ (radians)
+  /// Largest distance of a control point from the axis line through the points' centre
+  /// (moves the apex when γ grows: drawn_triangles.h widenCone()).
+  double maxRadius = 0.0;
+  /// A lower bound of |Bu x Bv| over the patch (0 when none is known, e.g. Gregory
+  /// patches or collapsed edges).
+  double minNormal = 0.0;
+  bool valid = false;                                     ///< false: never cull (reason says why)
   BackPatchVerdict reason = BackPatchVerdict::NonFinite;  ///< NonFinite, NoNormal or WideCone
 };
 

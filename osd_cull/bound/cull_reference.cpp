@@ -8,6 +8,8 @@
 
 #include <shared/cull_layout.h>
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace osd_cull::bound {
@@ -23,6 +25,7 @@ static_assert(sh::kVerdictNonFinite == uint32_t(BackPatchVerdict::NonFinite));
 static_assert(sh::kVerdictNoNormal == uint32_t(BackPatchVerdict::NoNormal));
 static_assert(sh::kVerdictWideCone == uint32_t(BackPatchVerdict::WideCone));
 static_assert(sh::kVerdictNoFiniteEye == uint32_t(BackPatchVerdict::NoFiniteEye));
+static_assert(sh::kVerdictDrawnTriangles == uint32_t(BackPatchVerdict::DrawnTriangles));
 static_assert(sh::kFrustumInside == kNoPlane);
 static_assert(uint32_t(FrustumPlane::Far) + 1 == kFrustumPlaneCount);
 
@@ -62,11 +65,27 @@ CullView makeCullView(const glm::dmat4& viewProj) {
 namespace {
 
 uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullView& view,
-                          BackPatchMethod method, std::span<const ConeOfNormals> cones) {
+                          BackPatchMethod method, std::span<const ConeOfNormals> cones,
+                          std::span<const TriangleShape> drawnShapes, double snap) {
   const bool bezier = patches.type(patch) == PatchType::Bezier;
-  if (bezier && method == BackPatchMethod::TangentPlane)
+  const bool drawn = !drawnShapes.empty();
+  if (drawn && patch >= drawnShapes.size())
+    throw Error(std::string(__FILE__) +
+                ": referenceCullCode needs one drawn-triangle shape per "
+                "patch, got " +
+                std::to_string(drawnShapes.size()) + " for " +
+                std::to_string(patches.patchCount()) + " patches");
+  if (bezier && method == BackPatchMethod::TangentPlane) {
+    double clipMargin = 0.0;
+    if (drawn && view.eye)
+      clipMargin = std::abs(homogeneousEye(view.viewProj).w) *
+                   tangentPlaneDrawnMargin(patches.controlPoints(patch), *view.eye,
+                                           drawnShapes[patch], snap);
+    if (drawn && !view.eye) clipMargin = std::numeric_limits<double>::infinity();
     return uint32_t(
-        tangentPlaneTest(patches.controlPoints(patch), view.viewProj, view.eyeSign).verdict);
+        tangentPlaneTest(patches.controlPoints(patch), view.viewProj, view.eyeSign, clipMargin)
+            .verdict);
+  }
   if (patch >= cones.size())
     throw Error(std::string(__FILE__) + ": referenceCullCode needs buildPatchCones(patches, " +
                 toString(method) + ") with one cone per patch, got " +
@@ -75,7 +94,14 @@ uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullVie
   const ConeOfNormals& cone = cones[patch];
   if (!cone.valid) return uint32_t(cone.reason);
   if (!view.eye) return uint32_t(BackPatchVerdict::NoFiniteEye);
-  return uint32_t(testConeOfNormals(cone, *view.eye).verdict);
+  const BackPatchResult surface = testConeOfNormals(cone, *view.eye);
+  if (!drawn || !surface.culled) return uint32_t(surface.verdict);
+  if (!bezier) return uint32_t(BackPatchVerdict::DrawnTriangles);
+  const ConeOfNormals wide =
+      widenCone(cone, patches.controlPoints(patch), *view.eye, drawnShapes[patch], snap);
+  if (!wide.valid) return uint32_t(BackPatchVerdict::DrawnTriangles);
+  return testConeOfNormals(wide, *view.eye).culled ? uint32_t(BackPatchVerdict::BackFacing)
+                                                   : uint32_t(BackPatchVerdict::DrawnTriangles);
 }
 
 uint32_t withField(uint32_t code, uint32_t shift, uint32_t width, uint32_t value) {
@@ -97,7 +123,8 @@ uint32_t referenceCullCode(const PatchSet& patches, uint32_t patch, const CullVi
     if (f.culled) return withField(code, 0, 4, sh::kStageFrustum);
   }
   if (tests.backPatch != BackPatchMethod::None) {
-    const uint32_t v = backPatchVerdict(patches, patch, view, tests.backPatch, cones);
+    const uint32_t v = backPatchVerdict(patches, patch, view, tests.backPatch, cones,
+                                        tests.drawnShapes, tests.snapPerDistance);
     code = withField(code, sh::kResultShiftBackPatch, 8, v);
     if (v == sh::kVerdictBackFacing) return withField(code, 0, 4, sh::kStageBackPatch);
   }

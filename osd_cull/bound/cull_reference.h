@@ -14,6 +14,7 @@
 /// caller decides (this function tests what it is told to).
 
 #include "osd_cull/bound/cone_of_normals.h"
+#include "osd_cull/bound/drawn_triangles.h"
 #include "osd_cull/patch/patch_set.h"
 
 #include <glm/mat4x4.hpp>
@@ -55,6 +56,12 @@ CullView makeCullView(const glm::dmat4& viewProj);
 struct CullTests {
   bool frustum = true;
   BackPatchMethod backPatch = BackPatchMethod::None;
+  /// Back-patch tests conservative for the drawn triangles (drawn_triangles.h): one
+  /// TriangleShape per patch for this view's tessellation. Empty: the tests are exact for
+  /// the surface only (what the papers measure).
+  std::span<const TriangleShape> drawnShapes;
+  /// With drawnShapes: bound::snapPerDistance() of the view's draw.
+  double snapPerDistance = 0.0;
 };
 
 /// \brief The result code (shaders/shared/cull_layout.h) of one patch. `cones` is

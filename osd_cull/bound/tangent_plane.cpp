@@ -57,8 +57,10 @@ TangentPlaneControlPlanes tangentPlaneControlPlanesParallel(std::span<const glm:
   return accumulate(bezier, viewProj, ordered);
 }
 
-TangentPlaneResult classifyTangentPlane(const TangentPlaneControlPlanes& planes, double eyeSign) {
+TangentPlaneResult classifyTangentPlane(const TangentPlaneControlPlanes& planes, double eyeSign,
+                                        double drawnMargin) {
   TangentPlaneResult r;
+  uint32_t pcntDrawn = 0;
   for (size_t i = 0; i < 64; ++i) {
     if (!std::isfinite(planes.z[i]) || !std::isfinite(planes.bound[i])) {
       r.verdict = BackPatchVerdict::NonFinite;
@@ -73,7 +75,12 @@ TangentPlaneResult classifyTangentPlane(const TangentPlaneControlPlanes& planes,
     const double s = eyeSign * planes.z[i];
     const double margin = kRelativeMargin * planes.bound[i];
     if (s + margin > 0.0) ++r.pcnt;
+    if (s + margin + drawnMargin > 0.0) ++pcntDrawn;
     if (s - margin < 0.0) ++r.ncnt;
+  }
+  if (r.pcnt == 0 && pcntDrawn > 0) {
+    r.verdict = BackPatchVerdict::DrawnTriangles;
+    return r;
   }
   // §4.2 DVis with §7's Pcnt rule. A patch with every plane exactly zero (all terms
   // skipped: the patch is a point) has no front-facing point and is culled.
@@ -89,10 +96,12 @@ TangentPlaneResult classifyTangentPlane(const TangentPlaneControlPlanes& planes,
 }
 
 TangentPlaneResult tangentPlaneTest(std::span<const glm::dvec3> bezier, const glm::dmat4& viewProj,
-                                    double eyeSign) {
+                                    double eyeSign, double drawnMargin) {
   requireBezier(bezier);
-  if (!allFinite(bezier) || !allFinite(viewProj) || !std::isfinite(eyeSign)) return {};
-  return classifyTangentPlane(tangentPlaneControlPlanes(bezier, viewProj), eyeSign);
+  if (!allFinite(bezier) || !allFinite(viewProj) || !std::isfinite(eyeSign) ||
+      !std::isfinite(drawnMargin))
+    return {};
+  return classifyTangentPlane(tangentPlaneControlPlanes(bezier, viewProj), eyeSign, drawnMargin);
 }
 
 }  // namespace osd_cull::bound

@@ -57,13 +57,17 @@ struct TangentPlaneResult {
 
 /// \brief DVis classification of §4.2 with the Pcnt rule of §7, from computed planes:
 /// NonFinite if any value is not finite; NoFiniteEye if eyeSign is 0; BackFacing (culled)
-/// if pcnt == 0; FrontFacing if ncnt == 0; Silhouette otherwise.
-TangentPlaneResult classifyTangentPlane(const TangentPlaneControlPlanes& planes, double eyeSign);
+/// if pcnt == 0; FrontFacing if ncnt == 0; Silhouette otherwise. With `drawnMargin` > 0
+/// (clip-space units: |e.w| times tangentPlaneDrawnMargin() of drawn_triangles.h) a plane
+/// also counts as possibly positive when σ z + margin·bound + drawnMargin > 0, and a patch
+/// that only this keeps gets DrawnTriangles.
+TangentPlaneResult classifyTangentPlane(const TangentPlaneControlPlanes& planes, double eyeSign,
+                                        double drawnMargin = 0.0);
 
 /// \brief The tangent-plane back-patch test of a 16-point bicubic Bézier patch.
 /// `eyeSign` is clipSpaceEyeSign(viewProj), computed once per view. NaN or Inf control
 /// points or matrix entries: kept (NonFinite).
 TangentPlaneResult tangentPlaneTest(std::span<const glm::dvec3> bezier, const glm::dmat4& viewProj,
-                                    double eyeSign);
+                                    double eyeSign, double drawnMargin = 0.0);
 
 }  // namespace osd_cull::bound

@@ -9,6 +9,8 @@
 #include "osd_cull/vk/shader_compiler.h"
 #include "osd_cull/vk/transfer.h"
 
+#include <shared/draw_layout.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,7 +29,8 @@ const vk::DescriptorBinding kBindings[] = {
     {sh::kCullBindingDrawList, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingCommands, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-    {sh::kCullBindingTable, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    {sh::kCullBindingTable, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
 
 // What the outputs are read by after the pass: indirect draws, the patch draw shaders (draw
 // list) and the host (results, counters).
@@ -40,22 +43,42 @@ uint32_t maxDraws(uint32_t count, uint32_t chunk) { return (count + chunk - 1) /
 
 // A cone rounded to float toward "visible": sin of the half-angle rounded up; the apex and
 // axis round to nearest, which the kernel's test margin covers (shaders/cull/cone.glsl).
-void packCone(const bound::ConeOfNormals& c, float* out) {
-  float s = static_cast<float>(c.sinAngle);
-  if (static_cast<double>(s) < c.sinAngle) s = std::nextafter(s, std::numeric_limits<float>::max());
+float roundUp(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::max());
+  return f;
+}
+float roundDown(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::max());
+  return f;
+}
+
+// One patch's kConeVec4s vec4 (shared/cull_layout.h): the cone, then what the drawn-triangle
+// bound needs (bound::bezierDerivativeBounds for Bézier patches).
+void packCone(const bound::ConeOfNormals& c, const bound::DerivativeBounds& d, float* out) {
   out[0] = static_cast<float>(c.apex.x);
   out[1] = static_cast<float>(c.apex.y);
   out[2] = static_cast<float>(c.apex.z);
-  out[3] = s;
+  out[3] = roundUp(c.sinAngle);
   out[4] = static_cast<float>(c.axis.x);
   out[5] = static_cast<float>(c.axis.y);
   out[6] = static_cast<float>(c.axis.z);
   out[7] = c.valid ? -1.0f : static_cast<float>(static_cast<uint32_t>(c.reason));
+  out[8] = roundUp(d.g);
+  out[9] = roundUp(d.h);
+  out[10] = roundUp(d.maxAbs);
+  out[11] = roundDown(c.minNormal);
+  out[12] = roundUp(c.maxRadius);
+  out[13] = roundUp(c.angle);
+  out[14] = 0.0f;
+  out[15] = 0.0f;
 }
 
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
-std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes) {
+std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
+                          bool drawnTriangles) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
@@ -65,6 +88,8 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   text += std::string("#define CULL_FRUSTUM ") + (has(CullStage::Frustum) ? "1" : "0") + "\n";
   text += std::string("#define CULL_BACK_PATCH ") + (has(CullStage::BackPatch) ? "1" : "0") + "\n";
   text += std::string("#define CULL_OCCLUSION ") + (has(CullStage::Occlusion) ? "1" : "0") + "\n";
+  text += std::string("#define CULL_DRAWN ") +
+          (drawnTriangles && has(CullStage::BackPatch) ? "1" : "0") + "\n";
   for (const CullMethod* m : stages)
     if (m->generatedGlsl) text += m->generatedGlsl();
   text += "#include \"cull/frustum.glsl\"\n";
@@ -118,12 +143,19 @@ CullPass::CullPass(vk::Context& context, GpuPatchSet& gpu, const PatchSet& host,
   const uint32_t n = host.patchCount();
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-  std::vector<float> packed(8, 0.0f);
+  constexpr size_t kFloatsPerCone = 4 * sh::kConeVec4s;
+  std::vector<float> packed(kFloatsPerCone, 0.0f);
   if (backPatchEnabled()) {
     const CullMethod* backPatch = stages_[settings.frustum ? 1 : 0];
     cones_ = bound::buildPatchCones(host, backPatch->reference);
-    packed.assign(std::max<size_t>(1, cones_.size()) * 8, 0.0f);
-    for (size_t p = 0; p < cones_.size(); ++p) packCone(cones_[p], &packed[8 * p]);
+    packed.assign(std::max<size_t>(1, cones_.size()) * kFloatsPerCone, 0.0f);
+    for (size_t p = 0; p < cones_.size(); ++p) {
+      const bound::DerivativeBounds d =
+          host.type(uint32_t(p)) == PatchType::Bezier
+              ? bound::bezierDerivativeBounds(host.controlPoints(uint32_t(p)))
+              : bound::DerivativeBounds{};
+      packCone(cones_[p], d, &packed[kFloatsPerCone * p]);
+    }
   }
   conesBuffer_ = vk::Buffer(context, packed.size() * sizeof(float), storage);
   vk::upload<float>(context, conesBuffer_, packed);
@@ -153,8 +185,8 @@ void CullPass::buildPipelines(vk::Context& context) {
     }
   layout_ = vk::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
                                      VK_SHADER_STAGE_COMPUTE_BIT);
-  const vk::Spirv cull = vk::compileGlsl(composeKernel(stages_, lanes_), "cull/cull_kernel.comp",
-                                         VK_SHADER_STAGE_COMPUTE_BIT);
+  const vk::Spirv cull = vk::compileGlsl(composeKernel(stages_, lanes_, settings_.drawnTriangles),
+                                         "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
   cullPipeline_ = vk::createComputePipeline(context, layout_.get(), cull);
   drawsPipeline_ = vk::createComputePipeline(context, layout_.get(),
                                              vk::compileShader({"cull/write_draws.comp", {}}));
@@ -168,6 +200,7 @@ void CullPass::buildPipelines(vk::Context& context) {
       .buffer(sh::kCullBindingCounters, counters_)
       .buffer(sh::kCullBindingCommands, commands_)
       .buffer(sh::kCullBindingTable, table_)
+      .buffer(sh::kCullBindingParams, gpu_.params())
       .update(context.device(), set_);
 }
 
@@ -181,6 +214,21 @@ bound::CullTests CullPass::referenceTests() const {
   t.frustum = settings_.frustum;
   for (const CullMethod* m : stages_)
     if (m->stage == CullStage::BackPatch) t.backPatch = m->reference;
+  return t;
+}
+
+bound::CullTests CullPass::referenceTests(const Camera& camera,
+                                          const TessellationOptions& tessellation,
+                                          std::vector<bound::TriangleShape>& shapes) const {
+  bound::CullTests t = referenceTests();
+  shapes.clear();
+  if (drawnTriangles()) {
+    shapes = drawnTriangleShapes(host_, camera.viewProjection(),
+                                 glm::dvec2(camera.width, camera.height), tessellation);
+    t.drawnShapes = shapes;
+    t.snapPerDistance = bound::snapPerDistance(camera.viewProjection(), camera.width, camera.height,
+                                               context_.info().limits.subPixelPrecisionBits);
+  }
   return t;
 }
 
@@ -198,7 +246,16 @@ sh::CullConstants CullPass::constants(const Camera& camera,
     const double invEw = 1.0 / std::abs(bound::homogeneousEye(viewProj).w);
     c.eye = glm::vec4(glm::vec3(*view.eye), static_cast<float>(invEw));
   }
-  c.viewport = glm::vec4(float(camera.width), float(camera.height), 0.0f, 0.0f);
+  // The tessellation the draw shaders will use (Renderer applies effectiveOptions() too).
+  const TessellationOptions t = effectiveOptions(tessellation, gpu_.hasTransitionEdges());
+  c.viewport = glm::vec4(float(camera.width), float(camera.height), float(t.uniformLevel),
+                         float(t.maxLevel));
+  c.tessPixelsPerSegment =
+      t.mode == TessellationOptions::Mode::Uniform ? 0.0f : float(t.pixelsPerSegment);
+  c.snapPerDistance =
+      static_cast<float>(bound::snapPerDistance(viewProj, camera.width, camera.height,
+                                                context_.info().limits.subPixelPrecisionBits) *
+                         1.001);
   c.patchCount = gpu_.patchCount();
   c.bezierCount = gpu_.bezierCount();
   c.pointStride = gpu_.pointStride();

@@ -45,6 +45,11 @@ struct CullSettings {
   /// is not, the back-patch stage is left out and backPatchNote() gives the reason. The
   /// default is off: a caller must say that the mesh is a closed, outward-oriented solid.
   bound::BackPatchValidity backPatchValidity{false, "mesh validity not given"};
+  /// Back-patch culls must be conservative for the triangles the tessellator draws, not only
+  /// for the surface (bound/drawn_triangles.h): no chord triangle of a culled patch may face
+  /// the eye. On by default; off gives the surface-exact tests the papers measure, which can
+  /// lose single silhouette pixels (docs/algorithms/drawn-triangles.md).
+  bool drawnTriangles = true;
 };
 
 /// \brief Survivor and draw counts of the last pass.
@@ -83,9 +88,17 @@ class CullPass {
   const std::string& backPatchNote() const { return backPatchNote_; }
   /// \brief Host copies (double) of the uploaded cones, empty when none are used.
   std::span<const bound::ConeOfNormals> cones() const { return cones_; }
+  /// \brief Whether back-patch culls respect the drawn triangles (CullSettings::
+  /// drawnTriangles with a back-patch stage); the reference then needs the view's
+  /// drawnTriangleShapes() in CullTests::drawnShapes.
+  bool drawnTriangles() const { return settings_.drawnTriangles && backPatchEnabled(); }
   /// \brief The CPU reference of this configuration (bound::referenceCull), without the
-  /// occlusion stage.
+  /// occlusion stage (and without drawnShapes, which depend on the view).
   bound::CullTests referenceTests() const;
+  /// \brief The CPU reference of this configuration for one view drawn with `tessellation`:
+  /// referenceTests() with drawnShapes pointing into `shapes` when drawnTriangles().
+  bound::CullTests referenceTests(const Camera& camera, const TessellationOptions& tessellation,
+                                  std::vector<bound::TriangleShape>& shapes) const;
 
   /// \brief Records the pass: counter reset, cull dispatch, draw-command dispatch, and
   /// barriers that make results, draw list and commands visible to the host, to indirect

@@ -69,6 +69,7 @@ CullVerifier::CullVerifier(vk::Context& context, const PatchSet& host,
     if (run[i]->stage == CullStage::BackPatch) settings.backPatch = run[i]->name;
     if (run[i]->stage == CullStage::Occlusion) settings.occlusion = run[i]->name;
     settings.backPatchValidity = validity;
+    settings.drawnTriangles = options.drawnTriangles;
     m->pass = std::make_unique<CullPass>(context, gpu_, host, settings);
     m->totals = &totals_[i];
     totals_[i].name = run[i]->name;
@@ -148,6 +149,8 @@ void CullVerifier::verifyView(const Camera& camera) {
     t.bezierViews += host_.bezierCount;
     t.gregoryViews += host_.gregoryCount;
     for (uint32_t p = 0; p < n; ++p) {
+      t.keptForDrawnTriangles +=
+          bound::CullCode{results[p]}.backPatch() == shader::kVerdictDrawnTriangles;
       if (!bound::CullCode{results[p]}.culled()) continue;
       ++t.culled;
       ++(host_.type(p) == PatchType::Bezier ? t.culledBezier : t.culledGregory);
@@ -162,7 +165,10 @@ void CullVerifier::verifyView(const Camera& camera) {
                   .culled)
             codes[p] = shader::kStageOcclusion;
       } else {
-        codes = bound::referenceCull(host_, view, m->pass->referenceTests(), m->pass->cones());
+        std::vector<bound::TriangleShape> shapes;
+        codes = bound::referenceCull(host_, view,
+                                     m->pass->referenceTests(camera, options_.tessellation, shapes),
+                                     m->pass->cones());
       }
       ++t.referenceViews;
       t.referencePatchViews += n;

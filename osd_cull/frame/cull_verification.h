@@ -41,6 +41,9 @@ struct VerifyOptions {
   bool imageCheck = false;
   /// Pyramid of the occlusion methods (half resolution, the paper's lookup by default).
   HiZOptions hiz;
+  /// Back-patch methods respect the drawn triangles (CullSettings::drawnTriangles); false
+  /// runs the surface-exact tests the papers measure.
+  bool drawnTriangles = true;
 };
 
 /// \brief Totals of one method over all views so far.
@@ -52,6 +55,9 @@ struct MethodTotals {
   uint64_t culled = 0;
   uint64_t culledBezier = 0;
   uint64_t culledGregory = 0;
+  /// Patch-views the surface test culls but the drawn-triangle bound keeps
+  /// (BackPatchVerdict::DrawnTriangles).
+  uint64_t keptForDrawnTriangles = 0;
   uint64_t bezierViews = 0;   ///< Bézier patch-views
   uint64_t gregoryViews = 0;  ///< Gregory patch-views
   /// CPU reference (on the views where it ran).

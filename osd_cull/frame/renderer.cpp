@@ -24,7 +24,8 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
   c.mode =
       t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
   c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
-            (options.statusColors ? shader::kFlagStatusColors : 0u);
+            (options.statusColors ? shader::kFlagStatusColors : 0u) |
+            (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u);
   return c;
 }
 

@@ -34,6 +34,11 @@ struct RenderOptions {
   bool statusColors = false;
   /// Cull triangles facing away (surface normal dPdu x dPdv pointing away from the eye).
   bool cullBackFaces = false;
+  /// Back-facing fragments lose depth ties with front-facing ones: they are pushed back by
+  /// one pixel of their depth slope (shaders/patch/patch.frag). Keeps a back face from
+  /// winning silhouette-edge pixels, which the item-buffer oracle would count as visible.
+  /// Off only to read exact depths of back faces.
+  bool frontFacesWinTies = true;
   /// Clear the target first; false draws over its contents (a second pass).
   bool clear = true;
   glm::vec3 background{0.12f, 0.12f, 0.14f};

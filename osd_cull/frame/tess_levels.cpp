@@ -118,4 +118,19 @@ std::vector<uint32_t> tessVertexBounds(const PatchSet& patches, const glm::dmat4
   return bounds;
 }
 
+std::vector<bound::TriangleShape> drawnTriangleShapes(const PatchSet& patches,
+                                                      const glm::dmat4& viewProjection,
+                                                      const glm::dvec2& viewport,
+                                                      const TessellationOptions& requested) {
+  const TessellationOptions options = effectiveOptions(requested, hasTransitionEdges(patches));
+  const double slack = options.mode == TessellationOptions::Mode::Adaptive ? 1.0 : 0.0;
+  std::vector<bound::TriangleShape> shapes(patches.patchCount());
+  for (uint32_t p = 0; p < patches.patchCount(); ++p) {
+    if (patches.type(p) != PatchType::Bezier) continue;  // never back-patch culled when drawn
+    const PatchTessLevels levels = patchTessLevels(patches, p, viewProjection, viewport, options);
+    shapes[p] = bound::triangleShape({levels.lo, levels.hi}, slack);
+  }
+  return shapes;
+}
+
 }  // namespace osd_cull::frame

@@ -3,6 +3,7 @@
 /// \brief Tessellation options and a double-precision host mirror of the levels the patch
 /// shaders compute (shaders/patch/tess_levels.glsl), used to plan draws and in tests.
 
+#include "osd_cull/bound/drawn_triangles.h"
 #include "osd_cull/patch/patch_set.h"
 
 #include <glm/mat4x4.hpp>
@@ -67,5 +68,14 @@ PatchTessLevels patchTessLevels(const PatchSet& patches, uint32_t patch,
 std::vector<uint32_t> tessVertexBounds(const PatchSet& patches, const glm::dmat4& viewProjection,
                                        const glm::dvec2& viewport,
                                        const TessellationOptions& options);
+
+/// \brief The shape of the worst drawn triangle of every patch for this view
+/// (bound::triangleShape of patchTessLevels()), as the double reference of the cull
+/// kernel's drawn-triangle bound uses it: adaptive levels with a slack of one level (the
+/// draw shader computes them in fp32); applies effectiveOptions() itself.
+std::vector<bound::TriangleShape> drawnTriangleShapes(const PatchSet& patches,
+                                                      const glm::dmat4& viewProjection,
+                                                      const glm::dvec2& viewport,
+                                                      const TessellationOptions& options);
 
 }  // namespace osd_cull::frame

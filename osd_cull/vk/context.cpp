@@ -270,6 +270,7 @@ void Context::pickDevice(const ContextOptions& options) {
   info_.optional.vertexPipelineStoresAndAtomics = f.features.vertexPipelineStoresAndAtomics;
   info_.optional.fragmentStoresAndAtomics = f.features.fragmentStoresAndAtomics;
   info_.optional.fillModeNonSolid = f.features.fillModeNonSolid;
+  info_.optional.geometryShader = f.features.geometryShader;
 }
 
 void Context::createDevice() {
@@ -288,6 +289,7 @@ void Context::createDevice() {
   f.features.vertexPipelineStoresAndAtomics = opt.vertexPipelineStoresAndAtomics;
   f.features.fragmentStoresAndAtomics = opt.fragmentStoresAndAtomics;
   f.features.fillModeNonSolid = opt.fillModeNonSolid;
+  f.features.geometryShader = opt.geometryShader;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -45,6 +45,7 @@ struct OptionalFeatures {
   bool vertexPipelineStoresAndAtomics = false;
   bool fragmentStoresAndAtomics = false;
   bool fillModeNonSolid = false;
+  bool geometryShader = false;  ///< used by tests that capture the tessellator's triangles
 };
 
 /// \brief Facts about the chosen device.

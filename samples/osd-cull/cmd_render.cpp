@@ -342,7 +342,8 @@ const Registration kRegistration(
     {"render",
      "draw a mesh or the built-in scene to PNG (optionally culled), print frame statistics",
      usage(),
-     {"ids", "debug-colors", "validate", "status-view", "aggressive", "hiz-full", "hiz-tight"},
+     {"ids", "debug-colors", "validate", "status-view", "aggressive", "hiz-full", "hiz-tight",
+      "surface-exact"},
      run});
 
 }  // namespace

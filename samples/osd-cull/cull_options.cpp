@@ -14,6 +14,10 @@ const char* const kCullOptionsUsage =
                          patches that became visible
   --backpatch-method M   back-patch test: tcone, ncone, tangent-plane (default),
                          tangent-plane-16; used only on closed, outward-oriented meshes
+  --surface-exact        back-patch tests exact for the surface only, as the papers measure
+                         them (default: also conservative for the drawn chord triangles,
+                         which culls less but never takes a pixel; docs/algorithms/
+                         drawn-triangles.md)
   --aggressive           occlusion: skip the second pass (newly visible patches appear one
                          frame late)
   --draw-mode M          occlusion: filtered (compact indirect draws, default) or tf0 (every
@@ -38,6 +42,11 @@ CullChoice cullChoiceFromArgs(Args& args) {
     if (frame::cullMethod(*method).stage != frame::CullStage::BackPatch)
       throw Error("option --backpatch-method: '" + *method + "' is not a back-patch method");
     c.backPatchMethod = *method;
+  }
+  if (args.flag("surface-exact")) {
+    if (c.mode != "backpatch" && c.mode != "all")
+      throw Error("--surface-exact needs --cull backpatch or --cull all");
+    c.surfaceExact = true;
   }
   frame::CullFrameOptions& f = c.frame;
   bool frameOption = false;
@@ -93,6 +102,7 @@ frame::CullSettings cullSettings(const CullChoice& choice,
   if (choice.mode == "backpatch" || choice.mode == "all") s.backPatch = choice.backPatchMethod;
   if (choice.occlusion()) s.occlusion = "hiz";
   s.backPatchValidity = validity;
+  s.drawnTriangles = !choice.surfaceExact;
   return s;
 }
 

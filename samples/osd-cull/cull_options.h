@@ -21,6 +21,8 @@ extern const char* const kCullOptionsUsage;
 struct CullChoice {
   std::string mode = "none";                      ///< none, frustum, backpatch, occlusion, all
   std::string backPatchMethod = "tangent-plane";  ///< a registered back-patch method
+  /// Back-patch tests exact for the surface only (CullSettings::drawnTriangles = false).
+  bool surfaceExact = false;
   /// The two-pass frame's options (used when occlusion() is true): aggressive, draw mode,
   /// first-frame policy, pyramid options.
   frame::CullFrameOptions frame;
@@ -30,7 +32,8 @@ struct CullChoice {
   bool occlusion() const { return mode == "occlusion" || mode == "all"; }
 };
 
-/// \brief Reads `--cull MODE`, `--backpatch-method NAME` and, for occlusion, `--aggressive`,
+/// \brief Reads `--cull MODE`, `--backpatch-method NAME`, `--surface-exact` and, for occlusion,
+/// `--aggressive`,
 /// `--draw-mode`, `--first-frame`, `--hiz-full`, `--hiz-tight`, `--hiz-reduction` (a command
 /// using this lists aggressive, hiz-full and hiz-tight among its Command::flags).
 /// \throws osd_cull::Error for unknown modes, methods or values, and for occlusion options

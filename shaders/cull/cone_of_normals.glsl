@@ -10,18 +10,54 @@
 #ifndef OSD_CULL_CULL_CONE_OF_NORMALS_GLSL
 #define OSD_CULL_CULL_CONE_OF_NORMALS_GLSL
 #include "cull_common.glsl"
+#if CULL_DRAWN
+#include "drawn_triangles.glsl"
+#endif
+
+// The cull-region test of a cone (apex, axis, sin of the half-angle).
+uint coneRegionVerdict(vec3 apex, vec3 axis, float sinAngle) {
+  vec3 e = pc.eye.xyz;
+  vec3 d = e - apex;
+  float lhs = dot(axis, d) + sinAngle * length(d);
+  float margin = kCullRelativeMargin * (length(e) + length(apex));
+  if (!isFiniteF(lhs) || !isFiniteF(margin)) return kVerdictNonFinite;
+  return lhs < -margin ? kVerdictBackFacing : kVerdictEyeOutsideBackRegion;
+}
+
+#if CULL_DRAWN
+// bound::widenCone: the cone grows by the angle the drawn triangles' normals can deviate
+// from the surface normals, asin(deviation / min |N|), and its apex moves back by
+// maxRadius (tan γ' - tan γ) + dv (1 + tan γ'), with tan γ' - tan γ = sin Δ / (cos γ' cos γ).
+uint drawnConeVerdict(uint patchIndex, vec4 apexSin, vec3 axis) {
+  if (!isBezier(patchIndex)) return kVerdictDrawnTriangles;
+  vec4 bounds = cones[kConeVec4s * patchIndex + 2u];  // G, H, max |coordinate|, min |N|
+  vec4 shape4 = cones[kConeVec4s * patchIndex + 3u];  // max radius, half-angle
+  float dv = drawnVertexError(bounds.z, drawnMaxDistance(firstPoint(patchIndex)));
+  float deviation = drawnNormalDeviation(bounds.x, bounds.y, drawnShape(patchIndex), dv);
+  if (!(bounds.w > deviation) || !isFiniteF(deviation)) return kVerdictDrawnTriangles;
+  float widen = asin(min(1.0, deviation / bounds.w * kDrawnSafety)) * kDrawnSafety + 1e-5;
+  float gamma = shape4.y + widen;
+  if (!(gamma < 1.5)) return kVerdictDrawnTriangles;
+  float tanGamma = tan(gamma) * kDrawnSafety;
+  float back = shape4.x * sin(widen) / (cos(gamma) * cos(shape4.y)) * kDrawnSafety +
+               dv * (1.0 + tanGamma);
+  float sinGamma = min(1.0, sin(gamma) * kDrawnSafety);
+  uint v = coneRegionVerdict(apexSin.xyz - back * axis, axis, sinGamma);
+  return v == kVerdictBackFacing ? v : kVerdictDrawnTriangles;
+}
+#endif
 
 uint coneVerdict(uint patchIndex) {
   vec4 apexSin = cones[kConeVec4s * patchIndex];
   vec4 axisCode = cones[kConeVec4s * patchIndex + 1u];
   if (!(axisCode.w < 0.0)) return uint(axisCode.w);  // invalid cone: its reason
   if (pc.eye.w == 0.0) return kVerdictNoFiniteEye;
-  vec3 e = pc.eye.xyz;
-  if (!isFiniteF(e) || !isFiniteF(apexSin) || !isFiniteF(axisCode.xyz)) return kVerdictNonFinite;
-  vec3 d = e - apexSin.xyz;
-  float lhs = dot(axisCode.xyz, d) + apexSin.w * length(d);
-  float margin = kCullRelativeMargin * (length(e) + length(apexSin.xyz));
-  if (!isFiniteF(lhs) || !isFiniteF(margin)) return kVerdictNonFinite;
-  return lhs < -margin ? kVerdictBackFacing : kVerdictEyeOutsideBackRegion;
+  if (!isFiniteF(pc.eye.xyz) || !isFiniteF(apexSin) || !isFiniteF(axisCode.xyz))
+    return kVerdictNonFinite;
+  uint v = coneRegionVerdict(apexSin.xyz, axisCode.xyz, apexSin.w);
+#if CULL_DRAWN
+  if (v == kVerdictBackFacing) v = drawnConeVerdict(patchIndex, apexSin, axisCode.xyz);
+#endif
+  return v;
 }
 #endif

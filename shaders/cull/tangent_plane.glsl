@@ -23,21 +23,22 @@ uint tangentPlaneVerdict(uint patchIndex) {
   if (!isFiniteF(pc.eye.xyz)) return kVerdictNonFinite;
   // The serial table is sorted by target: sum one coefficient at a time and count its
   // signs when the target changes (no indexed array of 64 sums).
-  uvec3 counts = uvec3(0u);
+  const float drawnMargin = tangentPlaneDrawnMargin(patchIndex);
+  uvec4 counts = uvec4(0u);
   vec4 sums = vec4(0.0);
   uint target = 0u;
   for (uint k = 0u; k < kTangentPlaneTermCount; ++k) {
     uvec4 t = tangentPlaneTerm(k);
     if (t.x != target) {
-      counts += tangentPlaneCounts(sums);
+      counts += tangentPlaneCounts(sums, drawnMargin);
       sums = vec4(0.0);
       target = t.x;
     }
     if (p[t.y].b == p[t.z].b || p[t.z].b == p[t.w].b || p[t.y].b == p[t.w].b) continue;
     addTangentPlaneTerm(sums, tangentPlaneWeight(k), p[t.y], p[t.z], p[t.w]);
   }
-  counts += tangentPlaneCounts(sums);
-  return classifyTangentPlane(counts.z == 0u, counts.x, counts.y);
+  counts += tangentPlaneCounts(sums, drawnMargin);
+  return classifyTangentPlane(counts.z == 0u, counts.x, counts.y, counts.w);
 }
 
 uint backPatchVerdict(uint patchIndex, uint lane, uint slot, bool run) {

@@ -12,10 +12,14 @@
 // Must be called by every invocation of the workgroup (it contains barriers).
 #include "tangent_plane_common.glsl"
 
+const uint kPatchesPerGroupTp16 = kCullGroupSize / 16u;
+
 shared vec3 sPointB[kCullGroupSize];
 shared vec3 sPointQ[kCullGroupSize];
 shared vec3 sPointMags[kCullGroupSize];
-shared uint sCounts[kCullGroupSize];  // per lane: pcnt | ncnt << 8 | non-finite << 16
+shared uint sCounts[kCullGroupSize];  // per lane: pcnt | ncnt << 8 | non-finite << 16 |
+                                      // pcntDrawn << 17
+shared float sDrawnMargin[kPatchesPerGroupTp16];
 
 TangentPlanePoint sharedPoint(uint index) {
   TangentPlanePoint p;
@@ -38,9 +42,12 @@ uint backPatchVerdict(uint patchIndex, uint lane, uint slot, bool run) {
     sPointQ[base + lane] = p.q;
     sPointMags[base + lane] = p.mags;
   }
+  // Lane 0 computes the drawn-triangle margin of its patch (0 without CULL_DRAWN).
+  if (lane == 0u) sDrawnMargin[slot] = accumulate ? tangentPlaneDrawnMargin(patchIndex) : 0.0;
   memoryBarrierShared();
   barrier();
-  uvec3 counts = uvec3(0u);
+  const float drawnMargin = sDrawnMargin[slot];
+  uvec4 counts = uvec4(0u);
   if (accumulate) {
     vec4 sums[4] = vec4[4](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
     for (uint k = lane; k < kTangentPlaneTermCount; k += 16u) {
@@ -52,23 +59,25 @@ uint backPatchVerdict(uint patchIndex, uint lane, uint slot, bool run) {
       addTangentPlaneTerm(sums[own], tangentPlaneWeight(k), sharedPoint(j), sharedPoint(kk),
                           sharedPoint(l));
     }
-    for (uint i = 0u; i < 4u; ++i) counts += tangentPlaneCounts(sums[i]);
+    for (uint i = 0u; i < 4u; ++i) counts += tangentPlaneCounts(sums[i], drawnMargin);
   }
-  sCounts[base + lane] = counts.x | (counts.y << 8u) | ((finite && counts.z == 0u) ? 0u : 1u << 16u);
+  sCounts[base + lane] = counts.x | (counts.y << 8u) |
+                         ((finite && counts.z == 0u) ? 0u : 1u << 16u) | (counts.w << 17u);
   memoryBarrierShared();
   barrier();
   if (!run) return 0xFFu;
   if (!isBezier(patchIndex)) return coneVerdict(patchIndex);
-  uint pcnt = 0u, ncnt = 0u;
+  uint pcnt = 0u, ncnt = 0u, pcntDrawn = 0u;
   bool allFinite = true;
   for (uint i = 0u; i < 16u; ++i) {
     uint v = sCounts[base + i];
     pcnt += v & 0xFFu;
     ncnt += (v >> 8u) & 0xFFu;
-    allFinite = allFinite && (v >> 16u) == 0u;
+    allFinite = allFinite && ((v >> 16u) & 1u) == 0u;
+    pcntDrawn += v >> 17u;
   }
   if (!allFinite) return kVerdictNonFinite;
   if (pc.eye.w == 0.0) return kVerdictNoFiniteEye;
   if (!isFiniteF(pc.eye.xyz)) return kVerdictNonFinite;
-  return classifyTangentPlane(true, pcnt, ncnt);
+  return classifyTangentPlane(true, pcnt, ncnt, pcntDrawn);
 }

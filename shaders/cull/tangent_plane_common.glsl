@@ -70,21 +70,40 @@ void addTangentPlaneTerm(inout vec4 sums, float w, TangentPlanePoint pj, Tangent
                aw * g * (ek * el + 2.0 * pj.mags.x * (ek + el)), aw * c * c * c);
 }
 
-// Sign counts of one coefficient from its sums: (may be positive, may be negative), and
-// whether everything stayed finite.
-uvec3 tangentPlaneCounts(vec4 sums) {
+// Sign counts of one coefficient from its sums: (may be positive, may be negative, not
+// finite, may be above -drawnMargin). drawnMargin is tangentPlaneDrawnMargin() (0 when the
+// kernel respects the surface only).
+uvec4 tangentPlaneCounts(vec4 sums, float drawnMargin) {
   float margin = kTpArithmeticMargin * sums.y + kTpInputMargin * sums.z +
                  kTpReferenceMargin * sums.w * pc.eye.w;
   bool finite = isFiniteF(sums) && isFiniteF(margin);
-  return uvec3(sums.x + margin > 0.0 ? 1u : 0u, sums.x - margin < 0.0 ? 1u : 0u,
-               finite ? 0u : 1u);
+  return uvec4(sums.x + margin > 0.0 ? 1u : 0u, sums.x - margin < 0.0 ? 1u : 0u,
+               finite ? 0u : 1u, sums.x + margin + drawnMargin > 0.0 ? 1u : 0u);
 }
 
-// Section 4.2 DVis with section 7's Pcnt rule from the counts over all 64 coefficients.
-uint classifyTangentPlane(bool finite, uint pcnt, uint ncnt) {
+// Section 4.2 DVis with section 7's Pcnt rule from the counts over all 64 coefficients;
+// pcntDrawn counts the coefficients above -drawnMargin (a patch culled by the surface test
+// that only the drawn triangles keep gets kVerdictDrawnTriangles).
+uint classifyTangentPlane(bool finite, uint pcnt, uint ncnt, uint pcntDrawn) {
   if (!finite) return kVerdictNonFinite;
-  if (pcnt == 0u) return kVerdictBackFacing;
+  if (pcnt == 0u) return pcntDrawn == 0u ? kVerdictBackFacing : kVerdictDrawnTriangles;
   if (ncnt == 0u) return kVerdictFrontFacing;
   return kVerdictSilhouette;
+}
+
+// tangentPlaneDrawnMargin() of bound/drawn_triangles.h for the Bezier patch at `first`, in
+// the units of the world-space coefficients: (R + dv) deviation + dv G^2, R = max |E - b|.
+float tangentPlaneDrawnMargin(uint patchIndex) {
+#if CULL_DRAWN
+  uint first = firstPoint(patchIndex);
+  vec3 d = drawnDerivativeBounds(first);
+  float r = drawnMaxDistance(first);
+  float dv = drawnVertexError(d.z, r);
+  float mu = (r + dv) * drawnNormalDeviation(d.x, d.y, drawnShape(patchIndex), dv) +
+             dv * d.x * d.x;
+  return isFiniteF(mu) ? mu * kDrawnSafety : 3.0e38;
+#else
+  return 0.0;
+#endif
 }
 #endif

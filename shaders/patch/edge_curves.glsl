@@ -5,14 +5,20 @@
 #ifndef OSD_CULL_EDGE_CURVES_GLSL
 #define OSD_CULL_EDGE_CURVES_GLSL
 
-#if PATCH_POINTS == 16
 // Bezier point (i, j) is 4j + i (u fastest).
-const int kEdgeCurve[16] = int[16](0, 4, 8, 12,  0, 1, 2, 3,  3, 7, 11, 15,  12, 13, 14, 15);
-#else
+const int kEdgeCurveBezier[16] =
+    int[16](0, 4, 8, 12,  0, 1, 2, 3,  3, 7, 11, 15,  12, 13, 14, 15);
 // OpenSubdiv Gregory basis: corner c holds P, Ep, Em, Fp, Fm at 5c + 0..4; corners
 // (0,0), (1,0), (1,1), (0,1). The boundary curves use P, Ep and Em (see
 // Osd_EvalBasisGregory's boundaryGregory table).
-const int kEdgeCurve[16] = int[16](0, 2, 16, 15,  0, 1, 7, 5,  5, 6, 12, 10,  15, 17, 11, 10);
+const int kEdgeCurveGregory[16] =
+    int[16](0, 2, 16, 15,  0, 1, 7, 5,  5, 6, 12, 10,  15, 17, 11, 10);
+#if defined(PATCH_POINTS)
+#if PATCH_POINTS == 16
+#define kEdgeCurve kEdgeCurveBezier
+#else
+#define kEdgeCurve kEdgeCurveGregory
+#endif
 #endif
 
 // Transition bit of Far::PatchParam for each outer edge (bit k: Far edge k).

@@ -11,6 +11,14 @@ layout(location = 2) flat in uint tePatch;
 
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out uint outItem;
+// Front faces win depth ties (kFlagFrontWinsTies, on by default): a back-facing fragment is pushed back by one pixel's worth of
+// its depth slope (as depthBiasSlopeFactor 1 would) plus 2^-22 of its depth. On a closed
+// surface seen from outside a ray meets a front face first, but where a front and a back
+// face meet at a silhouette edge their depths at a pixel are equal up to vertex snapping and
+// interpolation, which on grazing triangles is many depth ulps; without this the back face
+// could win such pixels in the item buffer, and a back-patch-culled patch had pixels
+// (catmark_cubes_infsharp). depth_greater keeps early depth rejection valid.
+layout(depth_greater) out float gl_FragDepth;
 
 // Debug-view colors of kDrawStatus* (index = status).
 const vec3 kStatusColors[6] = vec3[6](vec3(0.80, 0.78, 0.72), vec3(0.35, 0.75, 0.35),
@@ -25,4 +33,8 @@ void main() {
     base = kStatusColors[min((tePatch >> kDrawListStatusShift) & 7u, 5u)];
   outColor = vec4(shade(base, tePosition, teNormal, pc.eye.xyz), 1.0);
   outItem = pc.itemBase + patchIndex + 1u;
+  float z = gl_FragCoord.z;
+  float slope = max(abs(dFdx(z)), abs(dFdy(z)));
+  bool pushBack = !gl_FrontFacing && (pc.flags & kFlagFrontWinsTies) != 0u;
+  gl_FragDepth = pushBack ? min(1.0, z + slope + z * (1.0 / 4194304.0) + 1.0e-30) : z;
 }

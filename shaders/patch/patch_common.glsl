@@ -9,6 +9,14 @@
 
 layout(push_constant) uniform Push { DrawConstants pc; };
 
+// Parameters of tess_levels.glsl.
+mat4 tessViewProjection() { return pc.viewProjection; }
+vec2 tessViewportSize() { return pc.viewport.xy; }
+float tessPixelsPerSegment() { return pc.eye.w; }
+float tessUniformLevel() { return pc.viewport.z; }
+float tessMaxLevel() { return pc.viewport.w; }
+uint tessMode() { return pc.mode; }
+
 layout(std430, set = 0, binding = 0) readonly buffer Points { float points[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Params { uint params[]; };
 layout(std430, set = 0, binding = 2) readonly buffer DrawList { uint drawList[]; };

@@ -3,14 +3,18 @@
 // PatchParam transition bits) are split at their midpoint into a Lo and a Hi half, each
 // levelled like the neighbouring finer patch's edge, as OpenSubdiv's
 // OsdEvalPatchBezierTessLevels / OsdComputeTessLevels do for equal spacing.
+// The includer defines the parameters (the draw shaders from DrawConstants, the cull kernel
+// from CullConstants, which computes the same levels for its drawn-triangle bound):
+//   mat4 tessViewProjection(); vec2 tessViewportSize(); float tessPixelsPerSegment();
+//   float tessUniformLevel(); float tessMaxLevel(); uint tessMode();
 #ifndef OSD_CULL_TESS_LEVELS_GLSL
 #define OSD_CULL_TESS_LEVELS_GLSL
 #include "edge_curves.glsl"
 
 // Pixel position of a world point; w <= 0 reports false.
 bool toPixels(vec3 p, out vec2 pixel) {
-  vec4 c = pc.viewProjection * vec4(p, 1.0);
-  pixel = c.xy / c.w * 0.5 * pc.viewport.xy;
+  vec4 c = tessViewProjection() * vec4(p, 1.0);
+  pixel = c.xy / c.w * 0.5 * tessViewportSize();
   return c.w > 1e-6;
 }
 
@@ -26,23 +30,25 @@ float curveLevel(vec3 b0, vec3 b1, vec3 b2, vec3 b3, float maxLevel) {
   ok = toPixels(b3, s3) && ok;
   if (!ok) return maxLevel;
   float len = (distance(s0, s1) + distance(s2, s3)) + distance(s1, s2);
-  float level = ceil(len / pc.eye.w);
+  float level = ceil(len / tessPixelsPerSegment());
   // NaN or Inf coordinates: keep the patch drawn at the finest level.
   if (!(level >= 1.0)) return level < 1.0 ? 1.0 : maxLevel;
   return min(level, maxLevel);
 }
 
-// Outer levels split into Lo and Hi halves (Hi is 0 on non-transition edges).
-void edgeLevels(vec3 cp[PATCH_POINTS], uint transition, out vec4 lo, out vec4 hi) {
-  float maxLevel = pc.viewport.w;
+// Outer levels split into Lo and Hi halves (Hi is 0 on non-transition edges), from the
+// four boundary curves (curves[4e + k]: point k of edge e's curve, see edge_curves.glsl).
+void curveEdgeLevels(vec3 curves[16], uint transition, out vec4 lo, out vec4 hi) {
+  float maxLevel = tessMaxLevel();
   for (int e = 0; e < 4; ++e) {
-    vec3 b0 = cp[kEdgeCurve[4 * e + 0]];
-    vec3 b1 = cp[kEdgeCurve[4 * e + 1]];
-    vec3 b2 = cp[kEdgeCurve[4 * e + 2]];
-    vec3 b3 = cp[kEdgeCurve[4 * e + 3]];
+    vec3 b0 = curves[4 * e + 0];
+    vec3 b1 = curves[4 * e + 1];
+    vec3 b2 = curves[4 * e + 2];
+    vec3 b3 = curves[4 * e + 3];
     bool split = (transition & kEdgeTransitionBit[e]) != 0u;
-    if (pc.mode == kTessUniform) {
-      float level = split ? min(pc.viewport.z, floor(maxLevel * 0.5)) : min(pc.viewport.z, maxLevel);
+    if (tessMode() == kTessUniform) {
+      float uniformLevel = tessUniformLevel();
+      float level = split ? min(uniformLevel, floor(maxLevel * 0.5)) : min(uniformLevel, maxLevel);
       lo[e] = level;
       hi[e] = split ? level : 0.0;
     } else if (!split) {
@@ -59,4 +65,12 @@ void edgeLevels(vec3 cp[PATCH_POINTS], uint transition, out vec4 lo, out vec4 hi
     }
   }
 }
+
+#if defined(PATCH_POINTS)
+void edgeLevels(vec3 cp[PATCH_POINTS], uint transition, out vec4 lo, out vec4 hi) {
+  vec3 curves[16];
+  for (int k = 0; k < 16; ++k) curves[k] = cp[kEdgeCurve[k]];
+  curveEdgeLevels(curves, transition, lo, hi);
+}
+#endif
 #endif

@@ -16,6 +16,8 @@ OSD_CULL_CONST uint kCullBindingDrawList = 3u;  // uint drawList[]: survivors, B
                                                 // Gregory from slot bezierCount
 OSD_CULL_CONST uint kCullBindingCounters = 4u;  // uint counters[kCounterCount]
 OSD_CULL_CONST uint kCullBindingCommands = 5u;  // uvec4 commands[]: VkDrawIndirectCommand
+OSD_CULL_CONST uint kCullBindingParams = 7u;    // uint params[]: GpuPatchSet::params(), read
+                                                // for transition edges (drawn-triangle bound)
 OSD_CULL_CONST uint kCullBindingTable = 6u;     // uvec2 table[]: the method's constant table
 // (CullMethod::table). The tangent-plane table: per term (target | j << 8 | k << 16 | l << 24,
 // floatBitsToUint(weight)). A buffer, not GLSL constants: lavapipe's LLVM backend needs
@@ -29,11 +31,15 @@ OSD_CULL_CONST uint kCounterDrawsBezier = 2u;
 OSD_CULL_CONST uint kCounterDrawsGregory = 3u;
 OSD_CULL_CONST uint kCounterCount = 4u;
 
-// A cone of normals (bound::ConeOfNormals rounded to float), two vec4 per patch:
-// cones[2p] = (apex.xyz, sin of the half-angle rounded up),
-// cones[2p+1] = (axis.xyz, code): code < 0 for a valid cone, else the BackPatchVerdict that
-// says why it never culls (NonFinite, NoNormal, WideCone).
-OSD_CULL_CONST uint kConeVec4s = 2u;
+// A cone of normals (bound::ConeOfNormals rounded to float), four vec4 per patch:
+// cones[4p] = (apex.xyz, sin of the half-angle rounded up),
+// cones[4p+1] = (axis.xyz, code): code < 0 for a valid cone, else the BackPatchVerdict that
+// says why it never culls (NonFinite, NoNormal, WideCone),
+// cones[4p+2] = (G, H, max |coordinate|, min |Bu x Bv|) of bound::DerivativeBounds and the
+// cone (Bezier patches; min 0 for Gregory), rounded up / down,
+// cones[4p+3] = (max radius rounded up, half-angle in radians rounded up, 0, 0): what
+// bound::widenCone needs.
+OSD_CULL_CONST uint kConeVec4s = 4u;
 
 OSD_CULL_CONST uint kCullGroupSize = 64u;   // invocations per workgroup, every variant
 OSD_CULL_CONST uint kDrawsGroupSize = 64u;  // write_draws.comp
@@ -61,6 +67,7 @@ OSD_CULL_CONST uint kVerdictNonFinite = 4u;
 OSD_CULL_CONST uint kVerdictNoNormal = 5u;
 OSD_CULL_CONST uint kVerdictWideCone = 6u;
 OSD_CULL_CONST uint kVerdictNoFiniteEye = 7u;
+OSD_CULL_CONST uint kVerdictDrawnTriangles = 8u;
 
 OSD_CULL_CONST uint kFrustumInside = 6u;     // bound::kNoPlane: not outside one plane
 OSD_CULL_CONST uint kFrustumNonFinite = 7u;  // NaN/Inf point or clip coordinate: kept
@@ -96,15 +103,17 @@ struct CullConstants {
   vec4 eye;             // xyz: eye (world, bound::eyePosition), NaN when the projection has
                         // no finite eye; w: 1 / |e.w| of the homogeneous eye
                         // (bound::homogeneousEye), 0 when there is no finite eye
-  vec4 viewport;        // xy: width, height in pixels; zw: free for the occlusion stage
+  vec4 viewport;        // xy: width, height in pixels; z: uniform tessellation level; w: max
+                        // level (as DrawConstants.viewport, for the drawn-triangle bound)
   uint patchCount;      // patches [0, bezierCount) are Bezier, the rest Gregory
   uint bezierCount;
   uint pointStride;      // floats between control points
   uint pointOffset;      // float index of control point 0
   uint drawChunkBezier;  // patches per indirect draw (draw_chunks.h batch limits)
   uint drawChunkGregory;
-  uint stage0;  // free for the occlusion stage
-  uint stage1;
+  float tessPixelsPerSegment;  // adaptive tessellation target (DrawConstants.eye.w); 0: the
+                               // draws tessellate uniformly (viewport.z)
+  float snapPerDistance;       // bound::snapPerDistance of the draws (drawn-triangle bound)
 };
 
 OSD_CULL_SHARED_END

@@ -7,8 +7,8 @@
 OSD_CULL_SHARED_BEGIN
 
 // Descriptor bindings of the patch draw set (set 0).
-OSD_CULL_CONST uint kBindingPoints = 0;    // float points[]: control points, pointStride floats each
-OSD_CULL_CONST uint kBindingParams = 1;    // uint params[]: Far::PatchParam field0, field1 per patch
+OSD_CULL_CONST uint kBindingPoints = 0;  // float points[]: control points, pointStride floats each
+OSD_CULL_CONST uint kBindingParams = 1;  // uint params[]: Far::PatchParam field0, field1 per patch
 OSD_CULL_CONST uint kBindingDrawList = 2;  // uint drawList[]: patch index per draw slot
 
 // DrawConstants.mode
@@ -16,8 +16,9 @@ OSD_CULL_CONST uint kTessUniform = 0u;
 OSD_CULL_CONST uint kTessAdaptive = 1u;
 
 // DrawConstants.flags
-OSD_CULL_CONST uint kFlagDebugColors = 1u;   // color each patch by a hash of its index
-OSD_CULL_CONST uint kFlagStatusColors = 2u;  // color each patch by its draw-list status field
+OSD_CULL_CONST uint kFlagDebugColors = 1u;    // color each patch by a hash of its index
+OSD_CULL_CONST uint kFlagStatusColors = 2u;   // color each patch by its draw-list status field
+OSD_CULL_CONST uint kFlagFrontWinsTies = 4u;  // push back-facing fragments back (patch.frag)
 
 // A draw-list entry: the patch index in the low 28 bits, a status for the debug view in
 // bits 28-30 (kDrawStatus*) and, in bit 31, "culled": the control shader sets every

@@ -20,20 +20,13 @@ CullMesh loadCullMesh(const std::filesystem::path& path, int level) {
   return m;
 }
 
-void expectNoViolations(const frame::CullVerifier& verifier, const std::string& context,
-                        double silhouettePixelsPerView) {
+void expectNoViolations(const frame::CullVerifier& verifier, const std::string& context) {
   for (const frame::MethodTotals& t : verifier.totals()) {
     const std::string what = context + " " + t.name;
     EXPECT_EQ(t.notInReference, 0u) << what << ": GPU culls the reference keeps";
     EXPECT_EQ(t.samplingViolations, 0u) << what << ": culled patches with visible samples";
     EXPECT_EQ(t.pixelsLost, 0u) << what << ": pixels lost by culling";
-    if (t.stage == frame::CullStage::Frustum) {
-      EXPECT_EQ(t.falseCulls, 0u) << what << ": culled patches with pixels";
-    } else {
-      EXPECT_EQ(t.falseCullPixels, t.falseCulls) << what << ": silhouette chords of one pixel";
-      EXPECT_LE(double(t.falseCullPixels), silhouettePixelsPerView * double(t.oracleViews) + 1.0)
-          << what << ": culled patches with pixels";
-    }
+    EXPECT_EQ(t.falseCulls, 0u) << what << ": culled patches with pixels";
   }
 }
 

@@ -25,14 +25,9 @@ CullMesh loadCullMesh(const std::filesystem::path& path, int level = 2);
 
 /// \brief Every method's totals show no violation (gtest failures otherwise): no GPU cull
 /// outside the double reference, no visible sample on the dense sampling, no pixel lost in
-/// the image, and no culled patch with pixels in the oracle, except for silhouette chords of
-/// back-patch tests (docs/algorithms/cull-kernel.md, "Tessellated silhouettes"): the tests
-/// are exact for the surface, and a culled back-facing patch can still have a drawn chord
-/// triangle facing the eye at the silhouette. There we allow
-/// single pixels (each covered by a neighbour in the culled image), at most
-/// `silhouettePixelsPerView` per view on average.
-void expectNoViolations(const frame::CullVerifier& verifier, const std::string& context,
-                        double silhouettePixelsPerView = 0.05);
+/// the image, and no culled patch with pixels in the oracle (back-patch methods respect the
+/// drawn triangles by default, bound/drawn_triangles.h).
+void expectNoViolations(const frame::CullVerifier& verifier, const std::string& context);
 
 /// \brief The totals of one method (gtest failure and a dummy when absent).
 const frame::MethodTotals& totalsOf(const frame::CullVerifier& verifier, const std::string& name);

@@ -1,0 +1,140 @@
+// The drawn-triangle bound of the back-patch stage: fp32 mirror of bound/drawn_triangles.h
+// (docs/algorithms/drawn-triangles.md). The back-patch tests are exact for the surface; a
+// patch is culled only if every chord triangle the tessellator draws faces away too. The
+// kernel computes each patch's tessellation levels with the draw shaders' own code
+// (patch/tess_levels.glsl), bounds the shape of the worst triangle, and from the patch's
+// derivative bounds G and H the largest deviation of a triangle normal from a surface normal.
+// Every quantity is rounded up by kDrawnSafety, far more than its fp32 error, and adaptive
+// levels get a slack of 2 (the draw shader's fp32 levels may differ from these by one; the
+// double reference allows one), so every GPU cull is a cull of the reference.
+// Included when CULL_DRAWN is 1.
+#ifndef OSD_CULL_CULL_DRAWN_TRIANGLES_GLSL
+#define OSD_CULL_CULL_DRAWN_TRIANGLES_GLSL
+#include "cull_common.glsl"
+#include <shared/draw_layout.h>
+
+layout(std430, set = 0, binding = kCullBindingParams) readonly buffer Params { uint params[]; };
+
+// Parameters of tess_levels.glsl from CullConstants.
+mat4 tessViewProjection() { return pc.viewProjection; }
+vec2 tessViewportSize() { return pc.viewport.xy; }
+float tessPixelsPerSegment() { return pc.tessPixelsPerSegment; }
+float tessUniformLevel() { return pc.viewport.z; }
+float tessMaxLevel() { return pc.viewport.w; }
+uint tessMode() { return pc.tessPixelsPerSegment > 0.0 ? kTessAdaptive : kTessUniform; }
+#include "patch/tess_levels.glsl"
+
+const float kDrawnSafety = 1.001;
+
+vec2 drawnLevelRange(float level, float slack) {
+  float l = max(1.0, ceil(level));
+  return vec2(max(1.0, l - slack), l + slack);
+}
+
+vec2 drawnInnerRange(vec2 a, vec2 b) {
+  return max(vec2(2.0), vec2(ceil(0.5 * (a.x + b.x)), ceil(0.5 * (a.y + b.y))));
+}
+
+// bound::triangleShape of a Bezier patch for this view: (phi, psi, minEdge).
+vec3 drawnShape(uint patchIndex) {
+  uint first = firstPoint(patchIndex);
+  vec3 curves[16];
+  for (int k = 0; k < 16; ++k) curves[k] = controlPoint(first + uint(kEdgeCurveBezier[k]));
+  vec4 levelLo, levelHi;
+  curveEdgeLevels(curves, params[2u * patchIndex] >> 28u, levelLo, levelHi);
+  const float slack = tessMode() == kTessUniform ? 0.0 : 2.0;
+  vec2 lo[4], hi[4], outer[4];
+  bool allOnes = slack == 0.0;
+  for (int e = 0; e < 4; ++e) {
+    bool split = levelHi[e] > 0.0;
+    lo[e] = drawnLevelRange(levelLo[e], slack);
+    hi[e] = split ? drawnLevelRange(levelHi[e], slack) : vec2(0.0);
+    outer[e] = lo[e] + hi[e];
+    allOnes = allOnes && !split && outer[e].y == 1.0;
+  }
+  if (allOnes) return vec3(2.02 * kDrawnSafety, 1.01 * kDrawnSafety, 0.89);
+  vec2 inner0 = drawnInnerRange(outer[1], outer[3]);  // subdivides u
+  vec2 inner1 = drawnInnerRange(outer[0], outer[2]);  // subdivides v
+  vec2 su = vec2(1.0 / inner0.y, 1.0 / inner0.x), sv = vec2(1.0 / inner1.y, 1.0 / inner1.x);
+  float phi = su.y + sv.y, psi = su.y * sv.y, minEdge = min(su.x, sv.x);
+  for (int e = 0; e < 4; ++e) {
+    vec2 along = (e % 2 == 0) ? sv : su;
+    vec2 depth = (e % 2 == 0) ? su : sv;
+    float segMax, segMin, shift = 0.0;
+    if (levelHi[e] > 0.0) {
+      segMax = max(0.5 / lo[e].x, 0.5 / hi[e].x);
+      segMin = min(0.5 / lo[e].y, 0.5 / hi[e].y);
+      float diff = abs(levelHi[e] - levelLo[e]) + 2.0 * slack;
+      shift = min(0.5, diff / (2.0 * outer[e].x));
+    } else {
+      segMax = 1.0 / outer[e].x;
+      segMin = 1.0 / outer[e].y;
+    }
+    minEdge = min(minEdge, segMin);
+    float base = max(segMax, along.y);
+    // Apex offset of the stitching: bound::triangleShape says why.
+    float sigmaMax = 1.0 / outer[e].x, sigmaMin = 1.0 / outer[e].y;
+    float countDiff = max(abs(outer[e].x - 1.0 / along.x), abs(outer[e].y - 1.0 / along.y));
+    float spacingDiff = max(abs(sigmaMax - along.x), abs(sigmaMin - along.y));
+    float minSpacing = min(sigmaMax, along.y);
+    float offset = min(1.1 * (countDiff * minSpacing + spacingDiff),
+                       0.8 * (max(sigmaMax, along.y) + 0.5 * countDiff * minSpacing)) +
+                   shift;
+    float kappa = 1.0 + offset / depth.x;
+    phi = max(phi, kappa * (base + offset + depth.y));
+    psi = max(psi, kappa * base * (offset + depth.y));
+  }
+  return vec3(phi * 1.01 * kDrawnSafety, psi * 1.01 * kDrawnSafety,
+              minEdge * 0.89);
+}
+
+// bound::drawnVertexError; maxDistance bounds the distance of the patch from the eye.
+float drawnVertexError(float maxAbs, float maxDistance) {
+  vec3 e = abs(pc.eye.xyz);
+  return (32.0 / 16777216.0 * (maxAbs + max(e.x, max(e.y, e.z))) +
+          maxDistance * pc.snapPerDistance) * kDrawnSafety;
+}
+
+// The largest distance of a patch's 16 control points from the eye.
+float drawnMaxDistance(uint first) {
+  float r = 0.0;
+  for (uint k = 0u; k < 16u; ++k) r = max(r, length(pc.eye.xyz - controlPoint(first + k)));
+  return r * kDrawnSafety;
+}
+
+// bound::normalDeviation from (G, H) and the shape.
+float drawnNormalDeviation(float g, float h, vec3 shape, float vertexError) {
+  float m = max(shape.z, 1e-6);
+  float hh = h + 4.0 * vertexError / (m * m);
+  return (0.5 * g * hh * shape.x + 0.25 * hh * hh * shape.y) * kDrawnSafety;
+}
+
+// bound::bezierDerivativeBounds of the 16 points at `first`: (G, H, max |coordinate|).
+vec3 drawnDerivativeBounds(uint first) {
+  vec3 b[16];
+  float maxAbs = 0.0;
+  for (uint k = 0u; k < 16u; ++k) {
+    b[k] = controlPoint(first + k);
+    vec3 a = abs(b[k]);
+    maxAbs = max(maxAbs, max(a.x, max(a.y, a.z)));
+  }
+  float g = 0.0, h = 0.0;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i) {
+      g = max(g, 3.0 * length(b[4 * j + i + 1] - b[4 * j + i]));
+      g = max(g, 3.0 * length(b[4 * (i + 1) + j] - b[4 * i + j]));
+    }
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 2; ++i) {
+      h = max(h, 6.0 * length(b[4 * j + i + 2] - 2.0 * b[4 * j + i + 1] + b[4 * j + i]));
+      h = max(h, 6.0 * length(b[4 * (i + 2) + j] - 2.0 * b[4 * (i + 1) + j] + b[4 * i + j]));
+    }
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      h = max(h, 9.0 * length(b[4 * (j + 1) + i + 1] - b[4 * (j + 1) + i] - b[4 * j + i + 1] +
+                              b[4 * j + i]));
+  // fp32 differences of the points: relative to the coordinates.
+  float round = 8.0 / 16777216.0 * maxAbs;
+  return vec3(g * kDrawnSafety + 6.0 * round, h * kDrawnSafety + 36.0 * round, maxAbs);
+}
+#endif
