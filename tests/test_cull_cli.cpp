@@ -70,6 +70,9 @@ TEST(RenderCullCommand, CullOptionsAreCheckedWithAClearMessage) {
   r = runCommand(program().string() + " render --out x.png --aggressive");
   EXPECT_NE(r.exitCode(), 0);
   EXPECT_NE(r.output.find("need --cull"), std::string::npos) << r.output;
+  r = runCommand(program().string() + " render --out x.png --cull frustum --surface-exact");
+  EXPECT_NE(r.exitCode(), 0);
+  EXPECT_NE(r.output.find("--surface-exact needs --cull backpatch"), std::string::npos) << r.output;
   r = runCommand(program().string() + " render --out x.png --cull occlusion --first-frame most");
   EXPECT_NE(r.exitCode(), 0);
   EXPECT_NE(r.output.find("all, half, none"), std::string::npos) << r.output;
@@ -165,6 +168,34 @@ TEST(VerifyCullCommand, HizIsCheckedAgainstItsReferenceTheOracleAndTheImage) {
   EXPECT_EQ(m["pixels_lost"], 0);
   EXPECT_GT(m["cull_rate"].get<double>(), 0.05);
   EXPECT_GE(m["oracle_invisible_rate"].get<double>(), m["cull_rate"].get<double>());
+}
+
+// The default back-patch tests respect the drawn triangles; --surface-exact runs the
+// papers' surface tests, which cull more.
+TEST(VerifyCullCommand, SurfaceExactCullsMoreThanTheDrawnTriangleBound) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "verify_drawn";
+  fs::create_directories(dir);
+  nlohmann::json docs[2];
+  for (int exact = 0; exact < 2; ++exact) {
+    const fs::path json = dir / (exact ? "surface.json" : "drawn.json");
+    const auto r = runCommand(program().string() +
+                              " verify --methods tangent-plane --views 8 --width 96 --height 96 " +
+                              (exact ? "--surface-exact " : "") + "--json " + json.string());
+    ASSERT_EQ(r.exitCode(), 0) << r.output;
+    std::ifstream in(json);
+    docs[exact] = nlohmann::json::parse(in);
+    ASSERT_TRUE(docs[exact]["back_patch"]["enabled"].get<bool>());
+    EXPECT_EQ(docs[exact]["back_patch"]["drawn_triangles"].get<bool>(), exact == 0);
+  }
+  const auto& drawn = docs[0]["methods"][0];
+  const auto& surface = docs[1]["methods"][0];
+  EXPECT_EQ(drawn["false_culls"], 0);
+  EXPECT_EQ(drawn["culled_not_in_reference"], 0);
+  EXPECT_GT(drawn["cull_rate"].get<double>(), 0.0);
+  EXPECT_GT(surface["cull_rate"].get<double>(), drawn["cull_rate"].get<double>());
+  EXPECT_GT(drawn["kept_for_drawn_triangles_rate"].get<double>(), 0.0);
+  EXPECT_EQ(surface["kept_for_drawn_triangles_rate"].get<double>(), 0.0);
 }
 
 }  // namespace
