@@ -6,6 +6,8 @@
 //
 // Part 1: wall time of one cull submission (counter reset, cull dispatch, draw-command
 // dispatch, wait), median over views x repeats, per patch; "empty" is a pass with no test.
+// Back-patch methods run twice: respecting the drawn triangles (the default) and with
+// "/surface", the papers' surface-exact tests (CullSettings::drawnTriangles = false).
 // Part 2: frames of sphere views drawn in full and with culling (cull pass + survivors in
 // one submission), medians of wall time and tessellation-evaluation invocations.
 #include "adapters/load_mesh.h"
@@ -76,9 +78,9 @@ Options parse(int argc, char** argv) {
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0
-                   : v.size() % 2 ? v[v.size() / 2]
-                                  : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  return v.empty()      ? 0.0
+         : v.size() % 2 ? v[v.size() / 2]
+                        : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 struct Mesh {
@@ -90,12 +92,18 @@ Mesh load(const std::string& path, uint32_t level) {
   const CageMesh cage = adapters::loadCage(path);
   PatchOptions options;
   options.isolationLevel = static_cast<int>(level);
-  return {extractPatches(cage, options).patches,
-          bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage))};
+  return {
+      extractPatches(cage, options).patches,
+      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage))};
 }
 
-frame::CullSettings settingsFor(const std::string& method, const bound::BackPatchValidity& v) {
+frame::CullSettings settingsFor(std::string method, const bound::BackPatchValidity& v) {
   frame::CullSettings s;
+  const std::string surface = "/surface";
+  if (method.ends_with(surface)) {
+    s.drawnTriangles = false;
+    method.resize(method.size() - surface.size());
+  }
   s.backPatchValidity = v;
   s.frustum = method == "frustum" || method == "all";
   if (method != "frustum" && method != "empty" && method != "all") s.backPatch = method;
@@ -116,7 +124,8 @@ void kernelCost(vk::Context& context, const Options& o) {
     const auto cameras = frame::randomViews(frame::boundsOf(mesh.patches.points), vo);
     const uint32_t n = mesh.patches.patchCount();
     for (const std::string method :
-         {"empty", "frustum", "tcone", "ncone", "tangent-plane", "tangent-plane-16"}) {
+         {"empty", "frustum", "tcone", "tcone/surface", "ncone", "ncone/surface", "tangent-plane",
+          "tangent-plane/surface", "tangent-plane-16", "tangent-plane-16/surface"}) {
       frame::CullPass pass(context, gpu, mesh.patches, settingsFor(method, mesh.validity));
       pass.run(cameras[0]);  // warm-up: first dispatch compiles the kernel
       std::vector<double> ms;
@@ -127,8 +136,8 @@ void kernelCost(vk::Context& context, const Options& o) {
           if (r == 0) culled += n - pass.counts().survivors();
         }
       std::printf("| %u | %u | %s | %.1f%% | %.0f | %.3f |\n", level, n, method.c_str(),
-                  100.0 * double(culled) / double(n) / double(cameras.size()),
-                  median(ms) * 1e6 / n, median(ms));
+                  100.0 * double(culled) / double(n) / double(cameras.size()), median(ms) * 1e6 / n,
+                  median(ms));
       std::fflush(stdout);
     }
   }
@@ -154,7 +163,8 @@ void frameSavings(vk::Context& context, const Options& o) {
     frame::RenderOptions options;
     options.tessellation.uniformLevel = tess;
     double noneMs = 0.0;
-    for (const std::string mode : {"none", "tcone", "tangent-plane", "all"}) {
+    for (const std::string mode :
+         {"none", "tcone", "tcone/surface", "tangent-plane", "tangent-plane/surface", "all"}) {
       std::unique_ptr<frame::CullPass> pass;
       if (mode != "none")
         pass = std::make_unique<frame::CullPass>(context, gpu, mesh.patches,
