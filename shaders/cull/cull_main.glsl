@@ -12,7 +12,8 @@
 //                     uint occlusionVerdict(uint patchIndex, PatchClipBounds bounds)
 //                     returning 0 (culled: occluded) or a non-zero reason to keep; called by
 //                     one thread per patch that survived the earlier stages; its resources
-//                     live in descriptor set 1 and CullConstants.viewport.zw / stage0 / stage1
+//                     live in descriptor set 1 (per-view values in its own uniform buffer)
+//   CULL_DRAWN        1: back-patch culls respect the drawn triangles (drawn_triangles.glsl)
 // and includes the stage files before this one.
 #include "frustum.glsl"
 
