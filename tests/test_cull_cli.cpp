@@ -187,6 +187,8 @@ TEST(VerifyCullCommand, SurfaceExactCullsMoreThanTheDrawnTriangleBound) {
     docs[exact] = nlohmann::json::parse(in);
     ASSERT_TRUE(docs[exact]["back_patch"]["enabled"].get<bool>());
     EXPECT_EQ(docs[exact]["back_patch"]["drawn_triangles"].get<bool>(), exact == 0);
+    // A closed mesh: the oracle draws as a renderer culling back faces does.
+    EXPECT_TRUE(docs[exact]["back_patch"]["oracle_culls_back_faces"].get<bool>());
   }
   const auto& drawn = docs[0]["methods"][0];
   const auto& surface = docs[1]["methods"][0];

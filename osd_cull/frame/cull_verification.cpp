@@ -44,7 +44,8 @@ CullVerifier::CullVerifier(vk::Context& context, const PatchSet& host,
       options_(options),
       gpu_(context, host),
       renderer_(context),
-      oracle_(context) {
+      oracle_(context),
+      cullBackFaces_(options.cullBackFaces.value_or(validity.enabled)) {
   if (options.imageCheck && !options.oracle)
     throw Error("CullVerifier: the image check compares with the oracle's full draw; enable it");
   std::vector<const CullMethod*> run;
@@ -122,7 +123,8 @@ void CullVerifier::verifyView(const Camera& camera) {
   VisibilityCounts counts;
   std::vector<uint32_t> fullItems;
   if (options_.oracle) {
-    counts = oracle_.query(renderer_, *target_, camera, gpu_, &host_, {}, options_.tessellation);
+    counts = oracle_.query(renderer_, *target_, camera, gpu_, &host_, {}, options_.tessellation, 0,
+                           cullBackFaces_);
     if (options_.imageCheck) fullItems = target_->readItems(context_);
   }
   // Occlusion: the pyramid of the full draw's depth (before the image checks draw over it),
@@ -137,6 +139,7 @@ void CullVerifier::verifyView(const Camera& camera) {
   const bound::CullView view = bound::makeCullView(camera.viewProjection());
   RenderOptions drawOptions;
   drawOptions.tessellation = options_.tessellation;
+  drawOptions.cullBackFaces = cullBackFaces_;
 
   for (auto& m : methods_) {
     MethodTotals& t = *m->totals;
@@ -189,6 +192,8 @@ void CullVerifier::verifyView(const Camera& camera) {
         t.culledOnOracleViews += culled;
         t.falseCulls += culled && counts.pixels[p] > 0;
         if (culled) t.falseCullPixels += counts.pixels[p];
+        if (culled && counts.pixels[p] > 0 && t.falseCullList.size() < 64)
+          t.falseCullList.push_back({viewIndex_ - 1, p, counts.pixels[p]});
       }
     }
     if (!samples_.empty()) checkSampling(*m, camera, results);

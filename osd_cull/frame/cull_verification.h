@@ -24,6 +24,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,11 @@ struct VerifyOptions {
   /// Back-patch methods respect the drawn triangles (CullSettings::drawnTriangles); false
   /// runs the surface-exact tests the papers measure.
   bool drawnTriangles = true;
+  /// Oracle and image draws cull back-facing triangles, as a renderer does on a closed,
+  /// outward-oriented mesh. Default: on exactly when back-patch culling is valid for the
+  /// mesh. Then a patch culled with the drawn-triangle bound has no triangle that is drawn
+  /// at all, so it can own no pixel, even through a pinhole of the tessellated surface.
+  std::optional<bool> cullBackFaces;
 };
 
 /// \brief Totals of one method over all views so far.
@@ -72,6 +78,13 @@ struct MethodTotals {
   uint64_t oracleInvisible = 0;  ///< patch-views with zero pixels
   uint64_t falseCulls = 0;       ///< culled patch-views with pixels: must be 0
   uint64_t falseCullPixels = 0;  ///< their pixels
+  /// The first false culls (view index, patch, pixels), at most 64, for diagnosis.
+  struct FalseCull {
+    uint64_t view = 0;
+    uint32_t patch = 0;
+    uint32_t pixels = 0;
+  };
+  std::vector<FalseCull> falseCullList;
   uint64_t culledOnOracleViews = 0;
   /// Sampling.
   uint64_t sampledCulls = 0;
@@ -107,6 +120,8 @@ class CullVerifier {
   /// \brief Methods not run, with the reason.
   const std::vector<std::pair<std::string, std::string>>& skipped() const { return skipped_; }
   const PatchSet& patches() const { return host_; }
+  /// \brief Whether the oracle and image draws cull back-facing triangles.
+  bool cullBackFaces() const { return cullBackFaces_; }
 
  private:
   struct Method;
@@ -126,6 +141,7 @@ class CullVerifier {
   std::vector<std::pair<std::string, std::string>> skipped_;
   std::vector<bound::SurfaceSamples> samples_;  // per patch, when sampling is on
   uint64_t viewIndex_ = 0;
+  bool cullBackFaces_ = false;  // of the oracle and image draws
 };
 
 }  // namespace osd_cull::frame

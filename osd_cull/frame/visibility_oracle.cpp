@@ -96,10 +96,11 @@ VisibilityCounts VisibilityOracle::query(Renderer& renderer, RenderTarget& targe
                                          const Camera& camera, const GpuPatchSet& patches,
                                          const PatchSet* host,
                                          std::span<const GpuTriangleMesh* const> occluders,
-                                         const TessellationOptions& tessellation,
-                                         uint32_t tileLog2) {
+                                         const TessellationOptions& tessellation, uint32_t tileLog2,
+                                         bool cullBackFaces) {
   RenderOptions options;
   options.tessellation = tessellation;
+  options.cullBackFaces = cullBackFaces;
   const PatchDraw draw{&patches, host, 0};
   renderer.render(target, camera, {&draw, 1}, occluders, options);
   return count(target, patches.patchCount(), tileLog2);

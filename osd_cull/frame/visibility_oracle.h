@@ -59,10 +59,12 @@ class VisibilityOracle {
 
   /// \brief Draws occluders and `patches` (item values = patch + 1) into `target` with
   /// depth testing, then counts. `host` (optional) splits draws by per-patch levels.
+  /// `cullBackFaces` draws as a renderer that culls back-facing triangles does.
   VisibilityCounts query(Renderer& renderer, RenderTarget& target, const Camera& camera,
                          const GpuPatchSet& patches, const PatchSet* host,
                          std::span<const GpuTriangleMesh* const> occluders,
-                         const TessellationOptions& tessellation, uint32_t tileLog2 = 0);
+                         const TessellationOptions& tessellation, uint32_t tileLog2 = 0,
+                         bool cullBackFaces = false);
 
  private:
   vk::Context& context_;

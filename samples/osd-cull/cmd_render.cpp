@@ -213,6 +213,12 @@ int run(Args& args) {
   std::unique_ptr<frame::CullPass> pass;
   std::unique_ptr<frame::CullFrame> cullFrame;
   const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
+  // With back-patch culling on a closed mesh, draw as that culling assumes: back-facing
+  // triangles are culled, so a patch culled with the drawn-triangle bound could not have
+  // drawn a pixel (docs/algorithms/drawn-triangles.md).
+  const bool backPatchCulling =
+      (cull.mode == "backpatch" || cull.mode == "all") && scene.backPatch.enabled;
+  options.cullBackFaces = backPatchCulling;
   frame::CullFrameOptions frameOptions = cull.frame;
   frameOptions.render = options;
   frameOptions.cull = cullSettings(cull, scene.backPatch);
@@ -231,6 +237,10 @@ int run(Args& args) {
     std::cout << (stages->empty() ? "" : ")") << "\n";
     const frame::CullPass& p = pass ? *pass : *cullFrame->cullPass(0);
     if (!p.backPatchNote().empty()) std::cout << "note: " << p.backPatchNote() << "\n";
+    if (backPatchCulling)
+      std::cout << "back-patch culls: "
+                << (cull.surfaceExact ? "surface-exact" : "conservative for the drawn triangles")
+                << "; back-facing triangles culled in the draws\n";
   }
   if (cullFrame) {
     const auto& layout = cullFrame->pyramid().layout();

@@ -179,6 +179,8 @@ int run(Args& args) {
   std::printf("back-patch culling: %s (%s)%s\n", mesh.backPatch.enabled ? "on" : "off",
               mesh.backPatch.reason.c_str(),
               surfaceExact ? ", surface-exact" : ", conservative for the drawn triangles");
+  std::printf("oracle and image draws: back-facing triangles %s\n",
+              verifier.cullBackFaces() ? "culled (closed mesh)" : "drawn");
   for (const auto& [name, why] : verifier.skipped())
     std::printf("skipped %s: %s\n", name.c_str(), why.c_str());
   std::fflush(stdout);
@@ -229,6 +231,10 @@ int run(Args& args) {
         static_cast<unsigned long long>(silhouetteViews),
         static_cast<unsigned long long>(silhouettePixels),
         surfaceExact ? ", expected with --surface-exact" : "");
+  for (const auto& t : verifier.totals())
+    for (const auto& f : t.falseCullList)
+      std::printf("false cull: %s view %llu patch %u, %u pixels\n", t.name.c_str(),
+                  static_cast<unsigned long long>(f.view), f.patch, f.pixels);
   if (sample > 0 || imageCheck) {
     std::printf("\n%-17s %12s %12s %12s %12s %14s\n", "method", "false-pixels", "sampled",
                 "sample-viol", "pixels-lost", "pixels-changed");
@@ -258,7 +264,8 @@ int run(Args& args) {
     out["device"] = context.info().name;
     out["back_patch"] = {{"enabled", mesh.backPatch.enabled},
                          {"reason", mesh.backPatch.reason},
-                         {"drawn_triangles", !surfaceExact}};
+                         {"drawn_triangles", !surfaceExact},
+                         {"oracle_culls_back_faces", verifier.cullBackFaces()}};
     out["methods"] = nlohmann::ordered_json::array();
     for (const auto& t : verifier.totals())
       out["methods"].push_back(methodJson(t, patches.patchCount(), options.oracle));
