@@ -39,13 +39,7 @@ std::string originCounts(const ExtractionStats& s) {
 }
 
 int runInfo(Args& args) {
-  PatchOptions patchOptions;
-  if (auto level = args.integer("level", 0, 10)) patchOptions.isolationLevel = static_cast<int>(*level);
-  if (auto endcap = args.value("endcap")) {
-    if (*endcap == "gregory") patchOptions.endCaps = EndCap::GregoryBasis;
-    else if (*endcap == "bspline") patchOptions.endCaps = EndCap::BSplineBasis;
-    else throw Error("option --endcap: '" + *endcap + "' is not one of gregory, bspline");
-  }
+  const PatchOptions patchOptions = patchOptionsFromArgs(args);
   const bool json = args.flag("json");
   MeshSource source = meshSourceFromArgs(args);
   args.finish();

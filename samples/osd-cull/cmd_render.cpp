@@ -141,17 +141,7 @@ int run(Args& args) {
   const bool debugColors = args.flag("debug-colors");
   const bool validate = args.flag("validate");
   const auto device = args.value("device");
-  PatchOptions patchOptions;
-  if (auto level = args.integer("level", 0, 10))
-    patchOptions.isolationLevel = static_cast<int>(*level);
-  if (auto endcap = args.value("endcap")) {
-    if (*endcap == "gregory")
-      patchOptions.endCaps = EndCap::GregoryBasis;
-    else if (*endcap == "bspline")
-      patchOptions.endCaps = EndCap::BSplineBasis;
-    else
-      throw Error("option --endcap: '" + *endcap + "' is not one of gregory, bspline");
-  }
+  const PatchOptions patchOptions = patchOptionsFromArgs(args);
   const CullChoice cull = cullChoiceFromArgs(args);
   const auto statsPath = args.value("stats");
   const auto occluderFiles = args.value("occluders");

@@ -19,6 +19,20 @@ MeshSource meshSourceFromArgs(Args& args) {
   return source;
 }
 
+PatchOptions patchOptionsFromArgs(Args& args) {
+  PatchOptions options;
+  if (auto level = args.integer("level", 0, 10)) options.isolationLevel = static_cast<int>(*level);
+  if (auto endcap = args.value("endcap")) {
+    if (*endcap == "gregory")
+      options.endCaps = EndCap::GregoryBasis;
+    else if (*endcap == "bspline")
+      options.endCaps = EndCap::BSplineBasis;
+    else
+      throw Error("option --endcap: '" + *endcap + "' is not one of gregory, bspline");
+  }
+  return options;
+}
+
 LoadedMesh loadMeshSource(const MeshSource& source) {
   LoadedMesh mesh;
   if (!source.path) {

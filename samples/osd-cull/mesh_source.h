@@ -4,6 +4,7 @@
 
 #include "command.h"
 
+#include "osd_cull/patch/adaptive_patches.h"
 #include "osd_cull/patch/cage_mesh.h"
 #include "osd_cull/patch/patch_set.h"
 
@@ -28,6 +29,10 @@ struct LoadedMesh {
 /// \brief Reads the optional positional MESH and `--scheme`; more than one positional is
 /// an error.
 MeshSource meshSourceFromArgs(Args& args);
+
+/// \brief Reads `--level N` (0..10, default 2) and `--endcap gregory|bspline` (default
+/// gregory) into patch options.
+PatchOptions patchOptionsFromArgs(Args& args);
 
 /// \brief Loads the mesh (adapters/) or generates the built-in one.
 LoadedMesh loadMeshSource(const MeshSource& source);
