@@ -1,0 +1,201 @@
+// bench-cull: cost of the cull kernel per method and patch count, and what culling saves in
+// a frame, on BigGuy (or another cage). Prints Markdown tables; see docs/results/backpatch.md.
+//
+//   bench-cull [--mesh FILE] [--levels 1,2,3] [--views 20] [--tess 4,8,16]
+//              [--width 640] [--height 480] [--repeats 3] [--device X]
+//
+// Part 1: wall time of one cull submission (counter reset, cull dispatch, draw-command
+// dispatch, wait), median over views x repeats, per patch; "empty" is a pass with no test.
+// Part 2: frames of sphere views drawn in full and with culling (cull pass + survivors in
+// one submission), medians of wall time and tessellation-evaluation invocations.
+#include "adapters/load_mesh.h"
+#include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/error.h"
+#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/view_sets.h"
+#include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/patch/refiner.h"
+#include "osd_cull/vk/context.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace osd_cull;
+
+struct Options {
+  std::string mesh = std::string(OSD_CULL_SOURCE_DIR) + "/../shared/data/characters/bigguy.obj";
+  std::vector<uint32_t> levels = {1, 2, 3};
+  std::vector<uint32_t> tess = {4, 8, 16};
+  uint32_t views = 20, width = 640, height = 480, repeats = 3;
+  std::string device;
+};
+
+std::vector<uint32_t> numbers(const std::string& text) {
+  std::vector<uint32_t> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(static_cast<uint32_t>(std::stoul(item)));
+  return out;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw Error(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--mesh")
+      o.mesh = next();
+    else if (a == "--levels")
+      o.levels = numbers(next());
+    else if (a == "--tess")
+      o.tess = numbers(next());
+    else if (a == "--views")
+      o.views = std::max(1u, numbers(next()).at(0));
+    else if (a == "--width")
+      o.width = numbers(next()).at(0);
+    else if (a == "--height")
+      o.height = numbers(next()).at(0);
+    else if (a == "--repeats")
+      o.repeats = std::max(1u, numbers(next()).at(0));
+    else if (a == "--device")
+      o.device = next();
+    else
+      throw Error("unknown option " + a + " (see the comment at the top of bench_cull.cpp)");
+  }
+  return o;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0
+                   : v.size() % 2 ? v[v.size() / 2]
+                                  : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+struct Mesh {
+  PatchSet patches;
+  bound::BackPatchValidity validity;
+};
+
+Mesh load(const std::string& path, uint32_t level) {
+  const CageMesh cage = adapters::loadCage(path);
+  PatchOptions options;
+  options.isolationLevel = static_cast<int>(level);
+  return {extractPatches(cage, options).patches,
+          bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage))};
+}
+
+frame::CullSettings settingsFor(const std::string& method, const bound::BackPatchValidity& v) {
+  frame::CullSettings s;
+  s.backPatchValidity = v;
+  s.frustum = method == "frustum" || method == "all";
+  if (method != "frustum" && method != "empty" && method != "all") s.backPatch = method;
+  if (method == "all") s.backPatch = "tangent-plane";
+  return s;
+}
+
+void kernelCost(vk::Context& context, const Options& o) {
+  std::printf("\n| level | patches | method | cull rate | ns/patch (median) | ms/pass |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  for (uint32_t level : o.levels) {
+    const Mesh mesh = load(o.mesh, level);
+    frame::GpuPatchSet gpu(context, mesh.patches);
+    frame::ViewSetOptions vo;
+    vo.count = o.views;
+    vo.width = o.width;
+    vo.height = o.height;
+    const auto cameras = frame::randomViews(frame::boundsOf(mesh.patches.points), vo);
+    const uint32_t n = mesh.patches.patchCount();
+    for (const std::string method :
+         {"empty", "frustum", "tcone", "ncone", "tangent-plane", "tangent-plane-16"}) {
+      frame::CullPass pass(context, gpu, mesh.patches, settingsFor(method, mesh.validity));
+      pass.run(cameras[0]);  // warm-up: first dispatch compiles the kernel
+      std::vector<double> ms;
+      uint64_t culled = 0;
+      for (const auto& camera : cameras)
+        for (uint32_t r = 0; r < o.repeats; ++r) {
+          ms.push_back(pass.run(camera));
+          if (r == 0) culled += n - pass.counts().survivors();
+        }
+      std::printf("| %u | %u | %s | %.1f%% | %.0f | %.3f |\n", level, n, method.c_str(),
+                  100.0 * double(culled) / double(n) / double(cameras.size()),
+                  median(ms) * 1e6 / n, median(ms));
+      std::fflush(stdout);
+    }
+  }
+}
+
+void frameSavings(vk::Context& context, const Options& o) {
+  const uint32_t level = o.levels.size() > 1 ? o.levels[1] : o.levels.at(0);
+  const Mesh mesh = load(o.mesh, level);
+  frame::GpuPatchSet gpu(context, mesh.patches);
+  frame::Renderer renderer(context);
+  frame::RenderTarget target(context, o.width, o.height);
+  frame::ViewSetOptions vo;
+  vo.count = o.views;
+  vo.width = o.width;
+  vo.height = o.height;
+  const auto cameras = frame::randomViews(frame::boundsOf(mesh.patches.points), vo);
+  std::printf("\nlevel %u, %u patches, %u sphere views, %ux%u, %u repeats\n\n", level,
+              mesh.patches.patchCount(), o.views, o.width, o.height, o.repeats);
+  std::printf(
+      "| tess | cull | patches drawn | TES invocations | frame ms (median) | ratio to none |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  for (uint32_t tess : o.tess) {
+    frame::RenderOptions options;
+    options.tessellation.uniformLevel = tess;
+    double noneMs = 0.0;
+    for (const std::string mode : {"none", "tcone", "tangent-plane", "all"}) {
+      std::unique_ptr<frame::CullPass> pass;
+      if (mode != "none")
+        pass = std::make_unique<frame::CullPass>(context, gpu, mesh.patches,
+                                                 settingsFor(mode, mesh.validity));
+      const frame::PatchDraw draw{&gpu, &mesh.patches, 0};
+      auto frameOnce = [&](const frame::Camera& camera) {
+        return pass ? frame::renderCulled(renderer, target, camera, *pass, {}, options)
+                    : renderer.render(target, camera, {&draw, 1}, {}, options);
+      };
+      frameOnce(cameras[0]);  // warm-up
+      std::vector<double> ms, tes, drawn;
+      for (const auto& camera : cameras)
+        for (uint32_t r = 0; r < o.repeats; ++r) {
+          const frame::FrameStats s = frameOnce(camera);
+          ms.push_back(s.wallMs);
+          tes.push_back(double(s.statistics.tessEvaluationInvocations));
+          drawn.push_back(s.patchesDrawn);
+        }
+      const double m = median(ms);
+      if (mode == "none") noneMs = m;
+      std::printf("| %u | %s | %.0f | %.0f | %.2f | %.2f |\n", tess, mode.c_str(), median(drawn),
+                  median(tes), m, m / noneMs);
+      std::fflush(stdout);
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    vk::ContextOptions co;
+    co.device = o.device;
+    vk::Context context(co);
+    std::printf("bench-cull: %s on %s\n", o.mesh.c_str(), context.info().name.c_str());
+    kernelCost(context, o);
+    frameSavings(context, o);
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench-cull: %s\n", e.what());
+    return 1;
+  }
+}
