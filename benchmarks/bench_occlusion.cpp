@@ -26,6 +26,8 @@
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/vk/context.h"
 
+#include <opensubdiv/far/primvarRefiner.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -388,8 +390,45 @@ void firstFrames(vk::Context& context, const Scene& scene, const Options& o) {
   }
 }
 
+// A vertex for Far::PrimvarRefiner.
+struct RefinedPoint {
+  glm::dvec3 p{0.0};
+  void Clear() { p = glm::dvec3(0.0); }
+  void AddWithWeight(const RefinedPoint& src, float weight) { p += double(weight) * src.p; }
+};
+
+// The paper's "1-4 split" (Niessner & Loop §6.2): the cage after one uniform Catmull-Clark
+// step, as a new cage with the same limit surface. Only for cages without creases, corners
+// or holes (BigGuy), whose tags would otherwise need carrying over.
+CageMesh splitOnce(const CageMesh& cage) {
+  if (!cage.creases.empty() || !cage.corners.empty() || !cage.holes.empty())
+    throw Error("splitOnce: " + cage.source + " has tags; only plain cages are split");
+  auto refiner = makeTopologyRefiner(cage);
+  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(1));
+  std::vector<RefinedPoint> base(cage.positions.size());
+  for (size_t i = 0; i < base.size(); ++i) base[i].p = cage.positions[i];
+  const Far::TopologyLevel& level = refiner->GetLevel(1);
+  std::vector<RefinedPoint> fine(static_cast<size_t>(level.GetNumVertices()));
+  const RefinedPoint* src = base.data();
+  RefinedPoint* dst = fine.data();
+  Far::PrimvarRefiner(*refiner).Interpolate(1, src, dst);
+  CageMesh out = cage;
+  out.source = cage.source + " (split once)";
+  out.positions.clear();
+  for (const auto& v : fine) out.positions.push_back(v.p);
+  out.faceSizes.clear();
+  out.faceVertices.clear();
+  for (int f = 0; f < level.GetNumFaces(); ++f) {
+    const auto verts = level.GetFaceVertices(f);
+    out.faceSizes.push_back(verts.size());
+    for (int i = 0; i < verts.size(); ++i) out.faceVertices.push_back(verts[i]);
+  }
+  return out;
+}
+
 // `names`: comma-separated among default, bigguy0, bigguy1, bigguy2, ... (BigGuy at that
-// isolation level; skipped with a note when the data folder is missing).
+// isolation level) and bigguy-split (BigGuy split once, level 0: the paper's 1-4 split);
+// BigGuy is skipped with a note when the data folder is missing.
 std::vector<Scene> scenes(const std::string& names) {
   std::vector<Scene> out;
   std::stringstream list(names);
@@ -404,16 +443,18 @@ std::vector<Scene> scenes(const std::string& names) {
                      demo.up,
                      demo.viewDirection,
                      {true, "built-in scene: closed, outward cages"}});
-    } else if (name.rfind("bigguy", 0) == 0 && name.size() == 7) {
+    } else if (name.rfind("bigguy", 0) == 0 && (name.size() == 7 || name == "bigguy-split")) {
       const auto path = dataDir() / "characters" / "bigguy.obj";
       if (!std::filesystem::exists(path)) {
         std::printf("(%s skipped: %s not found)\n", name.c_str(), path.string().c_str());
         continue;
       }
+      const bool split = name == "bigguy-split";
       PatchOptions options;
-      options.isolationLevel = name[6] - '0';
-      const CageMesh cage = adapters::loadCage(path);
-      Scene s{"BigGuy level " + name.substr(6),
+      options.isolationLevel = split ? 0 : name[6] - '0';
+      const CageMesh cage =
+          split ? splitOnce(adapters::loadCage(path)) : adapters::loadCage(path);
+      Scene s{split ? std::string("BigGuy split once, level 0") : "BigGuy level " + name.substr(6),
               extractPatches(cage, options).patches,
               {},
               {0, 1, 0},
