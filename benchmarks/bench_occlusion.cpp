@@ -12,9 +12,12 @@
 //   bench-occlusion [--width 1024] [--height 768] [--views 1000] [--orbit-degrees 360]
 //                   [--sequence 300] [--repeats 3] [--only 12345]
 //                   [--scenes default,bigguy0,bigguy1,bigguy2] [--device X] [--csv FILE]
+//                   [--cull-back-faces]
 //
 // --csv FILE writes the rotation sweep (2) as CSV (scripts/plots/occlusion_rotation.py
-// draws it). Progress goes to stderr.
+// draws it). --cull-back-faces turns on the rasterizer's back-face culling in the culled and
+// unculled draws (the paper's setting; the oracle keeps drawing both sides). Progress goes
+// to stderr.
 #include "adapters/load_mesh.h"
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/error.h"
@@ -52,6 +55,7 @@ struct Options {
   std::string scenes = "default,bigguy0,bigguy1,bigguy2";
   std::string device;
   std::string csv;  ///< rotation sweep as CSV, if set
+  bool cullBackFaces = false;  ///< rasterizer back-face culling in every draw
 };
 
 // Progress on stderr: what runs, and seconds since the start.
@@ -90,6 +94,8 @@ Options parse(int argc, char** argv) {
       o.device = next();
     else if (a == "--csv")
       o.csv = next();
+    else if (a == "--cull-back-faces")
+      o.cullBackFaces = true;
     else
       throw Error("unknown option " + a + " (see the comment at the top of bench_occlusion.cpp)");
   }
@@ -139,9 +145,11 @@ glm::dvec3 upFor(const glm::dvec3& direction, const glm::dvec3& up) {
 
 // The frame's default stages (frustum and Hi-Z occlusion) or, with `all`, frustum,
 // tangent-plane back-patch (where valid) and Hi-Z occlusion in the same kernel.
-frame::CullFrameOptions cullOptions(uint32_t tess, const Scene* all = nullptr) {
+frame::CullFrameOptions cullOptions(const Options& options, uint32_t tess,
+                                    const Scene* all = nullptr) {
   frame::CullFrameOptions o;
   o.render.tessellation.uniformLevel = tess;
+  o.render.cullBackFaces = options.cullBackFaces;
   if (all) o.cull = {true, "tangent-plane", "hiz", all->validity};
   return o;
 }
@@ -155,11 +163,11 @@ void cullRates(vk::Context& context, const Scene& scene, const Options& o) {
   frame::Renderer renderer(context);
   frame::VisibilityOracle oracle(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(4));
-  frame::CullFrameOptions tightOptions = cullOptions(4);
+  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(o, 4));
+  frame::CullFrameOptions tightOptions = cullOptions(o, 4);
   tightOptions.hiz.lookup = bound::HiZLookup::Tight;
   frame::CullFrame tight(context, renderer, target, meshes, tightOptions);
-  frame::CullFrame all(context, renderer, target, meshes, cullOptions(4, &scene));
+  frame::CullFrame all(context, renderer, target, meshes, cullOptions(o, 4, &scene));
   std::mt19937_64 rng(2012);
   uint64_t culled = 0, culledTight = 0, culledAll = 0, invisible = 0, total = 0;
   for (uint32_t v = 0; v < o.views; ++v) {
@@ -197,7 +205,7 @@ void rotationRates(vk::Context& context, const Scene& scene, const Options& o, F
   frame::RenderTarget target(context, o.width, o.height);
   frame::Renderer renderer(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(4));
+  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(o, 4));
   const frame::Camera start =
       frame::frameBounds(g.bounds, scene.viewDirection, scene.up, 40.0, o.width, o.height);
   for (double speed = 0.0; speed <= 10.0; speed += 1.0) {
@@ -254,7 +262,7 @@ void frameCosts(vk::Context& context, const Scene& scene, const Options& o) {
            {frame::CullDrawMode::Filtered, frame::CullDrawMode::TessFactorZero}) {
         progress("3. " + scene.name + ": tess " + std::to_string(tess) +
                  (allStages ? ", all stages, " : ", frustum + occlusion, ") + toString(mode));
-        frame::CullFrameOptions co = cullOptions(tess, allStages ? &scene : nullptr);
+        frame::CullFrameOptions co = cullOptions(o, tess, allStages ? &scene : nullptr);
         co.drawMode = mode;
         frame::CullFrame cull(context, renderer, target, meshes, co);
         std::vector<double> ratio, overhead, culledMs, plainMs;
@@ -298,7 +306,7 @@ void sequence(vk::Context& context, const Scene& scene, const Options& o, bool a
   frame::RenderTarget target(context, o.width, o.height), plain(context, o.width, o.height);
   frame::Renderer renderer(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrameOptions co = cullOptions(4, allStages ? &scene : nullptr);
+  frame::CullFrameOptions co = cullOptions(o, 4, allStages ? &scene : nullptr);
   co.aggressive = aggressive;
   frame::CullFrame cull(context, renderer, target, meshes, co);
   frame::Camera cam =
@@ -360,7 +368,7 @@ void firstFrames(vk::Context& context, const Scene& scene, const Options& o) {
   for (frame::FirstFrame policy : {frame::FirstFrame::AllVisible, frame::FirstFrame::HalfVisible,
                                    frame::FirstFrame::NoneVisible}) {
     progress("5. " + scene.name + ": first frame " + toString(policy));
-    frame::CullFrameOptions co = cullOptions(4);
+    frame::CullFrameOptions co = cullOptions(o, 4);
     co.firstFrame = policy;
     frame::CullFrame cull(context, renderer, target, meshes, co);
     std::mt19937_64 rng(77);
@@ -478,8 +486,9 @@ int main(int argc, char** argv) {
     contextOptions.device = o.device;
     vk::Context context(contextOptions);
     const std::vector<Scene> all = scenes(o.scenes);
-    std::printf("device: %s; image %ux%u; Hi-Z top level at half resolution\n\n",
-                context.info().name.c_str(), o.width, o.height);
+    std::printf("device: %s; image %ux%u; Hi-Z top level at half resolution; back faces %s\n\n",
+                context.info().name.c_str(), o.width, o.height,
+                o.cullBackFaces ? "culled" : "drawn");
     auto want = [&](char c) { return o.only.find(c) != std::string::npos; };
     if (want('1')) {
       std::printf("## Occlusion cull rate, whole-object views\n\n");
