@@ -11,7 +11,13 @@
 //
 //   bench-occlusion [--width 1024] [--height 768] [--views 1000] [--orbit-degrees 360]
 //                   [--sequence 300] [--repeats 3] [--only 12345]
-//                   [--scenes default,bigguy0,bigguy1,bigguy2] [--device X]
+//                   [--scenes default,bigguy0,bigguy1,bigguy2] [--device X] [--csv FILE]
+//                   [--cull-back-faces]
+//
+// --csv FILE writes the rotation sweep (2) as CSV (scripts/plots/occlusion_rotation.py
+// draws it). --cull-back-faces turns on the rasterizer's back-face culling in the culled and
+// unculled draws (the paper's setting; the oracle keeps drawing both sides). Progress goes
+// to stderr.
 #include "adapters/load_mesh.h"
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/error.h"
@@ -23,10 +29,14 @@
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/vk/context.h"
 
+#include <opensubdiv/far/primvarRefiner.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -44,7 +54,16 @@ struct Options {
   std::string only = "12345";
   std::string scenes = "default,bigguy0,bigguy1,bigguy2";
   std::string device;
+  std::string csv;  ///< rotation sweep as CSV, if set
+  bool cullBackFaces = false;  ///< rasterizer back-face culling in every draw
 };
+
+// Progress on stderr: what runs, and seconds since the start.
+void progress(const std::string& what) {
+  static const auto start = std::chrono::steady_clock::now();
+  const std::chrono::duration<double> t = std::chrono::steady_clock::now() - start;
+  std::fprintf(stderr, "[%7.1f s] %s\n", t.count(), what.c_str());
+}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -73,6 +92,10 @@ Options parse(int argc, char** argv) {
       o.scenes = next();
     else if (a == "--device")
       o.device = next();
+    else if (a == "--csv")
+      o.csv = next();
+    else if (a == "--cull-back-faces")
+      o.cullBackFaces = true;
     else
       throw Error("unknown option " + a + " (see the comment at the top of bench_occlusion.cpp)");
   }
@@ -122,9 +145,11 @@ glm::dvec3 upFor(const glm::dvec3& direction, const glm::dvec3& up) {
 
 // The frame's default stages (frustum and Hi-Z occlusion) or, with `all`, frustum,
 // tangent-plane back-patch (where valid) and Hi-Z occlusion in the same kernel.
-frame::CullFrameOptions cullOptions(uint32_t tess, const Scene* all = nullptr) {
+frame::CullFrameOptions cullOptions(const Options& options, uint32_t tess,
+                                    const Scene* all = nullptr) {
   frame::CullFrameOptions o;
   o.render.tessellation.uniformLevel = tess;
+  o.render.cullBackFaces = options.cullBackFaces;
   if (all) o.cull = {true, "tangent-plane", "hiz", all->validity};
   return o;
 }
@@ -138,14 +163,15 @@ void cullRates(vk::Context& context, const Scene& scene, const Options& o) {
   frame::Renderer renderer(context);
   frame::VisibilityOracle oracle(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(4));
-  frame::CullFrameOptions tightOptions = cullOptions(4);
+  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(o, 4));
+  frame::CullFrameOptions tightOptions = cullOptions(o, 4);
   tightOptions.hiz.lookup = bound::HiZLookup::Tight;
   frame::CullFrame tight(context, renderer, target, meshes, tightOptions);
-  frame::CullFrame all(context, renderer, target, meshes, cullOptions(4, &scene));
+  frame::CullFrame all(context, renderer, target, meshes, cullOptions(o, 4, &scene));
   std::mt19937_64 rng(2012);
   uint64_t culled = 0, culledTight = 0, culledAll = 0, invisible = 0, total = 0;
   for (uint32_t v = 0; v < o.views; ++v) {
+    if (v % 100 == 0) progress("1. " + scene.name + ": view " + std::to_string(v));
     const glm::dvec3 dir = randomDirection(rng);
     const frame::Camera cam =
         frame::frameBounds(g.bounds, dir, upFor(dir, scene.up), 40.0, o.width, o.height);
@@ -170,25 +196,34 @@ void cullRates(vk::Context& context, const Scene& scene, const Options& o) {
 // 2. Cull rate while the camera orbits the object at `speed` degrees per frame, over one
 // orbit of `--orbit-degrees` (every speed sees the same views). Frame 0 (everything visible
 // before) is left out. Speed 0 is the static camera at the orbit's views every 10 degrees,
-// each settled (everything visible before the frame: the pyramid holds the full depth).
-void rotationRates(vk::Context& context, const Scene& scene, const Options& o) {
+// each settled: a first frame with everything visible before it, then the counted frame
+// with the same camera. Besides the occlusion cull rate (patches the test culls) it counts
+// patches not drawn at all in the frame: culled patches that were visible last frame are
+// still drawn in pass 1. `csv`, if open, gets one row per speed.
+void rotationRates(vk::Context& context, const Scene& scene, const Options& o, FILE* csv) {
   GpuScene g(context, scene);
   frame::RenderTarget target(context, o.width, o.height);
   frame::Renderer renderer(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(4));
+  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(o, 4));
   const frame::Camera start =
       frame::frameBounds(g.bounds, scene.viewDirection, scene.up, 40.0, o.width, o.height);
   for (double speed = 0.0; speed <= 10.0; speed += 1.0) {
-    uint64_t culled = 0, total = 0, pass2 = 0, frames = 0;
+    progress("2. " + scene.name + ": " + std::to_string(int(speed)) + " degrees per frame");
+    uint64_t culled = 0, total = 0, pass2 = 0, drawn = 0, frames = 0;
+    auto count = [&](const frame::CullFrameStats& s) {
+      culled += s.culledOcclusion;
+      total += s.patchesTotal;
+      pass2 += s.drawnPass2;
+      drawn += s.drawnPass1 + s.drawnPass2;
+      ++frames;
+    };
     if (speed == 0.0) {
       for (double a = 0.0; a < o.orbitDegrees; a += 10.0) {
+        const frame::Camera cam = frame::orbit(start, g.bounds.center(), scene.up, a);
         cull.reset(frame::FirstFrame::AllVisible);
-        const auto s =
-            cull.render(frame::orbit(start, g.bounds.center(), scene.up, a), g.occluders);
-        culled += s.culledOcclusion;
-        total += s.patchesTotal;
-        ++frames;
+        cull.render(cam, g.occluders);
+        count(cull.render(cam, g.occluders));
       }
     } else {
       cull.reset(frame::FirstFrame::AllVisible);
@@ -196,17 +231,19 @@ void rotationRates(vk::Context& context, const Scene& scene, const Options& o) {
       for (uint32_t f = 0; f <= n; ++f) {
         const auto s =
             cull.render(frame::orbit(start, g.bounds.center(), scene.up, speed * f), g.occluders);
-        if (f == 0) continue;
-        culled += s.culledOcclusion;
-        total += s.patchesTotal;
-        pass2 += s.drawnPass2;
-        ++frames;
+        if (f > 0) count(s);
       }
     }
-    std::printf("| %s | %.0f | %llu | %.1f%% | %.1f |\n", scene.name.c_str(), speed,
-                static_cast<unsigned long long>(frames), 100.0 * culled / total,
+    const double rate = 100.0 * double(culled) / double(total);
+    const double notDrawn = 100.0 * double(total - drawn) / double(total);
+    std::printf("| %s | %.0f | %llu | %.1f%% | %.1f%% | %.1f |\n", scene.name.c_str(), speed,
+                static_cast<unsigned long long>(frames), rate, notDrawn,
                 double(pass2) / double(frames));
     std::fflush(stdout);
+    if (csv)
+      std::fprintf(csv, "%s,%.0f,%llu,%.4f,%.4f,%.2f\n", scene.name.c_str(), speed,
+                   static_cast<unsigned long long>(frames), rate, notDrawn,
+                   double(pass2) / double(frames));
   }
 }
 
@@ -223,7 +260,9 @@ void frameCosts(vk::Context& context, const Scene& scene, const Options& o) {
     for (bool allStages : {false, true})
       for (frame::CullDrawMode mode :
            {frame::CullDrawMode::Filtered, frame::CullDrawMode::TessFactorZero}) {
-        frame::CullFrameOptions co = cullOptions(tess, allStages ? &scene : nullptr);
+        progress("3. " + scene.name + ": tess " + std::to_string(tess) +
+                 (allStages ? ", all stages, " : ", frustum + occlusion, ") + toString(mode));
+        frame::CullFrameOptions co = cullOptions(o, tess, allStages ? &scene : nullptr);
         co.drawMode = mode;
         frame::CullFrame cull(context, renderer, target, meshes, co);
         std::vector<double> ratio, overhead, culledMs, plainMs;
@@ -267,7 +306,7 @@ void sequence(vk::Context& context, const Scene& scene, const Options& o, bool a
   frame::RenderTarget target(context, o.width, o.height), plain(context, o.width, o.height);
   frame::Renderer renderer(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrameOptions co = cullOptions(4, allStages ? &scene : nullptr);
+  frame::CullFrameOptions co = cullOptions(o, 4, allStages ? &scene : nullptr);
   co.aggressive = aggressive;
   frame::CullFrame cull(context, renderer, target, meshes, co);
   frame::Camera cam =
@@ -277,6 +316,8 @@ void sequence(vk::Context& context, const Scene& scene, const Options& o, bool a
   std::uniform_real_distribution<double> speed(10.0, 30.0);
   uint64_t uncovered = 0, different = 0, pixels = 0;
   uint32_t framesUncovered = 0, framesDifferent = 0, maxDifferent = 0;
+  progress(std::string("4. ") + scene.name + (allStages ? ", all stages" : "") +
+           (aggressive ? ", aggressive" : ", two-pass"));
   for (uint32_t f = 0; f < o.sequence; ++f) {
     const glm::dvec3 axis =
         (f / 50) % 2 ? scene.up : glm::dvec3(scene.up.z, scene.up.x, scene.up.y);
@@ -315,8 +356,6 @@ std::filesystem::path dataDir() {
   return std::filesystem::path(OSD_CULL_SOURCE_DIR) / ".." / "shared" / "data";
 }
 
-// `names`: comma-separated among default, bigguy0, bigguy1, bigguy2, ... (BigGuy at that
-// isolation level; skipped with a note when the data folder is missing).
 // 5. The first frame under each first-frame policy (averaged over whole-object views): what
 // each pass draws and the tessellation work, against drawing everything once.
 void firstFrames(vk::Context& context, const Scene& scene, const Options& o) {
@@ -328,7 +367,8 @@ void firstFrames(vk::Context& context, const Scene& scene, const Options& o) {
   const uint32_t views = std::max(1u, std::min(o.views, 50u));
   for (frame::FirstFrame policy : {frame::FirstFrame::AllVisible, frame::FirstFrame::HalfVisible,
                                    frame::FirstFrame::NoneVisible}) {
-    frame::CullFrameOptions co = cullOptions(4);
+    progress("5. " + scene.name + ": first frame " + toString(policy));
+    frame::CullFrameOptions co = cullOptions(o, 4);
     co.firstFrame = policy;
     frame::CullFrame cull(context, renderer, target, meshes, co);
     std::mt19937_64 rng(77);
@@ -358,6 +398,45 @@ void firstFrames(vk::Context& context, const Scene& scene, const Options& o) {
   }
 }
 
+// A vertex for Far::PrimvarRefiner.
+struct RefinedPoint {
+  glm::dvec3 p{0.0};
+  void Clear() { p = glm::dvec3(0.0); }
+  void AddWithWeight(const RefinedPoint& src, float weight) { p += double(weight) * src.p; }
+};
+
+// The paper's "1-4 split" (Niessner & Loop §6.2): the cage after one uniform Catmull-Clark
+// step, as a new cage with the same limit surface. Only for cages without creases, corners
+// or holes (BigGuy), whose tags would otherwise need carrying over.
+CageMesh splitOnce(const CageMesh& cage) {
+  if (!cage.creases.empty() || !cage.corners.empty() || !cage.holes.empty())
+    throw Error("splitOnce: " + cage.source + " has tags; only plain cages are split");
+  auto refiner = makeTopologyRefiner(cage);
+  refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(1));
+  std::vector<RefinedPoint> base(cage.positions.size());
+  for (size_t i = 0; i < base.size(); ++i) base[i].p = cage.positions[i];
+  const Far::TopologyLevel& level = refiner->GetLevel(1);
+  std::vector<RefinedPoint> fine(static_cast<size_t>(level.GetNumVertices()));
+  const RefinedPoint* src = base.data();
+  RefinedPoint* dst = fine.data();
+  Far::PrimvarRefiner(*refiner).Interpolate(1, src, dst);
+  CageMesh out = cage;
+  out.source = cage.source + " (split once)";
+  out.positions.clear();
+  for (const auto& v : fine) out.positions.push_back(v.p);
+  out.faceSizes.clear();
+  out.faceVertices.clear();
+  for (int f = 0; f < level.GetNumFaces(); ++f) {
+    const auto verts = level.GetFaceVertices(f);
+    out.faceSizes.push_back(verts.size());
+    for (int i = 0; i < verts.size(); ++i) out.faceVertices.push_back(verts[i]);
+  }
+  return out;
+}
+
+// `names`: comma-separated among default, bigguy0, bigguy1, bigguy2, ... (BigGuy at that
+// isolation level) and bigguy-split (BigGuy split once, level 0: the paper's 1-4 split);
+// BigGuy is skipped with a note when the data folder is missing.
 std::vector<Scene> scenes(const std::string& names) {
   std::vector<Scene> out;
   std::stringstream list(names);
@@ -372,16 +451,18 @@ std::vector<Scene> scenes(const std::string& names) {
                      demo.up,
                      demo.viewDirection,
                      {true, "built-in scene: closed, outward cages"}});
-    } else if (name.rfind("bigguy", 0) == 0 && name.size() == 7) {
+    } else if (name.rfind("bigguy", 0) == 0 && (name.size() == 7 || name == "bigguy-split")) {
       const auto path = dataDir() / "characters" / "bigguy.obj";
       if (!std::filesystem::exists(path)) {
         std::printf("(%s skipped: %s not found)\n", name.c_str(), path.string().c_str());
         continue;
       }
+      const bool split = name == "bigguy-split";
       PatchOptions options;
-      options.isolationLevel = name[6] - '0';
-      const CageMesh cage = adapters::loadCage(path);
-      Scene s{"BigGuy level " + name.substr(6),
+      options.isolationLevel = split ? 0 : name[6] - '0';
+      const CageMesh cage =
+          split ? splitOnce(adapters::loadCage(path)) : adapters::loadCage(path);
+      Scene s{split ? std::string("BigGuy split once, level 0") : "BigGuy level " + name.substr(6),
               extractPatches(cage, options).patches,
               {},
               {0, 1, 0},
@@ -405,8 +486,9 @@ int main(int argc, char** argv) {
     contextOptions.device = o.device;
     vk::Context context(contextOptions);
     const std::vector<Scene> all = scenes(o.scenes);
-    std::printf("device: %s; image %ux%u; Hi-Z top level at half resolution\n\n",
-                context.info().name.c_str(), o.width, o.height);
+    std::printf("device: %s; image %ux%u; Hi-Z top level at half resolution; back faces %s\n\n",
+                context.info().name.c_str(), o.width, o.height,
+                o.cullBackFaces ? "culled" : "drawn");
     auto want = [&](char c) { return o.only.find(c) != std::string::npos; };
     if (want('1')) {
       std::printf("## Occlusion cull rate, whole-object views\n\n");
@@ -420,9 +502,18 @@ int main(int argc, char** argv) {
       std::printf("\n## Cull rate against rotation speed (orbit of %.0f degrees)\n\n",
                   o.orbitDegrees);
       std::printf(
-          "| scene | degrees / frame | frames | occlusion cull rate | patches drawn in pass 2 |\n");
-      std::printf("|---|---:|---:|---:|---:|\n");
-      for (const Scene& s : all) rotationRates(context, s, o);
+          "| scene | degrees / frame | frames | occlusion cull rate | not drawn in the frame | "
+          "patches drawn in pass 2 |\n");
+      std::printf("|---|---:|---:|---:|---:|---:|\n");
+      std::unique_ptr<FILE, int (*)(FILE*)> csv(nullptr, &std::fclose);
+      if (!o.csv.empty()) {
+        csv.reset(std::fopen(o.csv.c_str(), "w"));
+        if (!csv) throw Error("--csv: cannot write " + o.csv);
+        std::fprintf(csv.get(),
+                     "scene,degrees_per_frame,frames,occlusion_cull_rate_percent,"
+                     "not_drawn_percent,pass2_patches_per_frame\n");
+      }
+      for (const Scene& s : all) rotationRates(context, s, o, csv.get());
     }
     if (want('3')) {
       std::printf("\n## Frame cost with and without culling (medians over %u frames)\n\n",
@@ -453,6 +544,7 @@ int main(int argc, char** argv) {
         sequence(context, s, o, true, true);
       }
     }
+    progress("done");
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench-occlusion: %s\n", e.what());

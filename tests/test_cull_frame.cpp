@@ -1,18 +1,18 @@
 // The two-pass frame with temporal visibility (Niessner & Loop §3): the image equals the
 // unculled image frame after frame, occlusion-culled patches are invisible in the oracle,
 // both draw modes and every first-frame policy agree, at odd and tiny sizes and with the
-// camera inside the scene.
-#include "adapters/load_mesh.h"
+// camera inside the scene, with all cull stages in one kernel, for several meshes and
+// several views sharing them.
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/visibility_oracle.h"
-#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/default_scene.h"
 #include "support/cull_test_meshes.h"
 #include "support/test_data.h"
 #include "support/vk_test_context.h"
 
 #include <gtest/gtest.h>
+#include <shared/draw_layout.h>
 
 #include <cstdio>
 
@@ -317,6 +317,77 @@ TEST_F(CullFrameTest, StatusViewColorsEveryPatch) {
   cull.render(camera(w, h, 0.0), occluders_);
   const auto s = cull.renderStatusView(view, camera(w, h, 180.0), occluders_);
   EXPECT_EQ(s.patchesDrawn, scene_.patches.patchCount());
+}
+
+TEST_F(CullFrameTest, TwoViewsShareTheMeshesWithTheirOwnStatus) {
+  // Two cameras looking from opposite sides at the same patch set: each view keeps its own
+  // visibility, so each frame is right for its camera although the other view sees the
+  // back of what it sees.
+  const uint32_t w = 128, h = 96;
+  frame::RenderTarget a(context(), w, h), b(context(), w, h), reference(context(), w, h);
+  const frame::CullMesh meshes[] = {mesh()};
+  const auto o = options(CullDrawMode::Filtered, FirstFrame::AllVisible, false);
+  frame::CullFrame front(context(), *renderer_, a, meshes, o);
+  frame::CullFrame back(context(), *renderer_, b, meshes, o);
+  frame::CullFrameStats lastA, lastB;
+  for (int f = 0; f < 3; ++f) {
+    const frame::Camera ca = camera(w, h, 5.0 * f), cb = camera(w, h, 180.0 + 5.0 * f);
+    const auto sa = front.render(ca, occluders_);
+    const auto sb = back.render(cb, occluders_);
+    if (f > 0) {  // each view's first pass draws what survived in that view
+      EXPECT_EQ(sa.drawnPass1, lastA.survivors);
+      EXPECT_EQ(sb.drawnPass1, lastB.survivors);
+    }
+    lastA = sa;
+    lastB = sb;
+    const ImageDiff da = compare(a, reference, ca, o.render);
+    const ImageDiff db = compare(b, reference, cb, o.render);
+    EXPECT_EQ(da.uncovered + db.uncovered, 0u) << "frame " << f;
+    EXPECT_LE((da.different + db.different) * 10000.0, double(da.pixels + db.pixels));
+    EXPECT_GT(sa.culledOcclusion, 0u);
+    EXPECT_GT(sb.culledOcclusion, 0u);
+  }
+  // The views disagree about which patches are visible.
+  const auto statusA = front.visibility(0).readStatus(context());
+  const auto statusB = back.visibility(0).readStatus(context());
+  uint32_t differ = 0;
+  for (size_t p = 0; p < statusA.size(); ++p)
+    differ += (statusA[p] & shader::kStatusVisible) != (statusB[p] & shader::kStatusVisible);
+  EXPECT_GT(differ, statusA.size() / 10);
+}
+
+TEST_F(CullFrameTest, SeveralMeshesEachWithItsOwnStatusAndItemRange) {
+  // The built-in scene and a torus patch set in front of it, as two meshes of one frame;
+  // item values are itemBase(m) + p + 1.
+  const PatchSet torus = frame::translated(frame::bsplineTorus({10, 6, 1.2, 0.5, {0, 0, 0}, -1}),
+                                           bounds_.center() + glm::dvec3(0, -4.0, 0));
+  frame::GpuPatchSet torusGpu(context(), torus);
+  const uint32_t w = 160, h = 120;
+  frame::RenderTarget target(context(), w, h), reference(context(), w, h);
+  const frame::CullMesh meshes[] = {mesh(), {&torusGpu, &torus}};
+  const auto o = options(CullDrawMode::Filtered, FirstFrame::HalfVisible, false);
+  frame::CullFrame cull(context(), *renderer_, target, meshes, o);
+  ASSERT_EQ(cull.meshCount(), 2u);
+  EXPECT_EQ(cull.itemBase(1), scene_.patches.patchCount());
+  const frame::PatchDraw draws[] = {{gpu_.get(), &scene_.patches, 0},
+                                    {&torusGpu, &torus, scene_.patches.patchCount()}};
+  for (int f = 0; f < 3; ++f) {
+    const frame::Camera cam = camera(w, h, 10.0 * f);
+    const auto s = cull.render(cam, occluders_);
+    EXPECT_EQ(s.patchesTotal, scene_.patches.patchCount() + torus.patchCount());
+    renderer_->render(reference, cam, draws, occluders_, o.render);
+    const auto items = target.readItems(context()), full = reference.readItems(context());
+    uint32_t uncovered = 0, different = 0, torusPixels = 0;
+    for (size_t i = 0; i < items.size(); ++i) {
+      uncovered += full[i] != 0 && items[i] == 0;
+      different += full[i] != items[i];
+      torusPixels += items[i] > scene_.patches.patchCount() && items[i] != shader::kItemOccluder;
+    }
+    EXPECT_EQ(uncovered, 0u) << "frame " << f;
+    EXPECT_LE(different * 10000.0, double(items.size())) << "frame " << f;
+    EXPECT_GT(torusPixels, 0u);
+    EXPECT_EQ(cull.readResults(1).size(), torus.patchCount());
+  }
 }
 
 }  // namespace
