@@ -241,7 +241,7 @@ void rotationRates(vk::Context& context, const Scene& scene, const Options& o, F
                 double(pass2) / double(frames));
     std::fflush(stdout);
     if (csv)
-      std::fprintf(csv, "%s,%.0f,%llu,%.4f,%.4f,%.2f\n", scene.name.c_str(), speed,
+      std::fprintf(csv, "\"%s\",%.0f,%llu,%.4f,%.4f,%.2f\n", scene.name.c_str(), speed,
                    static_cast<unsigned long long>(frames), rate, notDrawn,
                    double(pass2) / double(frames));
   }

@@ -5,7 +5,7 @@ Reads the CSVs that `bench-occlusion --csv FILE` writes for its rotation sweep a
 SVG (python3 standard library only):
 
     scripts/plots/occlusion_rotation.py docs/results/occlusion/rotation.svg \
-        docs/results/occlusion/rotation.csv [more.csv ...] [--scenes "BigGuy level 0,..."]
+        docs/results/occlusion/rotation.csv [more.csv ...] [--scenes "BigGuy level 0;..."]
 
 Per scene two lines: the occlusion cull rate (patches the Hi-Z test culls; dashed) and the
 share of patches not drawn at all in the frame (solid; culled patches that were visible
@@ -117,11 +117,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("svg", help="output file")
     parser.add_argument("csv", nargs="+", help="bench-occlusion --csv files")
-    parser.add_argument("--scenes", help="comma-separated scene names (default: all in the CSV)")
+    parser.add_argument("--scenes", help="scene names separated by semicolons (default: all in the CSVs)")
     args = parser.parse_args()
     scenes = read_rows(args.csv)
     if args.scenes:
-        wanted = [s.strip() for s in args.scenes.split(",")]
+        wanted = [s.strip() for s in args.scenes.split(";")]
         missing = [s for s in wanted if s not in scenes]
         if missing:
             sys.exit(f"scenes not in {', '.join(args.csv)}: {', '.join(missing)}")
