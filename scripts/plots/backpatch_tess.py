@@ -24,7 +24,7 @@ def load(directory):
         mode, tess = m.group(1), int(m.group(2))
         doc = json.loads(path.read_text())
         for method in doc["methods"]:
-            rates.setdefault((mode, method["name"]), {})[tess] = 100.0 * method["cull_rate"]
+            rates.setdefault((mode, method["name"]), {})[tess] = 100.0 * method["cull_rate_bezier"]
     return rates
 
 
@@ -43,8 +43,8 @@ def svg(rates):
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            'font-family="sans-serif" font-size="12">',
            f'<rect width="{width}" height="{height}" fill="white"/>',
-           f'<text x="{left}" y="18" font-size="14">BigGuy level 2: back-patch cull rate '
-           '(all 5554 patches, 1,000 sphere views)</text>']
+           f'<text x="{left}" y="18" font-size="14">BigGuy level 2: back-patch cull rate of the Bézier patches '
+           '(sphere views, 256x256)</text>']
     for v in range(0, int(ymax) + 1, 10):
         out.append(f'<line x1="{left}" y1="{y(v):.1f}" x2="{width - right}" y2="{y(v):.1f}" '
                    'stroke="#ddd"/>')
