@@ -11,6 +11,7 @@
 // Part 2: frames of sphere views drawn in full and with culling (cull pass + survivors in
 // one submission), medians of wall time and tessellation-evaluation invocations.
 #include "adapters/load_mesh.h"
+#include "bench_support.h"
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_pass.h"
@@ -76,12 +77,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty()      ? 0.0
-         : v.size() % 2 ? v[v.size() / 2]
-                        : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+using osd_cull::bench::median;
 
 struct Mesh {
   PatchSet patches;

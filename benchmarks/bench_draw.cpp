@@ -9,6 +9,7 @@
 // FILE defaults to ../shared/data/characters/bigguy.obj beside the source tree; without it
 // (or with --mesh torus) a bicubic torus of BigGuy's size (--nu 96 --nv 58) stands in.
 #include "adapters/load_mesh.h"
+#include "bench_support.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/visibility_oracle.h"
@@ -62,10 +63,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+using osd_cull::bench::median;
 
 struct Row {
   double wallMs = 0, gpuMs = 0;

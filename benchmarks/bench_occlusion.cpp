@@ -19,6 +19,7 @@
 // unculled draws (the paper's setting; the oracle keeps drawing both sides). Progress goes
 // to stderr.
 #include "adapters/load_mesh.h"
+#include "bench_support.h"
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
@@ -54,7 +55,7 @@ struct Options {
   std::string only = "12345";
   std::string scenes = "default,bigguy0,bigguy1,bigguy2";
   std::string device;
-  std::string csv;  ///< rotation sweep as CSV, if set
+  std::string csv;             ///< rotation sweep as CSV, if set
   bool cullBackFaces = false;  ///< rasterizer back-face culling in every draw
 };
 
@@ -102,11 +103,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
+using osd_cull::bench::median;
 
 struct Scene {
   std::string name;
@@ -460,8 +457,7 @@ std::vector<Scene> scenes(const std::string& names) {
       const bool split = name == "bigguy-split";
       PatchOptions options;
       options.isolationLevel = split ? 0 : name[6] - '0';
-      const CageMesh cage =
-          split ? splitOnce(adapters::loadCage(path)) : adapters::loadCage(path);
+      const CageMesh cage = split ? splitOnce(adapters::loadCage(path)) : adapters::loadCage(path);
       Scene s{split ? std::string("BigGuy split once, level 0") : "BigGuy level " + name.substr(6),
               extractPatches(cage, options).patches,
               {},

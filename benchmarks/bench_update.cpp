@@ -8,6 +8,7 @@
 //
 // Usage: bench-update [MESH.obj] [--frames N] [--levels 1,2,3]
 #include "adapters/load_mesh.h"
+#include "bench_support.h"
 #include "osd_cull/error.h"
 #include "osd_cull/osd/gpu_point_update.h"
 #include "osd_cull/patch/extract_patches.h"
@@ -33,11 +34,7 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
+using osd_cull::bench::median;
 
 std::filesystem::path defaultMesh() {
   if (const char* dir = std::getenv("OSD_CULL_DATA_DIR"))
