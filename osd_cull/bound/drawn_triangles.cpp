@@ -36,6 +36,13 @@ Range innerRange(Range a, Range b, bool allOnes) {
   return r;
 }
 
+// R of the file comment: the largest distance of a control point from the eye.
+double maxDistance(std::span<const glm::dvec3> points, const glm::dvec3& eye) {
+  double r = 0.0;
+  for (const glm::dvec3& p : points) r = std::max(r, glm::length(eye - p));
+  return r;
+}
+
 }  // namespace
 
 TriangleShape triangleShape(const QuadTessLevels& levels, double slack) {
@@ -177,8 +184,7 @@ double normalDeviation(const DerivativeBounds& d, const TriangleShape& shape, do
 double tangentPlaneDrawnMargin(std::span<const glm::dvec3> bezier, const glm::dvec3& eye,
                                const TriangleShape& shape, double snap) {
   const DerivativeBounds d = bezierDerivativeBounds(bezier);
-  double r = 0.0;
-  for (const glm::dvec3& p : bezier) r = std::max(r, glm::length(eye - p));
+  const double r = maxDistance(bezier, eye);
   const double dv = drawnVertexError(d.maxAbs, eye, r, snap);
   const double mu = (r + dv) * normalDeviation(d, shape, dv) + dv * d.g * d.g;
   return mu * (1.0 + 1e-9);
@@ -191,8 +197,7 @@ ConeOfNormals widenCone(const ConeOfNormals& cone, std::span<const glm::dvec3> b
   w.valid = false;
   w.reason = BackPatchVerdict::DrawnTriangles;
   const DerivativeBounds d = bezierDerivativeBounds(bezier);
-  double r = 0.0;
-  for (const glm::dvec3& p : bezier) r = std::max(r, glm::length(eye - p));
+  const double r = maxDistance(bezier, eye);
   const double dv = drawnVertexError(d.maxAbs, eye, r, snap);
   const double deviation = normalDeviation(d, shape, dv) * (1.0 + 1e-9);
   if (!(cone.minNormal > deviation)) return w;
