@@ -3,7 +3,7 @@
 /// \brief Triangle-mesh occluders (walls, terrain, props drawn as plain triangles before
 /// the patches, Niessner & Loop §3) from OBJ files.
 
-#include "osd_cull/frame/triangle_mesh.h"
+#include "osd_cull/frame/draw/triangle_mesh.h"
 
 #include <filesystem>
 

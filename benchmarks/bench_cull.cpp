@@ -14,8 +14,8 @@
 #include "bench_support.h"
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/error.h"
-#include "osd_cull/frame/cull_pass.h"
-#include "osd_cull/frame/view_sets.h"
+#include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/vk/context.h"
@@ -107,7 +107,7 @@ frame::CullSettings settingsFor(std::string method, const bound::BackPatchValidi
   return s;
 }
 
-void kernelCost(vk::Context& context, const Options& o) {
+void kernelCost(vulkan::Context& context, const Options& o) {
   std::printf("\n| level | patches | method | cull rate | ns/patch (median) | ms/pass |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (uint32_t level : o.levels) {
@@ -139,7 +139,7 @@ void kernelCost(vk::Context& context, const Options& o) {
   }
 }
 
-void frameSavings(vk::Context& context, const Options& o) {
+void frameSavings(vulkan::Context& context, const Options& o) {
   const uint32_t level = o.levels.size() > 1 ? o.levels[1] : o.levels.at(0);
   const Mesh mesh = load(o.mesh, level);
   frame::GpuPatchSet gpu(context, mesh.patches);
@@ -193,9 +193,9 @@ void frameSavings(vk::Context& context, const Options& o) {
 int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
-    vk::ContextOptions co;
+    vulkan::ContextOptions co;
     co.device = o.device;
-    vk::Context context(co);
+    vulkan::Context context(co);
     std::printf("bench-cull: %s on %s\n", o.mesh.c_str(), context.info().name.c_str());
     kernelCost(context, o);
     frameSavings(context, o);

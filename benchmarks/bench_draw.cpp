@@ -12,7 +12,7 @@
 #include "bench_support.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/vk/context.h"
 
@@ -97,9 +97,9 @@ Row measure(frame::Renderer& renderer, frame::VisibilityOracle& oracle, frame::R
 int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
-    vk::ContextOptions contextOptions;
+    vulkan::ContextOptions contextOptions;
     contextOptions.device = o.device;
-    vk::Context context(contextOptions);
+    vulkan::Context context(contextOptions);
     PatchSet set;
     glm::dvec3 up(0, 1, 0), from(0.45, 0.35, 1.0);  // OBJ cages: y up, seen from the front
     if (o.mesh != "torus" && std::filesystem::exists(o.mesh)) {

@@ -24,7 +24,7 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/scene/default_scene.h"
@@ -121,7 +121,7 @@ struct GpuScene {
   std::vector<frame::GpuTriangleMesh> meshes;
   std::vector<const frame::GpuTriangleMesh*> occluders;
   frame::Bounds bounds;
-  GpuScene(vk::Context& context, const Scene& s)
+  GpuScene(vulkan::Context& context, const Scene& s)
       : scene(s), gpu(context, s.patches), bounds(frame::boundsOf(s.patches.points)) {
     for (const auto& m : s.occluders) meshes.emplace_back(context, m);
     for (const auto& m : meshes) occluders.push_back(&m);
@@ -154,7 +154,7 @@ frame::CullFrameOptions cullOptions(const Options& options, uint32_t tess,
 // 1. Occlusion and oracle rates over random whole-object views. With every patch visible
 // before the frame, the first pass draws them all, so the pyramid holds the complete depth:
 // the rate a static camera settles at.
-void cullRates(vk::Context& context, const Scene& scene, const Options& o) {
+void cullRates(vulkan::Context& context, const Scene& scene, const Options& o) {
   GpuScene g(context, scene);
   frame::RenderTarget target(context, o.width, o.height), oracleTarget(context, o.width, o.height);
   frame::Renderer renderer(context);
@@ -197,7 +197,7 @@ void cullRates(vk::Context& context, const Scene& scene, const Options& o) {
 // with the same camera. Besides the occlusion cull rate (patches the test culls) it counts
 // patches not drawn at all in the frame: culled patches that were visible last frame are
 // still drawn in pass 1. `csv`, if open, gets one row per speed.
-void rotationRates(vk::Context& context, const Scene& scene, const Options& o, FILE* csv) {
+void rotationRates(vulkan::Context& context, const Scene& scene, const Options& o, FILE* csv) {
   GpuScene g(context, scene);
   frame::RenderTarget target(context, o.width, o.height);
   frame::Renderer renderer(context);
@@ -245,7 +245,7 @@ void rotationRates(vk::Context& context, const Scene& scene, const Options& o, F
 }
 
 // 3. Frame time and work with and without culling, at several tessellation factors.
-void frameCosts(vk::Context& context, const Scene& scene, const Options& o) {
+void frameCosts(vulkan::Context& context, const Scene& scene, const Options& o) {
   GpuScene g(context, scene);
   frame::RenderTarget target(context, o.width, o.height), plain(context, o.width, o.height);
   frame::Renderer renderer(context);
@@ -297,7 +297,7 @@ void frameCosts(vk::Context& context, const Scene& scene, const Options& o) {
 
 // 4. A long sequence with fast rotation (10 to 30 degrees per frame, changing direction):
 // pixels covered without culling but not with it, and pixels that differ at all.
-void sequence(vk::Context& context, const Scene& scene, const Options& o, bool aggressive,
+void sequence(vulkan::Context& context, const Scene& scene, const Options& o, bool aggressive,
               bool allStages) {
   GpuScene g(context, scene);
   frame::RenderTarget target(context, o.width, o.height), plain(context, o.width, o.height);
@@ -355,7 +355,7 @@ std::filesystem::path dataDir() {
 
 // 5. The first frame under each first-frame policy (averaged over whole-object views): what
 // each pass draws and the tessellation work, against drawing everything once.
-void firstFrames(vk::Context& context, const Scene& scene, const Options& o) {
+void firstFrames(vulkan::Context& context, const Scene& scene, const Options& o) {
   GpuScene g(context, scene);
   frame::RenderTarget target(context, o.width, o.height), plain(context, o.width, o.height);
   frame::Renderer renderer(context);
@@ -478,9 +478,9 @@ std::vector<Scene> scenes(const std::string& names) {
 int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
-    vk::ContextOptions contextOptions;
+    vulkan::ContextOptions contextOptions;
     contextOptions.device = o.device;
-    vk::Context context(contextOptions);
+    vulkan::Context context(contextOptions);
     const std::vector<Scene> all = scenes(o.scenes);
     std::printf("device: %s; image %ux%u; Hi-Z top level at half resolution; back faces %s\n\n",
                 context.info().name.c_str(), o.width, o.height,

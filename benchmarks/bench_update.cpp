@@ -71,7 +71,7 @@ struct Row {
   double gpuError = 0, cpuError = 0;  // max |float - double| / bounding-box diagonal
 };
 
-Row measure(osd_cull::vk::Context& context, const osd_cull::CageMesh& cage, int level, int frames) {
+Row measure(osd_cull::vulkan::Context& context, const osd_cull::CageMesh& cage, int level, int frames) {
   osd_cull::PatchOptions options;
   options.isolationLevel = level;
   const osd_cull::PatchExtraction ex = osd_cull::extractPatches(cage, options);
@@ -134,7 +134,7 @@ Row measure(osd_cull::vk::Context& context, const osd_cull::CageMesh& cage, int 
 
 // The fixed cost of one GPU update: the same cage upload, submission and fence wait with a
 // one-row matrix (one control point, one weight).
-double measureOverheadMs(osd_cull::vk::Context& context, const osd_cull::CageMesh& cage,
+double measureOverheadMs(osd_cull::vulkan::Context& context, const osd_cull::CageMesh& cage,
                          int frames) {
   const osd_cull::PatchPointMatrix one(cage.vertexCount(), {1}, {0}, {1.0});
   osd_cull::osd::DeviceContext device(context);
@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     const osd_cull::CageMesh cage = osd_cull::adapters::loadCage(mesh);
-    osd_cull::vk::Context context;
+    osd_cull::vulkan::Context context;
     std::printf("mesh %s: %d cage vertices; device %s (%s); %d frames per level\n",
                 mesh.filename().string().c_str(), cage.vertexCount(), context.info().name.c_str(),
                 context.info().driver.c_str(), frames);

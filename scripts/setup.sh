@@ -20,9 +20,11 @@ fi
 build=${OSD_CULL_BUILD_DIR:-$root/build}
 werror=OFF
 [ "${CI:-}" = "true" ] && werror=ON
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 if [ ! -f "$build/CMakeCache.txt" ]; then
   echo "osd_cull setup: configuring $build" >&2
-  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DOSD_CULL_WERROR=$werror >/dev/null
+  cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DOSD_CULL_WERROR=$werror "${launcher[@]}" >/dev/null
 fi
 echo "osd_cull setup: building (this takes a few minutes the first time)" >&2
 cmake --build "$build" -j"$(nproc)"

@@ -1,6 +1,6 @@
 // `osd-cull render --cull occlusion`: the two-pass frame from the command line, with the
 // per-frame report, JSON statistics, the status debug view and the pyramid levels.
-#include "osd_cull/frame/png_io.h"
+#include "osd_cull/frame/draw/png_io.h"
 #include "support/run_command.h"
 #include "support/test_data.h"
 

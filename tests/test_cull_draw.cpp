@@ -2,7 +2,7 @@
 // the full draw, fewer tessellated vertices, indirect draws within lavapipe's batch limits;
 // and the command-line front ends (`osd-cull render --cull`, `osd-cull verify`).
 #include "osd_cull/error.h"
-#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/scene/default_scene.h"
 #include "support/run_command.h"

@@ -5,7 +5,7 @@
 // several views sharing them.
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/scene/default_scene.h"
 #include "support/cull_test_meshes.h"
 #include "support/test_data.h"

@@ -3,9 +3,9 @@
 // non-finite input and the method registry.
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
-#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/view_sets.h"
+#include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
 
@@ -47,7 +47,7 @@ class CullKernelTest : public test::VkTest {};
 // Surface-exact tests (the papers' tests) on a coarse sphere, and the tests that respect the
 // drawn triangles (the default, bound/drawn_triangles.h) on a finer one: at tessellation 4
 // the chords of the coarse sphere's 30-degree patches deviate too far for them to cull much.
-void expectSubsetOfReference(vk::Context& context, bool drawnTriangles, double minRate) {
+void expectSubsetOfReference(vulkan::Context& context, bool drawnTriangles, double minRate) {
   const PatchSet set = drawnTriangles
                            ? frame::convertToGregory(frame::bezierSphere({0.2, -0.1, 0.3}, 1.5, 8),
                                                      [](uint32_t p) { return p % 7 == 3; })
@@ -159,7 +159,7 @@ TEST_F(CullKernelTest, SurvivorListAndIndirectCommandsMatchTheResultCodes) {
   EXPECT_EQ(chunkB, 60u);
   EXPECT_EQ(counts.drawsBezier, (counts.survivorsBezier + chunkB - 1) / chunkB);
   EXPECT_EQ(counts.drawsGregory, (counts.survivorsGregory + chunkG - 1) / chunkG);
-  const auto commands = vk::readback<VkDrawIndirectCommand>(context(), pass.commands());
+  const auto commands = vulkan::readback<VkDrawIndirectCommand>(context(), pass.commands());
   const uint32_t maxB = (set.bezierCount + chunkB - 1) / chunkB;
   uint32_t slots = 0;
   for (uint32_t i = 0; i < counts.drawsBezier; ++i) {

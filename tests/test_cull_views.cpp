@@ -2,8 +2,8 @@
 // shapes of the shared data), checked against every ground truth (frame/cull_verification.h):
 // GPU culls ⊆ double-precision reference culls, culled patches have no pixel in the
 // oracle, no visible sample on a dense sampling, and culling loses no pixel of the image.
-#include "osd_cull/frame/cull_verification.h"
-#include "osd_cull/frame/view_sets.h"
+#include "osd_cull/frame/verify/cull_verification.h"
+#include "osd_cull/frame/verify/view_sets.h"
 #include "support/cull_test_meshes.h"
 #include "support/test_data.h"
 #include "support/vk_test_context.h"

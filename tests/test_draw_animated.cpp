@@ -1,6 +1,6 @@
 // Animated meshes: control points updated on the GPU (osd::GpuPointUpdate) are drawn
 // straight from its buffer, and the image matches the one drawn from CPU-updated points.
-#include "osd_cull/frame/renderer.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/osd/device_context.h"
 #include "osd_cull/osd/gpu_point_update.h"
 #include "osd_cull/patch/extract_patches.h"

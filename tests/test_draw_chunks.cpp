@@ -1,8 +1,8 @@
 // Draw splitting against lavapipe's batch overflow, and the host mirror of tess levels.
 #include "osd_cull/frame/camera.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/draw_chunks.h"
-#include "osd_cull/frame/tess_levels.h"
+#include "osd_cull/frame/draw/draw_chunks.h"
+#include "osd_cull/frame/draw/tess_levels.h"
 
 #include <gtest/gtest.h>
 

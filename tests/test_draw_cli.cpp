@@ -1,6 +1,6 @@
 // `osd-cull render`: the built-in scene renders with validation on, writes the images and
 // prints a line per frame.
-#include "osd_cull/frame/png_io.h"
+#include "osd_cull/frame/draw/png_io.h"
 #include "support/run_command.h"
 #include "support/test_data.h"
 

@@ -2,8 +2,8 @@
 // uniform and adaptive levels, Bézier/Gregory neighbours and transition edges.
 #include "adapters/load_mesh.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/png_io.h"
-#include "osd_cull/frame/renderer.h"
+#include "osd_cull/frame/draw/png_io.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
 #include "support/test_data.h"

@@ -1,8 +1,8 @@
 // Drawing tessellated Bézier and Gregory patches: coverage, evaluation, statistics, PNG.
 #include "osd_cull/error.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/png_io.h"
-#include "osd_cull/frame/renderer.h"
+#include "osd_cull/frame/draw/png_io.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
@@ -78,8 +78,8 @@ TEST_F(DrawTest, PointsCanComeFromAnotherBufferWithAnyStride) {
   std::vector<float> packed(5, -1.0f);
   for (const auto& p : set.points)
     packed.insert(packed.end(), {float(p.x), float(p.y), float(p.z)});
-  vk::Buffer external(context(), packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  vk::upload<float>(context(), external, packed);
+  vulkan::Buffer external(context(), packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<float>(context(), external, packed);
   // Poison the set's own copy, so a draw that read it would miss the rectangle.
   std::vector<glm::dvec3> elsewhere(set.points.size(), glm::dvec3(100.0, 100.0, -3.0));
   gpu.updatePoints(context(), elsewhere);
@@ -295,16 +295,16 @@ TEST_F(DrawTest, IndirectDrawsOfACulledListDrawExactlyThoseSlots) {
   const PatchSet grid = patchGrid(4, 16.0);
   frame::GpuPatchSet gpu(context(), grid);
   const std::vector<uint32_t> survivors = {3, 7, 12, 0, 9};
-  vk::Buffer list(context(), survivors.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  vk::upload<uint32_t>(context(), list, survivors);
+  vulkan::Buffer list(context(), survivors.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<uint32_t>(context(), list, survivors);
   const std::vector<VkDrawIndirectCommand> commands = {
       {2 * 16, 1, 0 * 16, 0}, {2 * 16, 1, 2 * 16, 0}, {1 * 16, 1, 4 * 16, 0}};
-  vk::Buffer commandBuffer(context(), sizeof(VkDrawIndirectCommand) * commands.size(),
+  vulkan::Buffer commandBuffer(context(), sizeof(VkDrawIndirectCommand) * commands.size(),
                            VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
-  vk::upload<VkDrawIndirectCommand>(context(), commandBuffer, commands);
-  vk::Buffer count(context(), 4, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+  vulkan::upload<VkDrawIndirectCommand>(context(), commandBuffer, commands);
+  vulkan::Buffer count(context(), 4, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
   const uint32_t two = 2;  // the third command (slot 4, patch 9) is not counted
-  vk::upload<uint32_t>(context(), count, std::span(&two, 1));
+  vulkan::upload<uint32_t>(context(), count, std::span(&two, 1));
 
   frame::RenderTarget target(context(), 64, 64);
   frame::Renderer renderer(context());

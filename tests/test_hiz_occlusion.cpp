@@ -2,11 +2,11 @@
 // shaders/hiz/occlusion.glsl) against its double-precision reference
 // (bound::hizOcclusionTest) and the item-buffer oracle.
 #include "osd_cull/bound/occlusion.h"
-#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/hiz_cull_stage.h"
-#include "osd_cull/frame/hiz_pyramid.h"
-#include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/frame/hiz/hiz_cull_stage.h"
+#include "osd_cull/frame/hiz/hiz_pyramid.h"
+#include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/scene/default_scene.h"
 #include "support/vk_test_context.h"
 #include "support/vk_test_images.h"

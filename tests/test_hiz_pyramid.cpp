@@ -2,7 +2,7 @@
 // with the min/max sampler reduction and with four texel fetches, at half and full
 // resolution, for power-of-two, odd and tiny sizes.
 #include "osd_cull/bound/occlusion.h"
-#include "osd_cull/frame/hiz_pyramid.h"
+#include "osd_cull/frame/hiz/hiz_pyramid.h"
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
@@ -22,8 +22,8 @@ using frame::HiZReduction;
 class HiZPyramidTest : public test::VkTest {
  protected:
   // A sampled D32_SFLOAT image holding `depth` (rows top to bottom), left in GENERAL.
-  vk::Image depthImage(uint32_t w, uint32_t h, const std::vector<float>& depth) {
-    vk::Image image(context(),
+  vulkan::Image depthImage(uint32_t w, uint32_t h, const std::vector<float>& depth) {
+    vulkan::Image image(context(),
                     {w, h, VK_FORMAT_D32_SFLOAT,
                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
     upload(image, depth, VK_IMAGE_LAYOUT_UNDEFINED);
@@ -31,20 +31,20 @@ class HiZPyramidTest : public test::VkTest {
   }
 
   // Replaces the image's contents; it goes from `layout` to GENERAL.
-  void upload(const vk::Image& image, const std::vector<float>& depth, VkImageLayout layout) {
-    vk::Buffer staging(context(), depth.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                       vk::MemoryUse::Upload);
+  void upload(const vulkan::Image& image, const std::vector<float>& depth, VkImageLayout layout) {
+    vulkan::Buffer staging(context(), depth.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                       vulkan::MemoryUse::Upload);
     std::memcpy(staging.mapped(), depth.data(), depth.size() * 4);
     context().submit([&](VkCommandBuffer cmd) {
-      vk::imageBarrier(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, vk::scope::kAll,
-                       vk::scope::kTransferWrite);
+      vulkan::imageBarrier(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, vulkan::scope::kAll,
+                       vulkan::scope::kTransferWrite);
       VkBufferImageCopy region{};
       region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
       region.imageExtent = {image.width(), image.height(), 1};
       vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(),
                              VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-      vk::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                       vk::scope::kTransferWrite, vk::scope::kAll);
+      vulkan::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                       vulkan::scope::kTransferWrite, vulkan::scope::kAll);
     });
   }
 
@@ -63,7 +63,7 @@ class HiZPyramidTest : public test::VkTest {
   std::vector<std::vector<float>> buildAndCompare(uint32_t w, uint32_t h,
                                                   const std::vector<float>& depth, bool full,
                                                   HiZReduction reduction) {
-    const vk::Image image = depthImage(w, h, depth);
+    const vulkan::Image image = depthImage(w, h, depth);
     frame::HiZPyramid pyramid(context(), image, {full, reduction});
     if (reduction != HiZReduction::Auto) {
       EXPECT_EQ(pyramid.usesSampler(), reduction == HiZReduction::Sampler);
@@ -141,7 +141,7 @@ TEST_F(HiZPyramidTest, PlaneGivesThePlaneDepthInsideAndFarInThePadding) {
 
 TEST_F(HiZPyramidTest, RebuildAfterTheDepthChangedUsesTheNewDepth) {
   const uint32_t w = 16, h = 16;
-  const vk::Image image = depthImage(w, h, std::vector<float>(w * h, 0.25f));
+  const vulkan::Image image = depthImage(w, h, std::vector<float>(w * h, 0.25f));
   frame::HiZPyramid pyramid(context(), image, {});
   pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
   EXPECT_EQ(pyramid.readLevels(context()).back()[0], 0.25f);

@@ -1,7 +1,7 @@
 // The item-buffer oracle: per-patch visible pixel counts, exact on scenes whose visible
 // set is known by construction.
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/visibility_oracle.h"
+#include "osd_cull/frame/verify/visibility_oracle.h"
 #include "support/vk_test_context.h"
 #include "support/vk_test_images.h"
 

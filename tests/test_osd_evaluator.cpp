@@ -198,8 +198,8 @@ TEST_F(VkTest, SynchronizeWaitsForEvaluationsButNotForLaterWork) {
   VkEventCreateInfo eventInfo{VK_STRUCTURE_TYPE_EVENT_CREATE_INFO};
   VkEvent rawEvent = VK_NULL_HANDLE;
   ASSERT_EQ(vkCreateEvent(context().device(), &eventInfo, nullptr, &rawEvent), VK_SUCCESS);
-  const vk::DeviceHandle<VkEvent, vkDestroyEvent> event(context().device(), rawEvent);
-  vk::Buffer scratch(context(), 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  const vulkan::DeviceHandle<VkEvent, vkDestroyEvent> event(context().device(), rawEvent);
+  vulkan::Buffer scratch(context(), 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   const uint64_t blocked = device.submit([&](osd::Batch& batch) {
     vkCmdWaitEvents(batch.commandBuffer(), 1, &rawEvent, VK_PIPELINE_STAGE_HOST_BIT,
                     VK_PIPELINE_STAGE_TRANSFER_BIT, 0, nullptr, 0, nullptr, 0, nullptr);

@@ -68,7 +68,7 @@ Osd::MeshBitset adaptiveGregoryBits() {
 
 // Refines `cage` at adaptive level 2 through VkMesh and compares with the CPU reference;
 // then moves the cage and compares again.
-void checkMeshAgainstCpu(vk::Context& context, const CageMesh& cage) {
+void checkMeshAgainstCpu(vulkan::Context& context, const CageMesh& cage) {
   DeviceContext device(context);
   VkEvaluatorCache evaluators;
   VkMesh mesh(makeTopologyRefiner(cage).release(), 3, 0, 2, adaptiveGregoryBits(), &evaluators,
@@ -132,8 +132,8 @@ TEST_F(VkTest, OsdMeshKeepsOneEvaluatorPerBufferLayout) {
 }
 
 template <class T>
-std::vector<T> readArray(vk::Context& context, const vk::Buffer& buffer, size_t count) {
-  const std::vector<std::byte> bytes = vk::readbackBytes(context, buffer, 0, count * sizeof(T));
+std::vector<T> readArray(vulkan::Context& context, const vulkan::Buffer& buffer, size_t count) {
+  const std::vector<std::byte> bytes = vulkan::readbackBytes(context, buffer, 0, count * sizeof(T));
   std::vector<T> out(count);
   std::memcpy(out.data(), bytes.data(), bytes.size());
   return out;

@@ -77,7 +77,7 @@ Csr refinedPointMatrix(const CageMesh& cage) {
 
 // Runs three frames of a deforming cage through GpuPointUpdate and compares each with
 // the double product.
-void checkFrames(vk::Context& context, const CageMesh& cage, const Csr& matrix, int stride) {
+void checkFrames(vulkan::Context& context, const CageMesh& cage, const Csr& matrix, int stride) {
   DeviceContext device(context);
   GpuPointUpdate update(device, matrix.columns, matrix.sizes, matrix.offsets, matrix.indices,
                         matrix.weights, {stride});
@@ -125,7 +125,7 @@ TEST_F(VkTest, PointUpdateWritesVec4PointsWithUnitW) {
 // The patch set's matrix: frame 0 is the cage as loaded (the GPU must reproduce the
 // extraction's own points), frames 1-2 move it; each frame is compared with the CPU
 // update PatchPointMatrix::update (double).
-void checkPatchPoints(vk::Context& context, const CageMesh& cage, int level) {
+void checkPatchPoints(vulkan::Context& context, const CageMesh& cage, int level) {
   PatchOptions options;
   options.isolationLevel = level;
   const PatchExtraction ex = extractPatches(cage, options);

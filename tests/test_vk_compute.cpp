@@ -40,27 +40,27 @@ TEST_F(VkTest, ComputeAxpyProducesExactValuesAndIsCounted) {
     x[i] = i;
     y[i] = 3 * i + 1;
   }
-  vk::Buffer bx(context(), n * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  vk::Buffer by(context(), n * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  vk::upload<uint32_t>(context(), bx, x);
-  vk::upload<uint32_t>(context(), by, y);
+  vulkan::Buffer bx(context(), n * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::Buffer by(context(), n * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<uint32_t>(context(), bx, x);
+  vulkan::upload<uint32_t>(context(), by, y);
 
-  const vk::DescriptorBinding bindings[] = {
+  const vulkan::DescriptorBinding bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
-  auto setLayout = vk::createDescriptorSetLayout(context(), bindings);
+  auto setLayout = vulkan::createDescriptorSetLayout(context(), bindings);
   const VkDescriptorSetLayout sl = setLayout.get();
   auto layout =
-      vk::createPipelineLayout(context(), {&sl, 1}, sizeof(Push), VK_SHADER_STAGE_COMPUTE_BIT);
-  vk::SpecializationConstants constants;
+      vulkan::createPipelineLayout(context(), {&sl, 1}, sizeof(Push), VK_SHADER_STAGE_COMPUTE_BIT);
+  vulkan::SpecializationConstants constants;
   constants.set(0, uint32_t{5});
-  auto spirv = vk::compileGlsl(kAxpy, "test/axpy.comp", VK_SHADER_STAGE_COMPUTE_BIT);
-  auto pipeline = vk::createComputePipeline(context(), layout.get(), spirv, constants);
-  vk::DescriptorPool pool(context(), 1, bindings);
+  auto spirv = vulkan::compileGlsl(kAxpy, "test/axpy.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+  auto pipeline = vulkan::createComputePipeline(context(), layout.get(), spirv, constants);
+  vulkan::DescriptorPool pool(context(), 1, bindings);
   VkDescriptorSet set = pool.allocate(sl);
-  vk::DescriptorWriter().buffer(0, bx).buffer(1, by).update(context().device(), set);
+  vulkan::DescriptorWriter().buffer(0, bx).buffer(1, by).update(context().device(), set);
 
-  vk::PipelineStatisticsQuery stats(context());
+  vulkan::PipelineStatisticsQuery stats(context());
   const Push push{7, n};
   context().submit([&](VkCommandBuffer cmd) {
     stats.reset(cmd);
@@ -69,19 +69,19 @@ TEST_F(VkTest, ComputeAxpyProducesExactValuesAndIsCounted) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, 1, &set, 0,
                             nullptr);
     vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, vk::groupCount(n, 64), 1, 1);
+    vkCmdDispatch(cmd, vulkan::groupCount(n, 64), 1, 1);
     stats.end(cmd);
   });
 
-  const auto out = vk::readback<uint32_t>(context(), by);
+  const auto out = vulkan::readback<uint32_t>(context(), by);
   ASSERT_EQ(out.size(), n);
   for (uint32_t i = 0; i < n; ++i) ASSERT_EQ(out[i], 7 * i + 3 * i + 1 + 5) << "element " << i;
-  EXPECT_EQ(stats.result().computeShaderInvocations, vk::groupCount(n, 64) * 64u);
+  EXPECT_EQ(stats.result().computeShaderInvocations, vulkan::groupCount(n, 64) * 64u);
 }
 
 TEST_F(VkTest, TimestampsAreOrderedAndNonNegative) {
-  vk::TimestampQuery timestamps(context(), 2);
-  vk::Buffer buffer(context(), 1 << 20, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::TimestampQuery timestamps(context(), 2);
+  vulkan::Buffer buffer(context(), 1 << 20, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   context().submit([&](VkCommandBuffer cmd) {
     timestamps.reset(cmd);
     timestamps.write(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
@@ -91,13 +91,13 @@ TEST_F(VkTest, TimestampsAreOrderedAndNonNegative) {
   const double ms = timestamps.elapsedMs(0, 1);
   EXPECT_GE(ms, 0.0);
   EXPECT_LT(ms, 10000.0);
-  EXPECT_EQ(vk::readback<uint32_t>(context(), buffer)[12345], 42u);
+  EXPECT_EQ(vulkan::readback<uint32_t>(context(), buffer)[12345], 42u);
 }
 
 TEST_F(VkTest, ComputeProgramRefusesAShaderThatIsNotEmbedded) {
-  const vk::DescriptorBinding bindings[] = {
+  const vulkan::DescriptorBinding bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
-  EXPECT_THROW(vk::ComputeProgram(context(), {"no/such/file.comp", {}}, bindings, 8), Error);
+  EXPECT_THROW(vulkan::ComputeProgram(context(), {"no/such/file.comp", {}}, bindings, 8), Error);
 }
 
 }  // namespace

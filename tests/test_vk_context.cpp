@@ -17,33 +17,33 @@ using test::VkTest;
 
 TEST(VkDeviceSelection, EmptySelectorPrefersLavapipe) {
   const std::vector<std::string> names = {"AMD Radeon", "llvmpipe (LLVM 15.0.6, 256 bits)"};
-  EXPECT_EQ(vk::selectDevice(names, ""), 1u);
+  EXPECT_EQ(vulkan::selectDevice(names, ""), 1u);
   const std::vector<std::string> noCpu = {"AMD Radeon", "Intel UHD"};
-  EXPECT_EQ(vk::selectDevice(noCpu, ""), 0u);
+  EXPECT_EQ(vulkan::selectDevice(noCpu, ""), 0u);
 }
 
 TEST(VkDeviceSelection, IndexAndCaseInsensitiveNameSubstring) {
   const std::vector<std::string> names = {"AMD Radeon", "llvmpipe (LLVM 15)", "Intel UHD"};
-  EXPECT_EQ(vk::selectDevice(names, "2"), 2u);
-  EXPECT_EQ(vk::selectDevice(names, "intel"), 2u);
-  EXPECT_EQ(vk::selectDevice(names, "RADEON"), 0u);
+  EXPECT_EQ(vulkan::selectDevice(names, "2"), 2u);
+  EXPECT_EQ(vulkan::selectDevice(names, "intel"), 2u);
+  EXPECT_EQ(vulkan::selectDevice(names, "RADEON"), 0u);
 }
 
 TEST(VkDeviceSelection, NoMatchListsTheDevices) {
   const std::vector<std::string> names = {"AMD Radeon", "llvmpipe"};
   try {
-    vk::selectDevice(names, "nvidia");
+    vulkan::selectDevice(names, "nvidia");
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("nvidia"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("1: llvmpipe"), std::string::npos);
   }
-  EXPECT_THROW(vk::selectDevice(names, "7"), Error);
-  EXPECT_THROW(vk::selectDevice({}, ""), Error);
+  EXPECT_THROW(vulkan::selectDevice(names, "7"), Error);
+  EXPECT_THROW(vulkan::selectDevice({}, ""), Error);
 }
 
 TEST_F(VkTest, ContextReportsTheChosenDeviceAndItsLimits) {
-  const vk::DeviceInfo& info = context().info();
+  const vulkan::DeviceInfo& info = context().info();
   EXPECT_FALSE(info.name.empty());
   EXPECT_GE(info.apiVersion, VK_API_VERSION_1_2);
   EXPECT_GE(info.limits.maxTessellationPatchSize, 20u);
@@ -69,8 +69,8 @@ TEST_F(VkTest, ValidationLayerReportsMisuse) {
 TEST_F(VkTest, SynchronizationValidationReportsAHazard) {
   // A copy reads a buffer that a fill just wrote, with no barrier between: a
   // read-after-write hazard only synchronization validation sees.
-  vk::Buffer a(context(), 1024, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  vk::Buffer b(context(), 1024, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::Buffer a(context(), 1024, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::Buffer b(context(), 1024, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   context().submit([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, a.handle(), 0, VK_WHOLE_SIZE, 1);
     const VkBufferCopy region{0, 0, 1024};
@@ -85,7 +85,7 @@ TEST_F(VkTest, SynchronizationValidationReportsAHazard) {
 TEST_F(VkTest, BuffersShareLargeMemoryBlocks) {
   const auto before = context().memory().stats();
   {
-    std::vector<vk::Buffer> buffers;
+    std::vector<vulkan::Buffer> buffers;
     for (int i = 0; i < 50; ++i)
       buffers.emplace_back(context(), 4096, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const auto during = context().memory().stats();
@@ -101,7 +101,7 @@ TEST_F(VkTest, BuffersShareLargeMemoryBlocks) {
 TEST_F(VkTest, LargeBufferGetsItsOwnBlockFreedWithIt) {
   const auto before = context().memory().stats();
   {
-    vk::Buffer big(context(), VkDeviceSize{48} << 20, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    vulkan::Buffer big(context(), VkDeviceSize{48} << 20, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     EXPECT_EQ(context().memory().stats().blocks, before.blocks + 1);
   }
   EXPECT_EQ(context().memory().stats().blocks, before.blocks);
@@ -110,22 +110,22 @@ TEST_F(VkTest, LargeBufferGetsItsOwnBlockFreedWithIt) {
 TEST_F(VkTest, UploadThenReadbackRoundTrips) {
   std::vector<uint32_t> values(1000);
   std::iota(values.begin(), values.end(), 7u);
-  vk::Buffer buffer(context(), values.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  vk::upload<uint32_t>(context(), buffer, values);
-  EXPECT_EQ(vk::readback<uint32_t>(context(), buffer), values);
+  vulkan::Buffer buffer(context(), values.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<uint32_t>(context(), buffer, values);
+  EXPECT_EQ(vulkan::readback<uint32_t>(context(), buffer), values);
   std::vector<uint32_t> part = {1, 2, 3};
-  vk::upload<uint32_t>(context(), buffer, part, 10);
-  const auto back = vk::readback<uint32_t>(context(), buffer);
+  vulkan::upload<uint32_t>(context(), buffer, part, 10);
+  const auto back = vulkan::readback<uint32_t>(context(), buffer);
   EXPECT_EQ(back[9], 16u);
   EXPECT_EQ(back[10], 1u);
   EXPECT_EQ(back[12], 3u);
   EXPECT_EQ(back[13], 20u);
-  EXPECT_THROW(vk::upload<uint32_t>(context(), buffer, values, 1), Error);
+  EXPECT_THROW(vulkan::upload<uint32_t>(context(), buffer, values, 1), Error);
 }
 
 TEST_F(VkTest, FailedVulkanCallNamesTheCallAndResult) {
   try {
-    vk::check(VK_ERROR_DEVICE_LOST, "vkQueueSubmit(queue, ...)");
+    vulkan::check(VK_ERROR_DEVICE_LOST, "vkQueueSubmit(queue, ...)");
     FAIL();
   } catch (const Error& e) {
     const std::string what = e.what();

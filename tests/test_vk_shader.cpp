@@ -11,16 +11,16 @@ namespace {
 constexpr uint32_t kSpirvMagic = 0x07230203;
 
 TEST(VkShader, StageComesFromTheExtension) {
-  EXPECT_EQ(vk::shaderStageOf("a/b.comp"), VK_SHADER_STAGE_COMPUTE_BIT);
-  EXPECT_EQ(vk::shaderStageOf("x.tesc"), VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT);
-  EXPECT_EQ(vk::shaderStageOf("x.tese"), VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT);
-  EXPECT_THROW(vk::shaderStageOf("x.glsl"), Error);
+  EXPECT_EQ(vulkan::shaderStageOf("a/b.comp"), VK_SHADER_STAGE_COMPUTE_BIT);
+  EXPECT_EQ(vulkan::shaderStageOf("x.tesc"), VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT);
+  EXPECT_EQ(vulkan::shaderStageOf("x.tese"), VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT);
+  EXPECT_THROW(vulkan::shaderStageOf("x.glsl"), Error);
 }
 
 TEST(VkShader, CompileErrorNamesFileAndLine) {
   const char* text = "#version 450\nvoid main() {\n  float x = undefinedThing;\n}\n";
   try {
-    vk::compileGlsl(text, "test/broken.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+    vulkan::compileGlsl(text, "test/broken.comp", VK_SHADER_STAGE_COMPUTE_BIT);
     FAIL() << "expected a compile error";
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -35,13 +35,13 @@ layout(local_size_x = 1) in;
 layout(std430, binding = 0) buffer B { uint v[]; };
 void main() { v[0] = VALUE; }
 )";
-  const vk::ShaderDefine one[] = {{"VALUE", "1u"}};
-  const vk::ShaderDefine two[] = {{"VALUE", "2u"}};
-  const auto before = vk::shaderCacheStats();
-  auto a = vk::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
-  auto b = vk::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, two);
-  auto a2 = vk::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
-  const auto after = vk::shaderCacheStats();
+  const vulkan::ShaderDefine one[] = {{"VALUE", "1u"}};
+  const vulkan::ShaderDefine two[] = {{"VALUE", "2u"}};
+  const auto before = vulkan::shaderCacheStats();
+  auto a = vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
+  auto b = vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, two);
+  auto a2 = vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
+  const auto after = vulkan::shaderCacheStats();
   ASSERT_FALSE(a->empty());
   EXPECT_EQ((*a)[0], kSpirvMagic);
   EXPECT_NE(*a, *b);
@@ -49,7 +49,7 @@ void main() { v[0] = VALUE; }
   EXPECT_EQ(after.compiles - before.compiles, 2u);
   EXPECT_EQ(after.hits - before.hits, 1u);
   // Without the define the text does not compile.
-  EXPECT_THROW(vk::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT), Error);
+  EXPECT_THROW(vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT), Error);
 }
 
 TEST(VkShader, OpenSubdivPatchBasisIsIncludable) {
@@ -63,15 +63,15 @@ void main() {
   for (int i = 0; i < 20; ++i) w[i] = wP[i];
 }
 )";
-  auto spirv = vk::compileGlsl(text, "test/basis.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+  auto spirv = vulkan::compileGlsl(text, "test/basis.comp", VK_SHADER_STAGE_COMPUTE_BIT);
   EXPECT_EQ((*spirv)[0], kSpirvMagic);
-  EXPECT_GT(vk::shaderText("osd/patch_basis.glsl").size(), 10000u);
+  EXPECT_GT(vulkan::shaderText("osd/patch_basis.glsl").size(), 10000u);
 }
 
 TEST(VkShader, MissingIncludeIsAnError) {
   const char* text = "#version 450\n#include \"no/such/file.glsl\"\nvoid main() {}\n";
   try {
-    vk::compileGlsl(text, "test/include.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+    vulkan::compileGlsl(text, "test/include.comp", VK_SHADER_STAGE_COMPUTE_BIT);
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no/such/file.glsl"), std::string::npos) << e.what();
@@ -80,13 +80,13 @@ TEST(VkShader, MissingIncludeIsAnError) {
 
 TEST(VkShader, EveryEmbeddedStageFileCompiles) {
   size_t stages = 0;
-  for (const auto& s : vk::embeddedShaders()) {
+  for (const auto& s : vulkan::embeddedShaders()) {
     const std::string path(s.path);
     if (path.ends_with(".glsl") || path.ends_with(".h")) continue;
     SCOPED_TRACE(path);
     // Patch stages need PATCH_POINTS; compile both variants (other files ignore it).
     for (const char* points : {"16", "20"}) {
-      auto spirv = vk::compileShader({path, {{"PATCH_POINTS", points}}});
+      auto spirv = vulkan::compileShader({path, {{"PATCH_POINTS", points}}});
       EXPECT_EQ((*spirv)[0], kSpirvMagic);
     }
     ++stages;

@@ -22,7 +22,7 @@ double msSince(Clock::time_point start) {
 }
 
 // Submits, waits, returns the wall time of recording, submission and execution.
-double timedSubmit(vk::Context& context, const std::function<void(VkCommandBuffer)>& record) {
+double timedSubmit(vulkan::Context& context, const std::function<void(VkCommandBuffer)>& record) {
   const auto start = Clock::now();
   context.submit(record);
   return msSince(start);
@@ -50,7 +50,7 @@ const char* toString(CullDrawMode mode) {
   return mode == CullDrawMode::Filtered ? "filtered" : "tf0";
 }
 
-CullFrame::CullFrame(vk::Context& context, Renderer& renderer, RenderTarget& target,
+CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget& target,
                      std::span<const CullMesh> meshes, const CullFrameOptions& options)
     : context_(context),
       renderer_(renderer),
@@ -80,9 +80,9 @@ CullFrame::CullFrame(vk::Context& context, Renderer& renderer, RenderTarget& tar
                                : nullptr);
   }
   if (!anyStage) {
-    survivedResults_ = vk::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
+    survivedResults_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    vk::fill(context, survivedResults_, shader::kStageNone);
+    vulkan::fill(context, survivedResults_, shader::kStageNone);
   }
 }
 
@@ -188,7 +188,7 @@ CullFrameStats CullFrame::render(const Camera& camera,
       // One dispatch: frustum → back-patch → Hi-Z occlusion, a result code per patch.
       passes_[m]->record(cmd, camera, options_.render.tessellation,
                          stage_ ? stage_->set() : VK_NULL_HANDLE);
-      vk::memoryBarrier(cmd, vk::scope::kComputeWrite, vk::scope::kComputeRead);
+      vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kComputeRead);
       visibility_[m]->recordUpdate(cmd, passes_[m]->resultsBuffer(), c.bezier, c.gregory);
     }
   });
@@ -229,8 +229,8 @@ std::vector<uint32_t> CullFrame::readResults(size_t mesh) const {
 FrameStats CullFrame::renderStatusView(RenderTarget& target, const Camera& camera,
                                        std::span<const GpuTriangleMesh* const> occluders) {
   if (statusLists_.empty()) {
-    statusSetLayout_ = vk::createDescriptorSetLayout(context_, patchSetBindings());
-    statusPool_ = std::make_unique<vk::DescriptorPool>(
+    statusSetLayout_ = vulkan::createDescriptorSetLayout(context_, patchSetBindings());
+    statusPool_ = std::make_unique<vulkan::DescriptorPool>(
         context_, static_cast<uint32_t>(meshes_.size()), patchSetBindings());
     for (const CullMesh& m : meshes_) {
       statusLists_.emplace_back(context_, std::max<size_t>(4, size_t{m.gpu->patchCount()} * 4),
@@ -245,7 +245,7 @@ FrameStats CullFrame::renderStatusView(RenderTarget& target, const Camera& camer
     std::vector<uint32_t> list(std::max<size_t>(1, status.size()));
     for (uint32_t p = 0; p < status.size(); ++p)
       list[p] = p | (drawStatusOf(status[p]) << shader::kDrawListStatusShift);
-    vk::upload<uint32_t>(context_, statusLists_[m], list);
+    vulkan::upload<uint32_t>(context_, statusLists_[m], list);
     draws.push_back({meshes_[m].gpu, meshes_[m].host, itemBases_[m], statusSets_[m]});
   }
   RenderOptions o = options_.render;

@@ -15,11 +15,11 @@
 /// variant (§5, TessFactorZero): every patch drawn, the ones not to be drawn with
 /// tessellation factors 0. Both give the same image; pipeline statistics tell the cost.
 
-#include "osd_cull/frame/cull_pass.h"
-#include "osd_cull/frame/hiz_cull_stage.h"
-#include "osd_cull/frame/hiz_pyramid.h"
-#include "osd_cull/frame/renderer.h"
-#include "osd_cull/frame/visibility_buffer.h"
+#include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/hiz/hiz_cull_stage.h"
+#include "osd_cull/frame/hiz/hiz_pyramid.h"
+#include "osd_cull/frame/draw/renderer.h"
+#include "osd_cull/frame/hiz/visibility_buffer.h"
 #include "osd_cull/vk/query.h"
 
 #include <cstdint>
@@ -62,8 +62,8 @@ struct CullFrameStats {
   uint32_t culledBackPatch = 0;
   uint32_t culledOcclusion = 0;
   uint32_t culled() const { return culledFrustum + culledBackPatch + culledOcclusion; }
-  vk::PipelineStatistics pass1;  ///< over the first render pass (occluders included)
-  vk::PipelineStatistics pass2;
+  vulkan::PipelineStatistics pass1;  ///< over the first render pass (occluders included)
+  vulkan::PipelineStatistics pass2;
   double pass1Ms = 0.0;  ///< wall clock of each submission (record, submit, wait)
   double pyramidMs = 0.0;
   double cullMs = 0.0;  ///< cull kernel and visibility update
@@ -84,7 +84,7 @@ class CullFrame {
   /// options.firstFrame) and, with occlusion, a pyramid over `target`'s depth. `renderer`,
   /// `target` and the meshes must outlive the frame.
   /// \throws osd_cull::Error for unknown cull methods (see CullPass).
-  CullFrame(vk::Context& context, Renderer& renderer, RenderTarget& target,
+  CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget& target,
             std::span<const CullMesh> meshes, const CullFrameOptions& options);
   ~CullFrame();
   CullFrame(const CullFrame&) = delete;
@@ -126,7 +126,7 @@ class CullFrame {
   Chunks chunks(size_t mesh) const;
   void recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool secondPass);
 
-  vk::Context& context_;
+  vulkan::Context& context_;
   Renderer& renderer_;
   RenderTarget& target_;
   std::vector<CullMesh> meshes_;
@@ -135,14 +135,14 @@ class CullFrame {
   std::unique_ptr<VisibilityPrograms> programs_;
   std::vector<std::unique_ptr<VisibilityBuffer>> visibility_;
   std::vector<std::unique_ptr<CullPass>> passes_;  // null when no stage is enabled
-  vk::Buffer survivedResults_;                     // all kStageNone, used without a pass
+  vulkan::Buffer survivedResults_;                     // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
-  vk::PipelineStatisticsQuery queries_;
-  std::vector<vk::Buffer> statusLists_;  // debug view lists, made on first use
+  vulkan::PipelineStatisticsQuery queries_;
+  std::vector<vulkan::Buffer> statusLists_;  // debug view lists, made on first use
   std::vector<VkDescriptorSet> statusSets_;
-  vk::UniqueDescriptorSetLayout statusSetLayout_;
-  std::unique_ptr<vk::DescriptorPool> statusPool_;
+  vulkan::UniqueDescriptorSetLayout statusSetLayout_;
+  std::unique_ptr<vulkan::DescriptorPool> statusPool_;
 };
 
 }  // namespace osd_cull::frame

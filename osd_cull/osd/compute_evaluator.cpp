@@ -28,19 +28,19 @@ EvaluatorState& evaluatorState(DeviceContext& deviceContext) {
                                                [] { return std::make_shared<EvaluatorState>(); });
 }
 
-std::shared_ptr<const vk::ComputeProgram> stencilKernel(DeviceContext& deviceContext, int length,
+std::shared_ptr<const vulkan::ComputeProgram> stencilKernel(DeviceContext& deviceContext, int length,
                                                         bool derivatives) {
   const std::string key = "osd/eval_stencils.comp length=" + std::to_string(length) +
                           (derivatives ? " derivatives" : "");
-  return deviceContext.shared<vk::ComputeProgram>(key, [&] {
-    std::vector<vk::DescriptorBinding> bindings;
+  return deviceContext.shared<vulkan::ComputeProgram>(key, [&] {
+    std::vector<vulkan::DescriptorBinding> bindings;
     for (uint32_t b = 0; b < (derivatives ? kDerivativeBindings : kPlainBindings); ++b)
       bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
-    vk::ShaderSource source{"osd/eval_stencils.comp", {}};
+    vulkan::ShaderSource source{"osd/eval_stencils.comp", {}};
     if (derivatives) source.defines.push_back({"OSD_DERIVATIVES", "1"});
-    vk::SpecializationConstants constants;
+    vulkan::SpecializationConstants constants;
     constants.set(0, int32_t{length});
-    return std::make_shared<vk::ComputeProgram>(deviceContext.context(), source, bindings,
+    return std::make_shared<vulkan::ComputeProgram>(deviceContext.context(), source, bindings,
                                                 uint32_t{sizeof(gpu::EvalStencilsPush)}, constants);
   });
 }
@@ -169,9 +169,9 @@ void VkComputeEvaluator::record(Batch& batch, const VkStencilTable& table, const
   if (derivatives_) {
     infos[6] = {du.buffer ? du.buffer : dst.buffer, 0, VK_WHOLE_SIZE};
     infos[7] = {dv.buffer ? dv.buffer : dst.buffer, 0, VK_WHOLE_SIZE};
-    const vk::Buffer& duWeights =
+    const vulkan::Buffer& duWeights =
         table.HasDerivatives() ? table.GetDuWeightsBuffer() : table.GetWeightsBuffer();
-    const vk::Buffer& dvWeights =
+    const vulkan::Buffer& dvWeights =
         table.HasDerivatives() ? table.GetDvWeightsBuffer() : table.GetWeightsBuffer();
     infos[8] = duWeights.descriptor();
     infos[9] = dvWeights.descriptor();
@@ -203,7 +203,7 @@ void VkComputeEvaluator::record(Batch& batch, const VkStencilTable& table, const
   VkCommandBuffer cmd = batch.commandBuffer();
   // Earlier writers of the source (uploads, other evaluations) and earlier readers of the
   // destination (draws, read-backs) come first; later work sees the results.
-  vk::memoryBarrier(cmd, vk::scope::kAll, vk::scope::kComputeReadWrite);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kComputeReadWrite);
   const uint32_t maxGroups = std::min<uint32_t>(
       deviceContext_.context().info().limits.maxComputeWorkGroupCount[0], 65535u);
   const int chunk = static_cast<int>(maxGroups * kGroupSize);
@@ -211,9 +211,9 @@ void VkComputeEvaluator::record(Batch& batch, const VkStencilTable& table, const
     push.start = first;
     push.end = std::min(end, first + chunk);
     kernel_->dispatch(cmd, set, std::as_bytes(std::span(&push, 1)),
-                      vk::groupCount(static_cast<uint32_t>(push.end - push.start), kGroupSize));
+                      vulkan::groupCount(static_cast<uint32_t>(push.end - push.start), kGroupSize));
   }
-  vk::memoryBarrier(cmd, vk::scope::kComputeWrite, vk::scope::kAll);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kAll);
 
   batch.keepAlive(kernel_);
   table.markUsed(batch.ticket());

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <memory>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 class ComputeProgram;
 }
 
@@ -178,7 +178,7 @@ class VkComputeEvaluator {
   DeviceContext& deviceContext_;
   int length_;
   bool derivatives_;
-  std::shared_ptr<const vk::ComputeProgram> kernel_;
+  std::shared_ptr<const vulkan::ComputeProgram> kernel_;
   mutable uint64_t lastTicket_ = 0;
 };
 

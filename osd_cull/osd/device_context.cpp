@@ -13,9 +13,9 @@ constexpr size_t kMaxSlots = 8;
 // Descriptor sets per pool; a batch that needs more gets another pool.
 constexpr uint32_t kSetsPerPool = 8;
 
-const std::vector<vk::DescriptorBinding>& poolBindings() {
-  static const std::vector<vk::DescriptorBinding> bindings = [] {
-    std::vector<vk::DescriptorBinding> b;
+const std::vector<vulkan::DescriptorBinding>& poolBindings() {
+  static const std::vector<vulkan::DescriptorBinding> bindings = [] {
+    std::vector<vulkan::DescriptorBinding> b;
     for (uint32_t i = 0; i < DeviceContext::kMaxBindingsPerSet; ++i)
       b.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
     return b;
@@ -28,8 +28,8 @@ const std::vector<vk::DescriptorBinding>& poolBindings() {
 // One submission's command buffer, fence, descriptor pools and keep-alive list.
 struct Batch::Slot {
   VkCommandBuffer commandBuffer = VK_NULL_HANDLE;
-  vk::UniqueFence fence;
-  std::vector<std::unique_ptr<vk::DescriptorPool>> pools;
+  vulkan::UniqueFence fence;
+  std::vector<std::unique_ptr<vulkan::DescriptorPool>> pools;
   size_t currentPool = 0;
   uint32_t setsInCurrentPool = 0;
   std::vector<std::shared_ptr<const void>> keepAlive;
@@ -42,7 +42,7 @@ VkDescriptorSet Batch::allocateDescriptorSet(VkDescriptorSetLayout layout) {
     if (!slot_.pools.empty()) ++slot_.currentPool;
     if (slot_.currentPool == slot_.pools.size())
       slot_.pools.push_back(
-          std::make_unique<vk::DescriptorPool>(owner_.context(), kSetsPerPool, poolBindings()));
+          std::make_unique<vulkan::DescriptorPool>(owner_.context(), kSetsPerPool, poolBindings()));
     slot_.setsInCurrentPool = 0;
   }
   ++slot_.setsInCurrentPool;
@@ -53,13 +53,13 @@ void Batch::keepAlive(std::shared_ptr<const void> object) {
   slot_.keepAlive.push_back(std::move(object));
 }
 
-DeviceContext::DeviceContext(vk::Context& context) : context_(context) {
+DeviceContext::DeviceContext(vulkan::Context& context) : context_(context) {
   VkCommandPoolCreateInfo info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   info.queueFamilyIndex = context.queueFamily();
   VkCommandPool pool = VK_NULL_HANDLE;
   OSD_CULL_VK(vkCreateCommandPool(context.device(), &info, nullptr, &pool));
-  commandPool_ = vk::UniqueCommandPool(context.device(), pool);
+  commandPool_ = vulkan::UniqueCommandPool(context.device(), pool);
 }
 
 DeviceContext::~DeviceContext() {
@@ -87,7 +87,7 @@ Batch::Slot& DeviceContext::acquireSlot() {
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence fence = VK_NULL_HANDLE;
     OSD_CULL_VK(vkCreateFence(device(), &fenceInfo, nullptr, &fence));
-    slot->fence = vk::UniqueFence(device(), fence);
+    slot->fence = vulkan::UniqueFence(device(), fence);
     slots_.push_back(std::move(slot));
     return *slots_.back();
   }

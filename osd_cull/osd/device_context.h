@@ -1,6 +1,6 @@
 #pragma once
 /// \file device_context.h
-/// \brief The DEVICE_CONTEXT of osd_cull's OpenSubdiv-style Vulkan backend: a vk::Context
+/// \brief The DEVICE_CONTEXT of osd_cull's OpenSubdiv-style Vulkan backend: a vulkan::Context
 /// plus a stream of asynchronous submissions that can be waited on one by one.
 ///
 /// Osd::Mesh passes a `DEVICE_CONTEXT*` to every backend call (Create, UpdateData,
@@ -50,22 +50,22 @@ class Batch {
   uint64_t ticket_;
 };
 
-/// \brief vk::Context + asynchronous, individually awaitable submissions (see file comment).
+/// \brief vulkan::Context + asynchronous, individually awaitable submissions (see file comment).
 ///
-/// Not thread-safe. The vk::Context must outlive it; every backend object created with
+/// Not thread-safe. The vulkan::Context must outlive it; every backend object created with
 /// a DeviceContext (buffers, tables, evaluators) must be destroyed before it.
 class DeviceContext {
  public:
   /// Storage-buffer bindings a descriptor set allocated from a Batch may have.
   static constexpr uint32_t kMaxBindingsPerSet = 12;
 
-  explicit DeviceContext(vk::Context& context);
+  explicit DeviceContext(vulkan::Context& context);
   DeviceContext(const DeviceContext&) = delete;
   DeviceContext& operator=(const DeviceContext&) = delete;
   /// \brief Waits for this DeviceContext's own submissions, then frees its objects.
   ~DeviceContext();
 
-  vk::Context& context() const { return context_; }
+  vulkan::Context& context() const { return context_; }
   VkDevice device() const { return context_.device(); }
 
   /// \brief Records commands with `record` and submits them without waiting.
@@ -97,8 +97,8 @@ class DeviceContext {
   void retire(Batch::Slot& slot);
   void retireCompleted();
 
-  vk::Context& context_;
-  vk::UniqueCommandPool commandPool_;
+  vulkan::Context& context_;
+  vulkan::UniqueCommandPool commandPool_;
   std::vector<std::unique_ptr<Batch::Slot>> slots_;
   uint64_t lastTicket_ = 0;
   std::map<std::string, std::shared_ptr<void>> shared_;

@@ -40,12 +40,12 @@ GpuPointUpdate::GpuPointUpdate(DeviceContext& deviceContext, int cageVertexCount
                 std::to_string(cageVertexCount));
   if (options.pointStride == 4) {
     // w = 1 once; the kernel writes xyz only.
-    const vk::Buffer& points = points_.buffer();
+    const vulkan::Buffer& points = points_.buffer();
     points_.markUsed(deviceContext_.submit([&](Batch& batch) {
-      vk::memoryBarrier(batch.commandBuffer(), vk::scope::kAll, vk::scope::kTransferWrite);
+      vulkan::memoryBarrier(batch.commandBuffer(), vulkan::scope::kAll, vulkan::scope::kTransferWrite);
       vkCmdFillBuffer(batch.commandBuffer(), points.handle(), 0, VK_WHOLE_SIZE,
                       std::bit_cast<uint32_t>(1.0f));
-      vk::memoryBarrier(batch.commandBuffer(), vk::scope::kTransferWrite, vk::scope::kAll);
+      vulkan::memoryBarrier(batch.commandBuffer(), vulkan::scope::kTransferWrite, vulkan::scope::kAll);
     }));
   }
 }

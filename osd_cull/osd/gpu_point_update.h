@@ -71,7 +71,7 @@ class GpuPointUpdate {
   int pointStride() const { return points_.GetNumElements(); }
   /// \brief The control points (pointCount() x pointStride() floats). Updates are ordered
   /// before later submissions on the queue; a reader needs no extra barrier.
-  const vk::Buffer& points() const { return points_.buffer(); }
+  const vulkan::Buffer& points() const { return points_.buffer(); }
   /// \brief The points read back as pointCount() x pointStride() floats (waits).
   std::vector<float> readback() const { return points_.readback(); }
 

@@ -17,7 +17,7 @@ static_assert(sizeof(Osd::PatchParam) == 12, "Osd::PatchParam is three 32-bit wo
 
 // Index and param arrays are storage buffers, and index buffers for indexed draws.
 template <class T>
-vk::Buffer patchBuffer(vk::Context& context, std::span<const T> values, const char* what) {
+vulkan::Buffer patchBuffer(vulkan::Context& context, std::span<const T> values, const char* what) {
   return makeStorageBuffer(context, values, what, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
 }
 
@@ -41,7 +41,7 @@ VkPatchTable::VkPatchTable(DeviceContext& deviceContext,
   // OpenSubdiv's own CPU layout (arrays, indices, params with sharpness), as GLPatchTable
   // builds its buffers from it.
   const Osd::CpuPatchTable cpu(&farPatchTable);
-  vk::Context& context = deviceContext.context();
+  vulkan::Context& context = deviceContext.context();
   const size_t arrayCount = cpu.GetNumPatchArrays();
 
   const auto arrays = arrayOf(cpu.GetPatchArrayBuffer(), arrayCount);

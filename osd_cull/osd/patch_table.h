@@ -57,15 +57,15 @@ class VkPatchTable {
   }
 
   /// \brief The buffer objects (for descriptor writes and read-backs).
-  const vk::Buffer& patchIndexBuffer() const { return patches_.indices; }
-  const vk::Buffer& patchParamBuffer() const { return patches_.params; }
-  const vk::Buffer& varyingPatchIndexBuffer() const { return varying_.indices; }
+  const vulkan::Buffer& patchIndexBuffer() const { return patches_.indices; }
+  const vulkan::Buffer& patchParamBuffer() const { return patches_.params; }
+  const vulkan::Buffer& varyingPatchIndexBuffer() const { return varying_.indices; }
 
  private:
   struct Patches {
     OpenSubdiv::Osd::PatchArrayVector arrays;
-    vk::Buffer indices;
-    vk::Buffer params;  // empty for varying patches
+    vulkan::Buffer indices;
+    vulkan::Buffer params;  // empty for varying patches
     size_t indexCount = 0;
     size_t paramCount = 0;
   };

@@ -41,7 +41,7 @@ VkStencilTable::VkStencilTable(DeviceContext& deviceContext, Far::LimitStencilTa
                 std::to_string(table.GetDuWeights().size()) + " du and " +
                 std::to_string(table.GetDvWeights().size()) + " dv weights for " +
                 std::to_string(entries) + " entries (was it built without derivatives?)");
-  vk::Context& context = deviceContext.context();
+  vulkan::Context& context = deviceContext.context();
   duWeights_ = makeStorageBuffer<float>(context, table.GetDuWeights(), "VkStencilTable du weights");
   dvWeights_ = makeStorageBuffer<float>(context, table.GetDvWeights(), "VkStencilTable dv weights");
 }
@@ -92,7 +92,7 @@ void VkStencilTable::load(std::span<const int> sizes, std::span<const int> offse
   }
   numStencils_ = static_cast<int>(sizes.size());
   numSourceVertices_ = maxIndex + 1;
-  vk::Context& context = deviceContext_.context();
+  vulkan::Context& context = deviceContext_.context();
   sizes_ = makeStorageBuffer(context, sizes, "VkStencilTable sizes");
   offsets_ = makeStorageBuffer(context, offsets, "VkStencilTable offsets");
   indices_ = makeStorageBuffer(context, indices, "VkStencilTable indices");

@@ -55,14 +55,14 @@ class VkStencilTable {
   int GetNumSourceVertices() const { return numSourceVertices_; }
   bool HasDerivatives() const { return static_cast<bool>(duWeights_); }
 
-  const vk::Buffer& GetSizesBuffer() const { return sizes_; }
-  const vk::Buffer& GetOffsetsBuffer() const { return offsets_; }
-  const vk::Buffer& GetIndicesBuffer() const { return indices_; }
-  const vk::Buffer& GetWeightsBuffer() const { return weights_; }
+  const vulkan::Buffer& GetSizesBuffer() const { return sizes_; }
+  const vulkan::Buffer& GetOffsetsBuffer() const { return offsets_; }
+  const vulkan::Buffer& GetIndicesBuffer() const { return indices_; }
+  const vulkan::Buffer& GetWeightsBuffer() const { return weights_; }
   /// \brief du weights (empty buffer unless built from a limit stencil table).
-  const vk::Buffer& GetDuWeightsBuffer() const { return duWeights_; }
+  const vulkan::Buffer& GetDuWeightsBuffer() const { return duWeights_; }
   /// \brief dv weights (empty buffer unless built from a limit stencil table).
-  const vk::Buffer& GetDvWeightsBuffer() const { return dvWeights_; }
+  const vulkan::Buffer& GetDvWeightsBuffer() const { return dvWeights_; }
 
   DeviceContext& deviceContext() const { return deviceContext_; }
   /// \brief Notes that submission `ticket` reads the table; the destructor waits for it.
@@ -75,12 +75,12 @@ class VkStencilTable {
   DeviceContext& deviceContext_;
   int numStencils_ = 0;
   int numSourceVertices_ = 0;
-  vk::Buffer sizes_;
-  vk::Buffer offsets_;
-  vk::Buffer indices_;
-  vk::Buffer weights_;
-  vk::Buffer duWeights_;
-  vk::Buffer dvWeights_;
+  vulkan::Buffer sizes_;
+  vulkan::Buffer offsets_;
+  vulkan::Buffer indices_;
+  vulkan::Buffer weights_;
+  vulkan::Buffer duWeights_;
+  vulkan::Buffer dvWeights_;
   mutable uint64_t lastUse_ = 0;
 };
 

@@ -9,7 +9,7 @@
 
 namespace osd_cull::osd {
 
-void requireStorageRange(vk::Context& context, VkDeviceSize bytes, const char* what) {
+void requireStorageRange(vulkan::Context& context, VkDeviceSize bytes, const char* what) {
   const VkDeviceSize limit = context.info().limits.maxStorageBufferRange;
   if (bytes > limit)
     throw Error(std::string(what) + ": " + std::to_string(bytes) +
@@ -17,13 +17,13 @@ void requireStorageRange(vk::Context& context, VkDeviceSize bytes, const char* w
                 " bytes (one descriptor cannot cover the buffer)");
 }
 
-vk::Buffer makeStorageBuffer(vk::Context& context, std::span<const std::byte> bytes,
+vulkan::Buffer makeStorageBuffer(vulkan::Context& context, std::span<const std::byte> bytes,
                              const char* what, VkBufferUsageFlags extraUsage) {
   requireStorageRange(context, bytes.size(), what);
   constexpr VkDeviceSize kMinBytes = 16;
-  vk::Buffer buffer(context, std::max<VkDeviceSize>(bytes.size(), kMinBytes),
+  vulkan::Buffer buffer(context, std::max<VkDeviceSize>(bytes.size(), kMinBytes),
                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | extraUsage);
-  vk::uploadBytes(context, buffer, bytes);
+  vulkan::uploadBytes(context, buffer, bytes);
   return buffer;
 }
 

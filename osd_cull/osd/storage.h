@@ -11,16 +11,16 @@ namespace osd_cull::osd {
 
 /// \brief Throws osd_cull::Error naming `what` when `bytes` exceeds the device's
 /// maxStorageBufferRange (a descriptor cannot cover more; 128 MiB on lavapipe).
-void requireStorageRange(vk::Context& context, VkDeviceSize bytes, const char* what);
+void requireStorageRange(vulkan::Context& context, VkDeviceSize bytes, const char* what);
 
 /// \brief A device-local storage buffer (plus `extraUsage`) holding `bytes` (uploaded,
 /// waits). An empty span still gets a small buffer, so that descriptors can always be written.
-vk::Buffer makeStorageBuffer(vk::Context& context, std::span<const std::byte> bytes,
+vulkan::Buffer makeStorageBuffer(vulkan::Context& context, std::span<const std::byte> bytes,
                              const char* what, VkBufferUsageFlags extraUsage = 0);
 
 /// \brief makeStorageBuffer for an array of T.
 template <class T>
-vk::Buffer makeStorageBuffer(vk::Context& context, std::span<const T> values, const char* what,
+vulkan::Buffer makeStorageBuffer(vulkan::Context& context, std::span<const T> values, const char* what,
                              VkBufferUsageFlags extraUsage = 0) {
   return makeStorageBuffer(context, std::as_bytes(values), what, extraUsage);
 }

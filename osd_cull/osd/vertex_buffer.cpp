@@ -27,7 +27,7 @@ VkVertexBuffer::VkVertexBuffer(DeviceContext& deviceContext, int numElements, in
   const VkDeviceSize bytes = VkDeviceSize{sizeof(float)} * static_cast<VkDeviceSize>(numElements) *
                              static_cast<VkDeviceSize>(numVertices);
   requireStorageRange(deviceContext.context(), bytes, "VkVertexBuffer");
-  buffer_ = vk::Buffer(deviceContext.context(), bytes,
+  buffer_ = vulkan::Buffer(deviceContext.context(), bytes,
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
 }
 
@@ -60,19 +60,19 @@ void VkVertexBuffer::recordUpdate(Batch& batch, const float* src, int startVerte
   // The staging buffer is reused: the copy that read it last must be done.
   deviceContext_.wait(stagingTicket_);
   if (!staging_ || staging_.size() < bytes)
-    staging_ = vk::Buffer(deviceContext_.context(), bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                          vk::MemoryUse::Upload);
+    staging_ = vulkan::Buffer(deviceContext_.context(), bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                          vulkan::MemoryUse::Upload);
   std::memcpy(staging_.mapped(), src, bytes);
 
   VkCommandBuffer cmd = batch.commandBuffer();
   // Earlier readers (stencil kernels, draws, read-backs) and writers of the buffer finish first.
-  vk::memoryBarrier(cmd, vk::scope::kAll, vk::scope::kTransferWrite);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
   const VkBufferCopy region{0,
                             VkDeviceSize{sizeof(float)} * static_cast<VkDeviceSize>(numElements_) *
                                 static_cast<VkDeviceSize>(startVertex),
                             bytes};
   vkCmdCopyBuffer(cmd, staging_.handle(), buffer_.handle(), 1, &region);
-  vk::memoryBarrier(cmd, vk::scope::kTransferWrite, vk::scope::kAll);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kTransferWrite, vulkan::scope::kAll);
   stagingTicket_ = batch.ticket();
   lastUse_ = batch.ticket();
 }
@@ -84,7 +84,7 @@ VkBuffer VkVertexBuffer::BindVBO(DeviceContext* deviceContext) const {
 }
 
 std::vector<float> VkVertexBuffer::readback() const {
-  return vk::readback<float>(deviceContext_.context(), buffer_);
+  return vulkan::readback<float>(deviceContext_.context(), buffer_);
 }
 
 void VkVertexBuffer::markUsed(uint64_t ticket) const { lastUse_ = std::max(lastUse_, ticket); }

@@ -44,7 +44,7 @@ class VkVertexBuffer {
   /// \brief The VkBuffer (for descriptor writes or vkCmdBindVertexBuffers).
   VkBuffer BindVBO(DeviceContext* deviceContext = nullptr) const;
   /// \brief The buffer object.
-  const vk::Buffer& buffer() const { return buffer_; }
+  const vulkan::Buffer& buffer() const { return buffer_; }
 
   /// \brief Records the copy of UpdateData into `batch` (for callers that combine the
   /// upload with other work in one submission). Same contract as UpdateData.
@@ -60,8 +60,8 @@ class VkVertexBuffer {
   DeviceContext& deviceContext_;
   int numElements_;
   int numVertices_;
-  vk::Buffer buffer_;
-  vk::Buffer staging_;            // host-visible source of UpdateData copies
+  vulkan::Buffer buffer_;
+  vulkan::Buffer staging_;            // host-visible source of UpdateData copies
   uint64_t stagingTicket_ = 0;    // last submission reading staging_
   mutable uint64_t lastUse_ = 0;  // last submission using buffer_
 };

@@ -5,7 +5,7 @@
 /// pole sphere, a creased cube), a triangle wall and a ground slab, z up. Seen from the
 /// default direction some objects are partly hidden behind others or the wall.
 
-#include "osd_cull/frame/triangle_mesh.h"
+#include "osd_cull/frame/draw/triangle_mesh.h"
 #include "osd_cull/patch/adaptive_patches.h"
 #include "osd_cull/patch/patch_set.h"
 

@@ -4,12 +4,12 @@
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/context.h"
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 Buffer::Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use)
     : size_(size),
       usage_(usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT) {
-  if (size == 0) throw Error("vk::Buffer: size must be positive");
+  if (size == 0) throw Error("vulkan::Buffer: size must be positive");
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
   info.usage = usage_;
@@ -27,8 +27,8 @@ Buffer::Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, Me
 std::byte* Buffer::requireMapped() const {
   if (!mapped())
     throw Error(
-        "vk::Buffer: buffer memory is not host-visible (use MemoryUse::Upload or Readback)");
+        "vulkan::Buffer: buffer memory is not host-visible (use MemoryUse::Upload or Readback)");
   return mapped();
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

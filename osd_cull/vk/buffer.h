@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <span>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 class Context;
 
@@ -48,4 +48,4 @@ class Buffer {
   VkBufferUsageFlags usage_ = 0;
 };
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 const char* toString(VkResult result) {
   switch (result) {
@@ -49,4 +49,4 @@ void check(VkResult result, const char* call, std::source_location where) {
               std::to_string(static_cast<int>(result)) + ")");
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -7,7 +7,7 @@
 #include <source_location>
 #include <string>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 /// \brief The enumerator name of a VkResult, e.g. "VK_ERROR_DEVICE_LOST".
 const char* toString(VkResult result);
@@ -18,8 +18,8 @@ const char* toString(VkResult result);
 void check(VkResult result, const char* call,
            std::source_location where = std::source_location::current());
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan
 
 /// Checks a Vulkan call: OSD_CULL_VK(vkCreateBuffer(device, &info, nullptr, &buffer)).
 /// The error message names the call text.
-#define OSD_CULL_VK(call) ::osd_cull::vk::check((call), #call)
+#define OSD_CULL_VK(call) ::osd_cull::vulkan::check((call), #call)

@@ -3,7 +3,7 @@
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/image.h"
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 void memoryBarrier(VkCommandBuffer cmd, Scope src, Scope dst) {
   VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
@@ -40,4 +40,4 @@ void imageBarrier(VkCommandBuffer cmd, const Image& image, VkImageLayout oldLayo
   vkCmdPipelineBarrier(cmd, src.stages, dst.stages, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

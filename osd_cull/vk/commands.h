@@ -4,7 +4,7 @@
 
 #include <vulkan/vulkan.h>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 class Buffer;
 class Image;
@@ -59,4 +59,4 @@ constexpr uint32_t groupCount(uint32_t count, uint32_t groupSize) {
   return (count + groupSize - 1) / groupSize;
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

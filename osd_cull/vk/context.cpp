@@ -9,7 +9,7 @@
 #include <cstring>
 #include <iostream>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 namespace {
 
@@ -347,4 +347,4 @@ void Context::submit(const std::function<void(VkCommandBuffer)>& record) {
 
 void Context::waitIdle() { OSD_CULL_VK(vkDeviceWaitIdle(device_)); }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 /// \brief How to create a Context.
 struct ContextOptions {
@@ -119,4 +119,4 @@ class Context {
   VkDeviceSize blockSize_ = 0;
 };
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

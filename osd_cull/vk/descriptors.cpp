@@ -7,7 +7,7 @@
 
 #include <map>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 UniqueDescriptorSetLayout createDescriptorSetLayout(Context& context,
                                                     std::span<const DescriptorBinding> bindings) {
@@ -88,4 +88,4 @@ void DescriptorWriter::update(VkDevice device, VkDescriptorSet set) const {
   vkUpdateDescriptorSets(device, static_cast<uint32_t>(w.size()), w.data(), 0, nullptr);
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 class Context;
 class Buffer;
@@ -70,4 +70,4 @@ class DescriptorWriter {
   std::vector<Write> writes_;
 };
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -6,7 +6,7 @@
 
 #include <utility>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 /// \brief Owns `T` and calls `Destroy(device, handle, nullptr)` when it goes away.
 /// Move-only. An empty handle (VK_NULL_HANDLE) destroys nothing.
@@ -62,4 +62,4 @@ using UniqueSemaphore = DeviceHandle<VkSemaphore, vkDestroySemaphore>;
 using UniqueQueryPool = DeviceHandle<VkQueryPool, vkDestroyQueryPool>;
 using UniqueDeviceMemory = DeviceHandle<VkDeviceMemory, vkFreeMemory>;
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -4,7 +4,7 @@
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/context.h"
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 VkImageAspectFlags aspectOf(VkFormat format) {
   switch (format) {
@@ -40,14 +40,14 @@ uint32_t texelSize(VkFormat format) {
     case VK_FORMAT_R32G32B32A32_SFLOAT:
       return 16;
     default:
-      throw Error("vk::texelSize: format " + std::to_string(static_cast<int>(format)) +
+      throw Error("vulkan::texelSize: format " + std::to_string(static_cast<int>(format)) +
                   " is not supported for read back");
   }
 }
 
 Image::Image(Context& context, const ImageDesc& desc) : desc_(desc) {
   if (desc.width == 0 || desc.height == 0 || desc.mipLevels == 0)
-    throw Error("vk::Image: width, height and mip levels must be positive (got " +
+    throw Error("vulkan::Image: width, height and mip levels must be positive (got " +
                 std::to_string(desc.width) + "x" + std::to_string(desc.height) + ", " +
                 std::to_string(desc.mipLevels) + " mips)");
   desc_.usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -85,4 +85,4 @@ Image::Image(Context& context, const ImageDesc& desc) : desc_(desc) {
   for (uint32_t level = 0; level < desc.mipLevels; ++level) mipViews_.push_back(makeView(level, 1));
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 class Context;
 
@@ -55,4 +55,4 @@ class Image {
   ImageDesc desc_;
 };
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

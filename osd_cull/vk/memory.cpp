@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 namespace {
 
@@ -197,4 +197,4 @@ MemoryAllocator::Stats MemoryAllocator::stats() const {
   return s;
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

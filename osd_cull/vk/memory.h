@@ -15,7 +15,7 @@
 #include <mutex>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 /// \brief What the host does with a resource's memory.
 enum class MemoryUse {
@@ -102,4 +102,4 @@ class MemoryAllocator {
   std::vector<std::unique_ptr<Block>> blocks_;
 };
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -5,7 +5,7 @@
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/descriptors.h"
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 const VkSpecializationInfo* SpecializationConstants::info() const {
   if (entries_.empty()) return nullptr;
@@ -175,4 +175,4 @@ void ComputeProgram::dispatch(VkCommandBuffer cmd, VkDescriptorSet set,
   vkCmdDispatch(cmd, groupsX, groupsY, groupsZ);
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 class Context;
 struct DescriptorBinding;
@@ -109,4 +109,4 @@ class ComputeProgram {
   uint32_t pushBytes_;
 };
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -6,7 +6,7 @@
 
 #include <array>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 namespace {
 
@@ -121,4 +121,4 @@ double TimestampQuery::elapsedMs(uint32_t first, uint32_t second) const {
   return static_cast<double>(ticks) * periodNs_ * 1e-6;
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

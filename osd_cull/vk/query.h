@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 class Context;
 
@@ -67,4 +67,4 @@ class TimestampQuery {
   uint64_t mask_;
 };
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -17,7 +17,7 @@
 #include <mutex>
 #include <sstream>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 namespace {
 
@@ -216,4 +216,4 @@ ShaderCacheStats shaderCacheStats() {
   return cache().stats;
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

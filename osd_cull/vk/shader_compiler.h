@@ -21,7 +21,7 @@
 #include <string_view>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 /// \brief A preprocessor define: `#define name value` (value may be empty).
 struct ShaderDefine {
@@ -62,4 +62,4 @@ struct ShaderCacheStats {
 };
 ShaderCacheStats shaderCacheStats();
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

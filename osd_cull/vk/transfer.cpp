@@ -7,13 +7,13 @@
 #include <algorithm>
 #include <cstring>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 void uploadBytes(Context& context, const Buffer& dst, std::span<const std::byte> bytes,
                  VkDeviceSize dstOffset) {
   if (bytes.empty()) return;
   if (dstOffset + bytes.size() > dst.size())
-    throw Error("vk::upload: " + std::to_string(bytes.size()) + " bytes at offset " +
+    throw Error("vulkan::upload: " + std::to_string(bytes.size()) + " bytes at offset " +
                 std::to_string(dstOffset) + " do not fit a buffer of " +
                 std::to_string(dst.size()) + " bytes");
   Buffer staging(context, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
@@ -29,11 +29,11 @@ void uploadBytes(Context& context, const Buffer& dst, std::span<const std::byte>
 std::vector<std::byte> readbackBytes(Context& context, const Buffer& src, VkDeviceSize offset,
                                      VkDeviceSize size) {
   if (offset > src.size())
-    throw Error("vk::readback: offset " + std::to_string(offset) + " is beyond the buffer end (" +
+    throw Error("vulkan::readback: offset " + std::to_string(offset) + " is beyond the buffer end (" +
                 std::to_string(src.size()) + " bytes)");
   if (size == VK_WHOLE_SIZE) size = src.size() - offset;
   if (offset + size > src.size())
-    throw Error("vk::readback: range [" + std::to_string(offset) + ", " +
+    throw Error("vulkan::readback: range [" + std::to_string(offset) + ", " +
                 std::to_string(offset + size) + ") exceeds the buffer (" +
                 std::to_string(src.size()) + " bytes)");
   std::vector<std::byte> out(size);
@@ -60,9 +60,9 @@ void fill(Context& context, const Buffer& dst, uint32_t value) {
 std::vector<std::byte> readbackImage(Context& context, const Image& image, VkImageLayout layout,
                                      uint32_t mip) {
   if (layout == VK_IMAGE_LAYOUT_UNDEFINED)
-    throw Error("vk::readbackImage: image has no contents (layout UNDEFINED)");
+    throw Error("vulkan::readbackImage: image has no contents (layout UNDEFINED)");
   if (mip >= image.desc().mipLevels)
-    throw Error("vk::readbackImage: mip " + std::to_string(mip) + " does not exist");
+    throw Error("vulkan::readbackImage: mip " + std::to_string(mip) + " does not exist");
   const uint32_t w = std::max(1u, image.width() >> mip);
   const uint32_t h = std::max(1u, image.height() >> mip);
   const VkDeviceSize size = VkDeviceSize{w} * h * texelSize(image.format());
@@ -85,4 +85,4 @@ std::vector<std::byte> readbackImage(Context& context, const Image& image, VkIma
   return out;
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

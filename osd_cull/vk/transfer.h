@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 class Context;
 
@@ -50,4 +50,4 @@ void fill(Context& context, const Buffer& dst, uint32_t value);
 std::vector<std::byte> readbackImage(Context& context, const Image& image, VkImageLayout layout,
                                      uint32_t mip = 0);
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

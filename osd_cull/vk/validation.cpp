@@ -1,6 +1,6 @@
 #include "osd_cull/vk/validation.h"
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 void ValidationLog::record(ValidationMessage message) {
   std::lock_guard lock(mutex_);
@@ -33,4 +33,4 @@ std::string ValidationLog::summary() const {
   return out;
 }
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

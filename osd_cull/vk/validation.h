@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace osd_cull::vk {
+namespace osd_cull::vulkan {
 
 /// \brief One message the validation layer reported (warning or error).
 struct ValidationMessage {
@@ -37,4 +37,4 @@ class ValidationLog {
   std::vector<ValidationMessage> messages_;
 };
 
-}  // namespace osd_cull::vk
+}  // namespace osd_cull::vulkan

@@ -8,10 +8,10 @@
 // 4. upload the patches and draw them with the Vulkan tessellation pipeline.
 #include "adapters/load_mesh.h"
 #include "osd_cull/frame/camera.h"
-#include "osd_cull/frame/gpu_patch_set.h"
-#include "osd_cull/frame/png_io.h"
-#include "osd_cull/frame/render_target.h"
-#include "osd_cull/frame/renderer.h"
+#include "osd_cull/frame/draw/gpu_patch_set.h"
+#include "osd_cull/frame/draw/png_io.h"
+#include "osd_cull/frame/draw/render_target.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/procedural.h"
 #include "osd_cull/vk/context.h"
@@ -34,7 +34,7 @@ int main(int argc, char** argv) try {
   for (glm::dvec3& p : moved) p.y *= 1.1;
   ex.matrix.update(moved, ex.patches.points);
 
-  vk::Context context;  // lavapipe unless $OSD_CULL_DEVICE names another device
+  vulkan::Context context;  // lavapipe unless $OSD_CULL_DEVICE names another device
   frame::GpuPatchSet gpu(context, ex.patches);
   const uint32_t width = 480, height = 360;
   const frame::Camera camera = frame::frameBounds(frame::boundsOf(ex.patches.points),

@@ -12,10 +12,10 @@
 #include "adapters/load_occluder.h"
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
-#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/png_io.h"
-#include "osd_cull/frame/renderer.h"
+#include "osd_cull/frame/draw/png_io.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/context.h"
 
 #include <cmath>
@@ -161,10 +161,10 @@ int run(Args& args) {
     while (std::getline(list, file, ','))
       if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
   }
-  vk::ContextOptions contextOptions;
+  vulkan::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
-  vk::Context context(contextOptions);
+  vulkan::Context context(contextOptions);
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << scene.patches.source << ": " << scene.patches.bezierCount
             << " Bezier + " << scene.patches.gregoryCount << " Gregory patches, "
@@ -341,7 +341,7 @@ int run(Args& args) {
     const uint32_t n = writePyramidLevels(*pyramidDir, cullFrame->pyramid(), context);
     std::cout << "wrote " << n << " pyramid levels to " << *pyramidDir << "\n";
   }
-  if (const vk::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
+  if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
     return 1;
   }

@@ -5,8 +5,8 @@
 #include "mesh_patches.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/frame/cull_verification.h"
-#include "osd_cull/frame/view_sets.h"
+#include "osd_cull/frame/verify/cull_verification.h"
+#include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/vk/context.h"
 
 #include <nlohmann/json.hpp>
@@ -144,10 +144,10 @@ int run(Args& args) {
 
   const MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
   const PatchSet& patches = mesh.patches;
-  vk::ContextOptions contextOptions;
+  vulkan::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
-  vk::Context context(contextOptions);
+  vulkan::Context context(contextOptions);
 
   frame::VerifyOptions options;
   options.tessellation.uniformLevel = tess;
@@ -279,7 +279,7 @@ int run(Args& args) {
     file << out.dump(2) << "\n";
     std::printf("\nwrote %s\n", jsonPath->c_str());
   }
-  if (const vk::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
+  if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
     return 1;
   }

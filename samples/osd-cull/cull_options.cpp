@@ -1,7 +1,7 @@
 #include "cull_options.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/frame/cull_methods.h"
+#include "osd_cull/frame/cull/cull_methods.h"
 
 namespace osd_cull::cli {
 

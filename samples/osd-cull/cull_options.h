@@ -7,7 +7,7 @@
 
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/frame/cull_pass.h"
+#include "osd_cull/frame/cull/cull_pass.h"
 
 #include <optional>
 #include <string>

@@ -1,6 +1,6 @@
 #include "cull_report.h"
 
-#include "osd_cull/frame/png_io.h"
+#include "osd_cull/frame/draw/png_io.h"
 
 #include <cstdio>
 
@@ -28,7 +28,7 @@ std::string cullFrameLine(uint32_t frame, const frame::CullFrameStats& s) {
 }
 
 nlohmann::json cullFrameJson(uint32_t frame, const frame::CullFrameStats& s) {
-  auto pass = [](const vk::PipelineStatistics& p) {
+  auto pass = [](const vulkan::PipelineStatistics& p) {
     return nlohmann::json{{"tessControlPatches", p.tessControlPatches},
                           {"tessEvaluationInvocations", p.tessEvaluationInvocations},
                           {"fragmentShaderInvocations", p.fragmentShaderInvocations},
@@ -64,7 +64,7 @@ nlohmann::json plainFrameJson(uint32_t frame, const frame::FrameStats& s) {
 }
 
 uint32_t writePyramidLevels(const std::filesystem::path& dir, const frame::HiZPyramid& pyramid,
-                            vk::Context& context) {
+                            vulkan::Context& context) {
   std::filesystem::create_directories(dir);
   const auto levels = pyramid.readLevels(context);
   const auto& layout = pyramid.layout();

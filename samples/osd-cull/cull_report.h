@@ -4,7 +4,7 @@
 /// figures as JSON (--stats FILE.json), and the Hi-Z pyramid levels as images.
 
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/frame/renderer.h"
+#include "osd_cull/frame/draw/renderer.h"
 
 #include <nlohmann/json.hpp>
 
@@ -27,6 +27,6 @@ nlohmann::json plainFrameJson(uint32_t frame, const frame::FrameStats& stats);
 /// \brief Writes every level of the pyramid as DIR/hiz_level_NN.png (16-bit gray, near
 /// dark, far white, as depth images); returns the number of files.
 uint32_t writePyramidLevels(const std::filesystem::path& dir, const frame::HiZPyramid& pyramid,
-                            vk::Context& context);
+                            vulkan::Context& context);
 
 }  // namespace osd_cull::cli

@@ -4,7 +4,7 @@
 /// per-mesh back-patch decision, and a summary check of CullVerifier totals.
 
 #include "osd_cull/bound/back_patch_validity.h"
-#include "osd_cull/frame/cull_verification.h"
+#include "osd_cull/frame/verify/cull_verification.h"
 #include "osd_cull/patch/patch_set.h"
 
 #include <filesystem>

@@ -1,7 +1,7 @@
 #include "support/tessellator_capture.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/frame/render_target.h"
+#include "osd_cull/frame/draw/render_target.h"
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/descriptors.h"
@@ -88,61 +88,61 @@ double l1(const glm::dvec2& d) { return std::abs(d.x) + std::abs(d.y); }
 }  // namespace
 
 struct TessellatorCapture::Impl {
-  vk::Context& context;
+  vulkan::Context& context;
   frame::RenderTarget target;
-  vk::UniqueRenderPass pass;
-  vk::Buffer out;
-  vk::UniqueDescriptorSetLayout setLayout;
-  vk::UniquePipelineLayout layout;
-  vk::UniquePipeline pipeline;
-  std::unique_ptr<vk::DescriptorPool> pool;
+  vulkan::UniqueRenderPass pass;
+  vulkan::Buffer out;
+  vulkan::UniqueDescriptorSetLayout setLayout;
+  vulkan::UniquePipelineLayout layout;
+  vulkan::UniquePipeline pipeline;
+  std::unique_ptr<vulkan::DescriptorPool> pool;
   VkDescriptorSet set = VK_NULL_HANDLE;
 
-  explicit Impl(vk::Context& c)
+  explicit Impl(vulkan::Context& c)
       : context(c),
         target(c, 8, 8),
         pass(frame::createTargetRenderPass(c, true)),
         out(c, 8 + size_t{kMaxTriangles} * 3 * 8,
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-            vk::MemoryUse::Readback) {}
+            vulkan::MemoryUse::Readback) {}
 };
 
-TessellatorCapture::TessellatorCapture(vk::Context& context)
+TessellatorCapture::TessellatorCapture(vulkan::Context& context)
     : impl_(std::make_unique<Impl>(context)) {
   if (!context.info().optional.geometryShader)
     throw Error("TessellatorCapture needs the geometryShader feature");
-  const vk::DescriptorBinding bindings[] = {
+  const vulkan::DescriptorBinding bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_GEOMETRY_BIT}};
-  impl_->setLayout = vk::createDescriptorSetLayout(context, bindings);
+  impl_->setLayout = vulkan::createDescriptorSetLayout(context, bindings);
   const VkDescriptorSetLayout l = impl_->setLayout.get();
-  impl_->layout = vk::createPipelineLayout(context, {&l, 1}, sizeof(Push),
+  impl_->layout = vulkan::createPipelineLayout(context, {&l, 1}, sizeof(Push),
                                            VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT);
-  vk::GraphicsPipelineDesc d;
+  vulkan::GraphicsPipelineDesc d;
   const std::string geometry = std::string(kGeometry).replace(
       std::string(kGeometry).find("MAX_TRIANGLES"), 13, std::to_string(kMaxTriangles) + "u");
   d.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT,
-                      vk::compileGlsl(kVertex, "capture.vert", VK_SHADER_STAGE_VERTEX_BIT),
+                      vulkan::compileGlsl(kVertex, "capture.vert", VK_SHADER_STAGE_VERTEX_BIT),
                       {}});
   d.stages.push_back(
       {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
-       vk::compileGlsl(kControl, "capture.tesc", VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT),
+       vulkan::compileGlsl(kControl, "capture.tesc", VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT),
        {}});
   d.stages.push_back(
       {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
-       vk::compileGlsl(kEvaluation, "capture.tese", VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT),
+       vulkan::compileGlsl(kEvaluation, "capture.tese", VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT),
        {}});
   d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT,
-                      vk::compileGlsl(geometry, "capture.geom", VK_SHADER_STAGE_GEOMETRY_BIT),
+                      vulkan::compileGlsl(geometry, "capture.geom", VK_SHADER_STAGE_GEOMETRY_BIT),
                       {}});
   d.layout = impl_->layout.get();
   d.renderPass = impl_->pass.get();
   d.colorAttachments = 2;
   d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   d.patchControlPoints = 1;
-  impl_->pipeline = vk::createGraphicsPipeline(context, d);
-  impl_->pool = std::make_unique<vk::DescriptorPool>(context, 1, bindings);
+  impl_->pipeline = vulkan::createGraphicsPipeline(context, d);
+  impl_->pool = std::make_unique<vulkan::DescriptorPool>(context, 1, bindings);
   impl_->set = impl_->pool->allocate(impl_->setLayout.get());
-  vk::DescriptorWriter().buffer(0, impl_->out).update(context.device(), impl_->set);
+  vulkan::DescriptorWriter().buffer(0, impl_->out).update(context.device(), impl_->set);
 }
 
 TessellatorCapture::~TessellatorCapture() = default;
@@ -156,7 +156,7 @@ std::vector<ParamTriangle> TessellatorCapture::capture(const bound::QuadTessLeve
   }
   m.context.submit([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, m.out.handle(), 0, 8, 0);
-    vk::memoryBarrier(cmd, vk::scope::kTransferWrite,
+    vulkan::memoryBarrier(cmd, vulkan::scope::kTransferWrite,
                       {VK_PIPELINE_STAGE_GEOMETRY_SHADER_BIT,
                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT});
     VkClearValue clears[3] = {};
@@ -179,8 +179,8 @@ std::vector<ParamTriangle> TessellatorCapture::capture(const bound::QuadTessLeve
                        sizeof(push), &push);
     vkCmdDraw(cmd, 1, 1, 0, 0);
     vkCmdEndRenderPass(cmd);
-    vk::memoryBarrier(cmd, {VK_PIPELINE_STAGE_GEOMETRY_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
-                      vk::scope::kHostRead);
+    vulkan::memoryBarrier(cmd, {VK_PIPELINE_STAGE_GEOMETRY_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
+                      vulkan::scope::kHostRead);
   });
   const auto words = m.out.mappedAs<uint32_t>();
   const uint32_t count = words[0];

@@ -22,7 +22,7 @@ using ParamTriangle = std::array<glm::dvec2, 3>;
 class TessellatorCapture {
  public:
   /// \brief Needs the geometryShader feature (Context::info().optional.geometryShader).
-  explicit TessellatorCapture(vk::Context& context);
+  explicit TessellatorCapture(vulkan::Context& context);
   ~TessellatorCapture();
   TessellatorCapture(const TessellatorCapture&) = delete;
   TessellatorCapture& operator=(const TessellatorCapture&) = delete;

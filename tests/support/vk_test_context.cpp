@@ -2,16 +2,16 @@
 
 namespace osd_cull::test {
 
-vk::ContextOptions validatedContextOptions(std::shared_ptr<vk::ValidationLog> log) {
-  vk::ContextOptions options;
+vulkan::ContextOptions validatedContextOptions(std::shared_ptr<vulkan::ValidationLog> log) {
+  vulkan::ContextOptions options;
   options.validation = true;
   options.validationLog = std::move(log);
   return options;
 }
 
 void VkTest::SetUp() {
-  log_ = std::make_shared<vk::ValidationLog>();
-  context_ = std::make_unique<vk::Context>(validatedContextOptions(log_));
+  log_ = std::make_shared<vulkan::ValidationLog>();
+  context_ = std::make_unique<vulkan::Context>(validatedContextOptions(log_));
 }
 
 void VkTest::TearDown() {

@@ -12,7 +12,7 @@ namespace osd_cull::test {
 
 /// \brief Context options of tests: validation with synchronization validation, device
 /// from $OSD_CULL_DEVICE (lavapipe by default).
-vk::ContextOptions validatedContextOptions(std::shared_ptr<vk::ValidationLog> log);
+vulkan::ContextOptions validatedContextOptions(std::shared_ptr<vulkan::ValidationLog> log);
 
 /// \brief Fixture: SetUp creates a validated Context; TearDown destroys it and then fails
 /// the test if the validation layer reported anything (during the test or at teardown).
@@ -24,12 +24,12 @@ class VkTest : public ::testing::Test {
   void SetUp() override;
   void TearDown() override;
 
-  vk::Context& context() { return *context_; }
-  vk::ValidationLog& validationLog() { return *log_; }
+  vulkan::Context& context() { return *context_; }
+  vulkan::ValidationLog& validationLog() { return *log_; }
 
  private:
-  std::shared_ptr<vk::ValidationLog> log_;
-  std::unique_ptr<vk::Context> context_;
+  std::shared_ptr<vulkan::ValidationLog> log_;
+  std::unique_ptr<vulkan::Context> context_;
 };
 
 }  // namespace osd_cull::test

@@ -1,0 +1,360 @@
+#include "osd_cull/frame/cull/cull_pass.h"
+
+#include "osd_cull/bound/clip_space.h"
+#include "osd_cull/error.h"
+#include "osd_cull/frame/draw/draw_chunks.h"
+#include "osd_cull/vk/commands.h"
+#include "osd_cull/vk/context.h"
+#include "osd_cull/vk/pipeline.h"
+#include "osd_cull/vk/shader_compiler.h"
+#include "osd_cull/vk/transfer.h"
+
+#include <shared/draw_layout.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace osd_cull::frame {
+
+namespace {
+
+namespace sh = osd_cull::shader;
+
+const vulkan::DescriptorBinding kBindings[] = {
+    {sh::kCullBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingCones, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingResults, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingDrawList, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingCommands, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingTable, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+
+// What the outputs are read by after the pass: indirect draws, the patch draw shaders (draw
+// list) and the host (results, counters).
+constexpr vulkan::Scope kAfterCull{
+    VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+        VK_PIPELINE_STAGE_HOST_BIT,
+    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT};
+
+uint32_t maxDraws(uint32_t count, uint32_t chunk) { return (count + chunk - 1) / chunk; }
+
+// A cone rounded to float toward "visible": sin of the half-angle rounded up; the apex and
+// axis round to nearest, which the kernel's test margin covers (shaders/cull/cone.glsl).
+float roundUp(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) < v) f = std::nextafter(f, std::numeric_limits<float>::max());
+  return f;
+}
+float roundDown(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::max());
+  return f;
+}
+
+// One patch's kConeVec4s vec4 (shared/cull_layout.h): the cone, then what the drawn-triangle
+// bound needs (bound::bezierDerivativeBounds for Bézier patches).
+void packCone(const bound::ConeOfNormals& c, const bound::DerivativeBounds& d, float* out) {
+  out[0] = static_cast<float>(c.apex.x);
+  out[1] = static_cast<float>(c.apex.y);
+  out[2] = static_cast<float>(c.apex.z);
+  out[3] = roundUp(c.sinAngle);
+  out[4] = static_cast<float>(c.axis.x);
+  out[5] = static_cast<float>(c.axis.y);
+  out[6] = static_cast<float>(c.axis.z);
+  out[7] = c.valid ? -1.0f : static_cast<float>(static_cast<uint32_t>(c.reason));
+  out[8] = roundUp(d.g);
+  out[9] = roundUp(d.h);
+  out[10] = roundUp(d.maxAbs);
+  out[11] = roundDown(c.minNormal);
+  out[12] = roundUp(c.maxRadius);
+  out[13] = roundUp(c.angle);
+  out[14] = 0.0f;
+  out[15] = 0.0f;
+}
+
+// The kernel source of one configuration: generated declarations, then the stage files,
+// then the main (shaders/cull/cull_main.glsl explains the macros).
+std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
+                          bool drawnTriangles) {
+  auto has = [&](CullStage s) {
+    return std::any_of(stages.begin(), stages.end(),
+                       [&](const CullMethod* m) { return m->stage == s; });
+  };
+  std::string text = "#version 450\n";
+  text += "#define CULL_LANES " + std::to_string(lanes) + "\n";
+  text += std::string("#define CULL_FRUSTUM ") + (has(CullStage::Frustum) ? "1" : "0") + "\n";
+  text += std::string("#define CULL_BACK_PATCH ") + (has(CullStage::BackPatch) ? "1" : "0") + "\n";
+  text += std::string("#define CULL_OCCLUSION ") + (has(CullStage::Occlusion) ? "1" : "0") + "\n";
+  text += std::string("#define CULL_DRAWN ") +
+          (drawnTriangles && has(CullStage::BackPatch) ? "1" : "0") + "\n";
+  for (const CullMethod* m : stages)
+    if (m->generatedGlsl) text += m->generatedGlsl();
+  text += "#include \"cull/frustum.glsl\"\n";
+  for (const CullMethod* m : stages)
+    if (m->stage != CullStage::Frustum) text += "#include \"" + m->glslFile + "\"\n";
+  text += "#include \"cull/cull_main.glsl\"\n";
+  return text;
+}
+
+}  // namespace
+
+uint32_t indirectDrawChunk(const TessellationOptions& tessellation, uint32_t controlPoints,
+                           uint32_t count) {
+  if (count == 0) return 1;
+  const uint32_t level = tessellation.mode == TessellationOptions::Mode::Uniform
+                             ? std::min(tessellation.uniformLevel * 2, tessellation.maxLevel)
+                             : tessellation.maxLevel;
+  const std::vector<uint32_t> bounds(count, (level + 1) * (level + 1));
+  const std::vector<DrawChunk> chunks = planDrawChunks(bounds, controlPoints);
+  return std::max<uint32_t>(1, chunks.front().count);
+}
+
+CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
+                   const CullSettings& settings)
+    : context_(context), gpu_(gpu), host_(host), settings_(settings) {
+  if (host.patchCount() != gpu.patchCount() || host.bezierCount != gpu.bezierCount())
+    throw Error("CullPass: host PatchSet '" + host.source + "' has " +
+                std::to_string(host.bezierCount) + " + " + std::to_string(host.gregoryCount) +
+                " patches, the GpuPatchSet " + std::to_string(gpu.bezierCount()) + " + " +
+                std::to_string(gpu.gregoryCount()));
+  auto add = [&](const std::string& name, CullStage stage) {
+    const CullMethod& m = cullMethod(name);
+    if (m.stage != stage)
+      throw Error("CullPass: method '" + name + "' is a " + toString(m.stage) + " method, not a " +
+                  toString(stage) + " method");
+    stages_.push_back(&m);
+    lanes_ = std::max(lanes_, m.lanesPerPatch);
+  };
+  if (settings.frustum) add("frustum", CullStage::Frustum);
+  if (!settings.backPatch.empty()) {
+    if (settings.backPatchValidity.enabled) {
+      add(settings.backPatch, CullStage::BackPatch);
+    } else {
+      cullMethod(settings.backPatch);  // still reject unknown names
+      backPatchNote_ =
+          "back-patch culling off for " + host.source + ": " + settings.backPatchValidity.reason;
+    }
+  }
+  if (!settings.occlusion.empty()) add(settings.occlusion, CullStage::Occlusion);
+
+  const uint32_t n = host.patchCount();
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  constexpr size_t kFloatsPerCone = 4 * sh::kConeVec4s;
+  std::vector<float> packed(kFloatsPerCone, 0.0f);
+  if (backPatchEnabled()) {
+    const CullMethod* backPatch = stages_[settings.frustum ? 1 : 0];
+    cones_ = bound::buildPatchCones(host, backPatch->reference);
+    packed.assign(std::max<size_t>(1, cones_.size()) * kFloatsPerCone, 0.0f);
+    for (size_t p = 0; p < cones_.size(); ++p) {
+      const bound::DerivativeBounds d =
+          host.type(uint32_t(p)) == PatchType::Bezier
+              ? bound::bezierDerivativeBounds(host.controlPoints(uint32_t(p)))
+              : bound::DerivativeBounds{};
+      packCone(cones_[p], d, &packed[kFloatsPerCone * p]);
+    }
+  }
+  conesBuffer_ = vulkan::Buffer(context, packed.size() * sizeof(float), storage);
+  vulkan::upload<float>(context, conesBuffer_, packed);
+  std::vector<uint32_t> table(2, 0u);
+  for (const CullMethod* m : stages_)
+    if (m->table) table = m->table();
+  table_ = vulkan::Buffer(context, table.size() * sizeof(uint32_t), storage);
+  vulkan::upload<uint32_t>(context, table_, table);
+  results_ = vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage, vulkan::MemoryUse::Readback);
+  drawList_ = vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage);
+  counters_ = vulkan::Buffer(context, sh::kCounterCount * 4, indirect, vulkan::MemoryUse::Readback);
+  commands_ = vulkan::Buffer(context, (size_t{n} + 2) * sizeof(VkDrawIndirectCommand), indirect);
+  std::fill_n(results_.mappedAs<uint32_t>().begin(), std::max<uint32_t>(1, n), sh::kResultInitial);
+  std::fill_n(counters_.mappedAs<uint32_t>().begin(), sh::kCounterCount, 0u);
+  buildPipelines(context);
+}
+
+CullPass::~CullPass() = default;
+
+void CullPass::buildPipelines(vulkan::Context& context) {
+  setLayout_ = vulkan::createDescriptorSetLayout(context, kBindings);
+  std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
+  for (const CullMethod* m : stages_)
+    if (!m->stageBindings.empty()) {
+      stageSetLayout_ = vulkan::createDescriptorSetLayout(context, m->stageBindings);
+      layouts.push_back(stageSetLayout_.get());
+    }
+  layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
+                                     VK_SHADER_STAGE_COMPUTE_BIT);
+  const vulkan::Spirv cull = vulkan::compileGlsl(composeKernel(stages_, lanes_, settings_.drawnTriangles),
+                                         "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+  cullPipeline_ = vulkan::createComputePipeline(context, layout_.get(), cull);
+  drawsPipeline_ = vulkan::createComputePipeline(context, layout_.get(),
+                                             vulkan::compileShader({"cull/write_draws.comp", {}}));
+  pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
+  set_ = pool_->allocate(setLayout_.get());
+  vulkan::DescriptorWriter()
+      .buffer(sh::kCullBindingPoints, gpu_.points())
+      .buffer(sh::kCullBindingCones, conesBuffer_)
+      .buffer(sh::kCullBindingResults, results_)
+      .buffer(sh::kCullBindingDrawList, drawList_)
+      .buffer(sh::kCullBindingCounters, counters_)
+      .buffer(sh::kCullBindingCommands, commands_)
+      .buffer(sh::kCullBindingTable, table_)
+      .buffer(sh::kCullBindingParams, gpu_.params())
+      .update(context.device(), set_);
+}
+
+bool CullPass::backPatchEnabled() const {
+  return std::any_of(stages_.begin(), stages_.end(),
+                     [](const CullMethod* m) { return m->stage == CullStage::BackPatch; });
+}
+
+bound::CullTests CullPass::referenceTests() const {
+  bound::CullTests t;
+  t.frustum = settings_.frustum;
+  for (const CullMethod* m : stages_)
+    if (m->stage == CullStage::BackPatch) t.backPatch = m->reference;
+  return t;
+}
+
+bound::CullTests CullPass::referenceTests(const Camera& camera,
+                                          const TessellationOptions& tessellation,
+                                          std::vector<bound::TriangleShape>& shapes) const {
+  bound::CullTests t = referenceTests();
+  shapes.clear();
+  if (drawnTriangles()) {
+    shapes = drawnTriangleShapes(host_, camera.viewProjection(),
+                                 glm::dvec2(camera.width, camera.height), tessellation);
+    t.drawnShapes = shapes;
+    t.snapPerDistance = bound::snapPerDistance(camera.viewProjection(), camera.width, camera.height,
+                                               context_.info().limits.subPixelPrecisionBits);
+  }
+  return t;
+}
+
+sh::CullConstants CullPass::constants(const Camera& camera,
+                                      const TessellationOptions& tessellation) const {
+  const glm::dmat4 viewProj = camera.viewProjection();
+  const bound::CullView view = bound::makeCullView(viewProj);
+  sh::CullConstants c{};
+  c.viewProjection = glm::mat4(viewProj);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  c.eye = glm::vec4(nan, nan, nan, 0.0f);
+  if (view.eye) {
+    // The scale between world-space and clip-space tangent-plane coefficients
+    // (shaders/cull/tangent_plane_common.glsl); eyePosition() exists only when e.w != 0.
+    const double invEw = 1.0 / std::abs(bound::homogeneousEye(viewProj).w);
+    c.eye = glm::vec4(glm::vec3(*view.eye), static_cast<float>(invEw));
+  }
+  // The tessellation the draw shaders will use (Renderer applies effectiveOptions() too).
+  const TessellationOptions t = effectiveOptions(tessellation, gpu_.hasTransitionEdges());
+  c.viewport = glm::vec4(float(camera.width), float(camera.height), float(t.uniformLevel),
+                         float(t.maxLevel));
+  c.tessPixelsPerSegment =
+      t.mode == TessellationOptions::Mode::Uniform ? 0.0f : float(t.pixelsPerSegment);
+  c.snapPerDistance =
+      static_cast<float>(bound::snapPerDistance(viewProj, camera.width, camera.height,
+                                                context_.info().limits.subPixelPrecisionBits) *
+                         1.001);
+  c.patchCount = gpu_.patchCount();
+  c.bezierCount = gpu_.bezierCount();
+  c.pointStride = gpu_.pointStride();
+  c.pointOffset = gpu_.pointOffset();
+  c.drawChunkBezier = indirectDrawChunk(tessellation, kBezierPoints, gpu_.bezierCount());
+  c.drawChunkGregory = indirectDrawChunk(tessellation, kGregoryPoints, gpu_.gregoryCount());
+  return c;
+}
+
+void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
+                      const TessellationOptions& tessellation, VkDescriptorSet stageSet) {
+  if (stageSetLayout_ && stageSet == VK_NULL_HANDLE)
+    throw Error("CullPass::record: the occlusion stage '" + settings_.occlusion +
+                "' needs its descriptor set");
+  const sh::CullConstants c = constants(camera, tessellation);
+  chunkBezier_ = c.drawChunkBezier;
+  chunkGregory_ = c.drawChunkGregory;
+  // Earlier readers of the outputs (draws, host) and writers of the points come first.
+  vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
+  vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kComputeReadWrite);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
+                          nullptr);
+  if (stageSet != VK_NULL_HANDLE)
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 1, 1, &stageSet, 0,
+                            nullptr);
+  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
+  const uint32_t n = gpu_.patchCount();
+  if (n > 0) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPipeline_.get());
+    vkCmdDispatch(cmd, vulkan::groupCount(n, sh::kCullGroupSize / lanes_), 1, 1);
+  }
+  vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite, vulkan::scope::kComputeReadWrite);
+  const uint32_t commandCount =
+      maxDraws(gpu_.bezierCount(), chunkBezier_) + maxDraws(gpu_.gregoryCount(), chunkGregory_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, drawsPipeline_.get());
+  vkCmdDispatch(cmd, std::max(1u, vulkan::groupCount(commandCount, sh::kDrawsGroupSize)), 1, 1);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, kAfterCull);
+}
+
+double CullPass::run(const Camera& camera, const TessellationOptions& tessellation,
+                     VkDescriptorSet stageSet) {
+  const auto start = std::chrono::steady_clock::now();
+  context_.submit([&](VkCommandBuffer cmd) { record(cmd, camera, tessellation, stageSet); });
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+std::span<const uint32_t> CullPass::results() const {
+  return results_.mappedAs<const uint32_t>().first(gpu_.patchCount());
+}
+
+CullCounts CullPass::counts() const {
+  const auto c = counters_.mappedAs<const uint32_t>();
+  return {c[sh::kCounterSurvivorsBezier], c[sh::kCounterSurvivorsGregory],
+          c[sh::kCounterDrawsBezier], c[sh::kCounterDrawsGregory]};
+}
+
+std::vector<uint32_t> CullPass::survivors(vulkan::Context& context) const {
+  const CullCounts n = counts();
+  const std::vector<uint32_t> list = vulkan::readback<uint32_t>(context, drawList_);
+  std::vector<uint32_t> out(list.begin(), list.begin() + n.survivorsBezier);
+  out.insert(out.end(), list.begin() + gpu_.bezierCount(),
+             list.begin() + gpu_.bezierCount() + n.survivorsGregory);
+  return out;
+}
+
+uint32_t CullPass::recordDraws(VkCommandBuffer cmd, Renderer& renderer, const Camera& camera,
+                               const RenderOptions& options, uint32_t itemBase) {
+  const uint32_t chunkB =
+      indirectDrawChunk(options.tessellation, kBezierPoints, gpu_.bezierCount());
+  const uint32_t chunkG =
+      indirectDrawChunk(options.tessellation, kGregoryPoints, gpu_.gregoryCount());
+  if (chunkB != chunkBezier_ || chunkG != chunkGregory_)
+    throw Error("CullPass::recordDraws: the draw commands were written for " +
+                std::to_string(chunkBezier_) + "/" + std::to_string(chunkGregory_) +
+                " patches per draw, these tessellation options need " + std::to_string(chunkB) +
+                "/" + std::to_string(chunkG) + "; pass the same options to record()");
+  if (drawSet_ == VK_NULL_HANDLE) drawSet_ = gpu_.descriptorSetWithDrawList(context_, drawList_);
+  const PatchDraw draw{&gpu_, &host_, itemBase, drawSet_};
+  const uint32_t maxB = gpu_.bezierCount() ? maxDraws(gpu_.bezierCount(), chunkB) : 0;
+  const uint32_t maxG = gpu_.gregoryCount() ? maxDraws(gpu_.gregoryCount(), chunkG) : 0;
+  renderer.recordIndirect(cmd, camera, draw, PatchType::Bezier, commands_, 0, counters_,
+                          4 * sh::kCounterDrawsBezier, maxB, options);
+  renderer.recordIndirect(cmd, camera, draw, PatchType::Gregory, commands_,
+                          VkDeviceSize{maxB} * sizeof(VkDrawIndirectCommand), counters_,
+                          4 * sh::kCounterDrawsGregory, maxG, options);
+  return maxB + maxG;
+}
+
+FrameStats renderCulled(Renderer& renderer, RenderTarget& target, const Camera& camera,
+                        CullPass& pass, std::span<const GpuTriangleMesh* const> occluders,
+                        const RenderOptions& options, VkDescriptorSet stageSet) {
+  FrameStats stats = renderer.renderWith(
+      target, camera, occluders, options,
+      [&](VkCommandBuffer cmd) { pass.record(cmd, camera, options.tessellation, stageSet); },
+      [&](VkCommandBuffer cmd) { return pass.recordDraws(cmd, renderer, camera, options); });
+  stats.patchesDrawn = pass.counts().survivors();
+  return stats;
+}
+
+}  // namespace osd_cull::frame

@@ -1,0 +1,176 @@
+#pragma once
+/// \file cull_pass.h
+/// \brief One cull dispatch over all patches of a GpuPatchSet (shaders/cull/cull_main.glsl):
+/// the enabled stages cheapest first (frustum → back-patch method → occlusion), a result
+/// code per patch (shaders/shared/cull_layout.h, bound/cull_reference.h reads it), a compact
+/// draw list of the survivors and indirect draw commands over it.
+///
+/// Typical frame:
+///   pass.record(cmd, camera, options.tessellation);      // before the render pass
+///   renderer.beginPass(cmd, target, options);
+///   pass.recordDraws(cmd, renderer, camera, options);     // survivors only
+///   renderer.endPass(cmd);
+/// or renderCulled() for all of that in one submission.
+///
+/// Every GPU cull is a cull of the double-precision reference (bound::referenceCull with
+/// referenceTests() and cones()): fp32 decisions round toward "visible"
+/// (docs/algorithms/cull-kernel.md).
+
+#include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/bound/cone_of_normals.h"
+#include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/frame/cull/cull_methods.h"
+#include "osd_cull/frame/draw/renderer.h"
+#include "osd_cull/vk/buffer.h"
+#include "osd_cull/vk/descriptors.h"
+#include "osd_cull/vk/handle.h"
+
+#include <shared/cull_layout.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace osd_cull::frame {
+
+/// \brief Which stages a pass runs.
+struct CullSettings {
+  bool frustum = true;
+  std::string backPatch;  ///< a back-patch method name ("tcone", ...); empty: none
+  std::string occlusion;  ///< an occlusion method name; empty: none
+  /// Whether back-patch culling is valid on this mesh (bound::backPatchValidity). When it
+  /// is not, the back-patch stage is left out and backPatchNote() gives the reason. The
+  /// default is off: a caller must say that the mesh is a closed, outward-oriented solid.
+  bound::BackPatchValidity backPatchValidity{false, "mesh validity not given"};
+  /// Back-patch culls must be conservative for the triangles the tessellator draws, not only
+  /// for the surface (bound/drawn_triangles.h): no chord triangle of a culled patch may face
+  /// the eye. On by default; off gives the surface-exact tests the papers measure, which can
+  /// lose single silhouette pixels (docs/algorithms/drawn-triangles.md).
+  bool drawnTriangles = true;
+};
+
+/// \brief Survivor and draw counts of the last pass.
+struct CullCounts {
+  uint32_t survivorsBezier = 0;
+  uint32_t survivorsGregory = 0;
+  uint32_t drawsBezier = 0;  ///< indirect draw commands written
+  uint32_t drawsGregory = 0;
+  uint32_t survivors() const { return survivorsBezier + survivorsGregory; }
+};
+
+/// \brief Patches per indirect draw so that no lavapipe batch overflows (draw_chunks.h) with
+/// `controlPoints` points per patch, for the largest vertex count `tessellation` can produce
+/// (uniform: level 2N at transition edges, adaptive: maxLevel): at least 1, at most `count`.
+uint32_t indirectDrawChunk(const TessellationOptions& tessellation, uint32_t controlPoints,
+                           uint32_t count);
+
+/// \brief The pipelines, per-mesh data (cones) and output buffers of one cull
+/// configuration for one patch set. The patch set must outlive the pass.
+class CullPass {
+ public:
+  /// \brief Builds the kernel variant for `settings` and uploads the per-mesh data (cones
+  /// of the back-patch method, built on the host in double, rounded toward "visible").
+  /// \throws osd_cull::Error for unknown method names or a method in the wrong stage.
+  CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
+           const CullSettings& settings);
+  ~CullPass();
+  CullPass(const CullPass&) = delete;
+  CullPass& operator=(const CullPass&) = delete;
+
+  const CullSettings& settings() const { return settings_; }
+  /// \brief The methods the kernel runs, in stage order.
+  const std::vector<const CullMethod*>& stages() const { return stages_; }
+  /// \brief Whether the back-patch stage runs; backPatchNote() says why not.
+  bool backPatchEnabled() const;
+  const std::string& backPatchNote() const { return backPatchNote_; }
+  /// \brief Host copies (double) of the uploaded cones, empty when none are used.
+  std::span<const bound::ConeOfNormals> cones() const { return cones_; }
+  /// \brief Whether back-patch culls respect the drawn triangles (CullSettings::
+  /// drawnTriangles with a back-patch stage); the reference then needs the view's
+  /// drawnTriangleShapes() in CullTests::drawnShapes.
+  bool drawnTriangles() const { return settings_.drawnTriangles && backPatchEnabled(); }
+  /// \brief The CPU reference of this configuration (bound::referenceCull), without the
+  /// occlusion stage (and without drawnShapes, which depend on the view).
+  bound::CullTests referenceTests() const;
+  /// \brief The CPU reference of this configuration for one view drawn with `tessellation`:
+  /// referenceTests() with drawnShapes pointing into `shapes` when drawnTriangles().
+  bound::CullTests referenceTests(const Camera& camera, const TessellationOptions& tessellation,
+                                  std::vector<bound::TriangleShape>& shapes) const;
+
+  /// \brief Records the pass: counter reset, cull dispatch, draw-command dispatch, and
+  /// barriers that make results, draw list and commands visible to the host, to indirect
+  /// draws and to the patch draw shaders. `tessellation` fixes the draw chunking of the
+  /// commands (recordDraws() must use the same). `stageSet` is the occlusion stage's
+  /// descriptor set (set 1), required when one is enabled.
+  void record(VkCommandBuffer cmd, const Camera& camera, const TessellationOptions& tessellation,
+              VkDescriptorSet stageSet = VK_NULL_HANDLE);
+  /// \brief record() in its own submission; waits and returns the wall time in ms
+  /// (timestamps are not trusted for compute after graphics on lavapipe, PLATFORM.md).
+  double run(const Camera& camera, const TessellationOptions& tessellation = {},
+             VkDescriptorSet stageSet = VK_NULL_HANDLE);
+
+  /// \brief Result codes of the last completed pass, one per patch (host-mapped memory).
+  std::span<const uint32_t> results() const;
+  /// \brief Counts of the last completed pass.
+  CullCounts counts() const;
+  /// \brief The survivors of the last completed pass: Bézier then Gregory, each in the
+  /// (unspecified) order the kernel appended them.
+  std::vector<uint32_t> survivors(vulkan::Context& context) const;
+
+  /// \brief Records indirect draws of the survivors (inside a render pass, after record()
+  /// in the same or an earlier submission). Returns the maximum number of draw commands.
+  /// \throws osd_cull::Error when `options.tessellation` needs another draw chunking than
+  /// the commands were written for.
+  uint32_t recordDraws(VkCommandBuffer cmd, Renderer& renderer, const Camera& camera,
+                       const RenderOptions& options, uint32_t itemBase = 0);
+
+  /// \brief The result codes as a buffer (one uint per patch), e.g. for a pass that reads
+  /// them on the GPU after record() (the temporal visibility update of CullFrame).
+  const vulkan::Buffer& resultsBuffer() const { return results_; }
+  const vulkan::Buffer& drawList() const { return drawList_; }
+  const vulkan::Buffer& commands() const { return commands_; }
+  const vulkan::Buffer& counters() const { return counters_; }
+
+ private:
+  void buildPipelines(vulkan::Context& context);
+  shader::CullConstants constants(const Camera& camera,
+                                  const TessellationOptions& tessellation) const;
+
+  vulkan::Context& context_;
+  GpuPatchSet& gpu_;
+  const PatchSet& host_;
+  CullSettings settings_;
+  std::vector<const CullMethod*> stages_;
+  std::string backPatchNote_;
+  uint32_t lanes_ = 1;
+  std::vector<bound::ConeOfNormals> cones_;
+
+  vulkan::Buffer conesBuffer_;
+  vulkan::Buffer table_;
+  vulkan::Buffer results_;
+  vulkan::Buffer drawList_;
+  vulkan::Buffer counters_;
+  vulkan::Buffer commands_;
+  vulkan::UniqueDescriptorSetLayout setLayout_;
+  vulkan::UniqueDescriptorSetLayout stageSetLayout_;
+  vulkan::UniquePipelineLayout layout_;
+  vulkan::UniquePipeline cullPipeline_;
+  vulkan::UniquePipeline drawsPipeline_;
+  std::unique_ptr<vulkan::DescriptorPool> pool_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkDescriptorSet drawSet_ = VK_NULL_HANDLE;  // gpu_'s set with drawList_, made on first draw
+  uint32_t chunkBezier_ = 1;                  // of the last record()
+  uint32_t chunkGregory_ = 1;
+};
+
+/// \brief One frame with culling, in one submission: the cull pass, then the occluders and
+/// the surviving patches drawn into `target`. FrameStats::patchesDrawn is the survivor
+/// count; the rest as Renderer::render. `stageSet` as in CullPass::record.
+FrameStats renderCulled(Renderer& renderer, RenderTarget& target, const Camera& camera,
+                        CullPass& pass, std::span<const GpuTriangleMesh* const> occluders,
+                        const RenderOptions& options, VkDescriptorSet stageSet = VK_NULL_HANDLE);
+
+}  // namespace osd_cull::frame

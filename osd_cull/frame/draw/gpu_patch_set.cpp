@@ -1,0 +1,122 @@
+#include "osd_cull/frame/draw/gpu_patch_set.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/frame/draw/tess_levels.h"
+#include "osd_cull/vk/context.h"
+#include "osd_cull/vk/transfer.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace osd_cull::frame {
+
+std::span<const vulkan::DescriptorBinding> patchSetBindings() {
+  static const vulkan::DescriptorBinding bindings[] = {
+      {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL},
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL}};
+  return bindings;
+}
+
+std::vector<float> packPoints(std::span<const glm::dvec3> points) {
+  std::vector<float> out(points.size() * 4);
+  for (size_t i = 0; i < points.size(); ++i) {
+    out[4 * i + 0] = static_cast<float>(points[i].x);
+    out[4 * i + 1] = static_cast<float>(points[i].y);
+    out[4 * i + 2] = static_cast<float>(points[i].z);
+    out[4 * i + 3] = 1.0f;
+  }
+  return out;
+}
+
+GpuPatchSet::GpuPatchSet(vulkan::Context& context, const PatchSet& patches)
+    : bezierCount_(patches.bezierCount),
+      gregoryCount_(patches.gregoryCount),
+      pointCount_(static_cast<uint32_t>(patches.points.size())),
+      transitionEdges_(frame::hasTransitionEdges(patches)) {
+  const uint32_t n = patches.patchCount();
+  const size_t expectedPoints =
+      size_t{patches.bezierCount} * kBezierPoints + size_t{patches.gregoryCount} * kGregoryPoints;
+  if (patches.points.size() != expectedPoints || patches.params.size() != n)
+    throw Error("GpuPatchSet: PatchSet '" + patches.source +
+                "' is inconsistent: " + std::to_string(patches.points.size()) + " points and " +
+                std::to_string(patches.params.size()) + " params for " +
+                std::to_string(patches.bezierCount) + " Bezier and " +
+                std::to_string(patches.gregoryCount) + " Gregory patches (expected " +
+                std::to_string(expectedPoints) + " points)");
+  // Buffers are never empty (Vulkan forbids size 0); an empty set draws nothing.
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  points_ = vulkan::Buffer(context, std::max<size_t>(16, patches.points.size() * 16), storage);
+  params_ = vulkan::Buffer(context, std::max<size_t>(8, size_t{n} * 8), storage);
+  drawList_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{n} * 4), storage);
+  setLayout_ = vulkan::createDescriptorSetLayout(context, patchSetBindings());
+  pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1 + kMaxDrawListSets, patchSetBindings());
+  set_ = pool_->allocate(setLayout_.get());
+  vulkan::DescriptorWriter()
+      .buffer(0, points_)
+      .buffer(1, params_)
+      .buffer(2, drawList_)
+      .update(context.device(), set_);
+  if (n == 0) return;
+  updatePoints(context, patches.points);
+  std::vector<uint32_t> params(2 * size_t{n});
+  for (uint32_t p = 0; p < n; ++p) {
+    params[2 * p] = patches.params[p].field0;
+    params[2 * p + 1] = patches.params[p].field1;
+  }
+  vulkan::upload<uint32_t>(context, params_, params);
+  std::vector<uint32_t> list(n);
+  std::iota(list.begin(), list.end(), 0u);
+  vulkan::upload<uint32_t>(context, drawList_, list);
+}
+
+VkDescriptorSet GpuPatchSet::descriptorSetWithDrawList(vulkan::Context& context,
+                                                       const vulkan::Buffer& drawList) {
+  if (extraSets_ >= kMaxDrawListSets)
+    throw Error("GpuPatchSet: more than " + std::to_string(kMaxDrawListSets) +
+                " draw-list descriptor sets requested");
+  const VkDescriptorSet set = pool_->allocate(setLayout_.get());
+  ++extraSets_;
+  vulkan::DescriptorWriter()
+      .buffer(0, *pointSource_)
+      .buffer(1, params_)
+      .buffer(2, drawList)
+      .update(context.device(), set);
+  return set;
+}
+
+void GpuPatchSet::readPointsFrom(vulkan::Context& context, const vulkan::Buffer& points, uint32_t stride,
+                                 uint32_t offset) {
+  const uint64_t needed = (uint64_t{offset} + uint64_t{pointCount_} * stride) * sizeof(float);
+  if (stride < 3 || points.size() < needed)
+    throw Error("GpuPatchSet::readPointsFrom: " + std::to_string(pointCount_) +
+                " points of stride " + std::to_string(stride) + " from float " +
+                std::to_string(offset) + " need " + std::to_string(needed) +
+                " bytes (stride >= 3), the buffer has " + std::to_string(points.size()));
+  pointSource_ = &points;
+  pointStride_ = stride;
+  pointOffset_ = offset;
+  vulkan::DescriptorWriter().buffer(0, points).update(context.device(), set_);
+}
+
+void GpuPatchSet::writeDescriptorSet(VkDevice device, VkDescriptorSet set,
+                                     const vulkan::Buffer& drawList) const {
+  vulkan::DescriptorWriter()
+      .buffer(0, *pointSource_)
+      .buffer(1, params_)
+      .buffer(2, drawList)
+      .update(device, set);
+}
+
+void GpuPatchSet::updatePoints(vulkan::Context& context, std::span<const glm::dvec3> points) {
+  if (pointSource_ != &points_)
+    throw Error(
+        "GpuPatchSet::updatePoints: the set reads its points from another buffer (readPointsFrom)");
+  if (points.size() != pointCount_)
+    throw Error("GpuPatchSet::updatePoints: got " + std::to_string(points.size()) +
+                " points, the set has " + std::to_string(pointCount_));
+  const std::vector<float> packed = packPoints(points);
+  vulkan::upload<float>(context, points_, packed);
+}
+
+}  // namespace osd_cull::frame

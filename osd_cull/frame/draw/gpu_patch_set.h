@@ -1,0 +1,99 @@
+#pragma once
+/// \file gpu_patch_set.h
+/// \brief A PatchSet's control points, PatchParams and draw list in device buffers.
+
+#include "osd_cull/patch/patch_set.h"
+#include "osd_cull/vk/buffer.h"
+#include "osd_cull/vk/descriptors.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+namespace osd_cull::vulkan {
+class Context;
+}
+
+namespace osd_cull::frame {
+
+/// \brief Device copy of a PatchSet, in the layout the draw and cull shaders read
+/// (shaders/shared/draw_layout.h):
+/// - points(): float array, control point i at floats [pointOffset() + i*pointStride(), +3)
+///   (stride 4 for the set's own buffer: x, y, z, 1); PatchSet point order. An evaluator
+///   may write this buffer directly, or readPointsFrom() makes the set read another buffer
+///   (e.g. osd::GpuPointUpdate::points(), stride 3 or 4).
+/// - params(): two uints per patch, Far::PatchParam field0 and field1.
+/// - drawList(): patch indices, all Bézier patches then all Gregory (identity order); a
+///   draw of slots [first, first + n) draws drawList[first .. first + n).
+class GpuPatchSet {
+ public:
+  GpuPatchSet(vulkan::Context& context, const PatchSet& patches);
+  GpuPatchSet(const GpuPatchSet&) = delete;
+  GpuPatchSet& operator=(const GpuPatchSet&) = delete;
+
+  /// \brief Replaces all control points (same count and layout), e.g. after animation.
+  /// \throws osd_cull::Error when the count differs or readPointsFrom() is in effect.
+  void updatePoints(vulkan::Context& context, std::span<const glm::dvec3> points);
+
+  uint32_t bezierCount() const { return bezierCount_; }
+  uint32_t gregoryCount() const { return gregoryCount_; }
+  uint32_t patchCount() const { return bezierCount_ + gregoryCount_; }
+  uint32_t pointCount() const { return pointCount_; }
+  /// \brief Whether any patch has a transition edge (see effectiveOptions()).
+  bool hasTransitionEdges() const { return transitionEdges_; }
+  /// \brief Makes every draw read control points from `points` (borrowed: it must outlive
+  /// the set's use) with `stride` floats per point from float `offset` on, instead of the
+  /// set's own buffer. Call between frames (not while a draw using the set is pending).
+  /// \throws osd_cull::Error when stride < 3 or the buffer is too small for pointCount().
+  void readPointsFrom(vulkan::Context& context, const vulkan::Buffer& points, uint32_t stride,
+                      uint32_t offset = 0);
+  uint32_t pointStride() const { return pointStride_; }
+  uint32_t pointOffset() const { return pointOffset_; }
+  /// \brief Draw-list slot of the first Gregory patch (== bezierCount()).
+  uint32_t firstGregorySlot() const { return bezierCount_; }
+
+  /// \brief The buffer draws read control points from (the set's own, or readPointsFrom's).
+  const vulkan::Buffer& points() const { return *pointSource_; }
+  const vulkan::Buffer& params() const { return params_; }
+  const vulkan::Buffer& drawList() const { return drawList_; }
+  /// \brief A descriptor set with points, params and draw list at the bindings of
+  /// patchSetBindings() (shaders/shared/draw_layout.h kBinding*).
+  VkDescriptorSet descriptorSet() const { return set_; }
+  /// \brief A descriptor set like descriptorSet() but reading the draw list from
+  /// `drawList` (e.g. survivors a cull pass appended). Up to kMaxDrawListSets per set;
+  /// `drawList` must outlive every draw that uses the returned set.
+  /// \throws osd_cull::Error when the sets are used up.
+  VkDescriptorSet descriptorSetWithDrawList(vulkan::Context& context, const vulkan::Buffer& drawList);
+  static constexpr uint32_t kMaxDrawListSets = 15;
+  /// \brief Writes points (the current source, see readPointsFrom()), params and `drawList`
+  /// into `set`, a set the caller allocated with a layout of patchSetBindings() (for
+  /// callers that own their sets and pools).
+  void writeDescriptorSet(VkDevice device, VkDescriptorSet set, const vulkan::Buffer& drawList) const;
+
+ private:
+  uint32_t bezierCount_ = 0;
+  uint32_t gregoryCount_ = 0;
+  uint32_t pointCount_ = 0;
+  bool transitionEdges_ = false;
+  vulkan::Buffer points_;
+  const vulkan::Buffer* pointSource_ = &points_;
+  uint32_t pointStride_ = 4;
+  uint32_t pointOffset_ = 0;
+  vulkan::Buffer params_;
+  vulkan::Buffer drawList_;
+  vulkan::UniqueDescriptorSetLayout setLayout_;
+  std::unique_ptr<vulkan::DescriptorPool> pool_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  uint32_t extraSets_ = 0;
+};
+
+/// \brief The descriptor bindings of a patch set (points, params, draw list), visible
+/// to every stage.
+std::span<const vulkan::DescriptorBinding> patchSetBindings();
+
+/// \brief Packs points as float x, y, z, 1 (the points() layout).
+std::vector<float> packPoints(std::span<const glm::dvec3> points);
+
+}  // namespace osd_cull::frame

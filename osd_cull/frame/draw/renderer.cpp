@@ -1,0 +1,283 @@
+#include "osd_cull/frame/draw/renderer.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/vk/context.h"
+#include "osd_cull/vk/pipeline.h"
+
+#include <shared/draw_layout.h>
+
+#include <chrono>
+
+namespace osd_cull::frame {
+
+namespace {
+
+constexpr VkShaderStageFlags kGraphicsStages = VK_SHADER_STAGE_ALL_GRAPHICS;
+
+shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& options) {
+  shader::DrawConstants c{};
+  c.viewProjection = glm::mat4(camera.viewProjection());
+  const auto& t = options.tessellation;
+  c.eye = glm::vec4(glm::vec3(camera.eye()), float(t.pixelsPerSegment));
+  c.viewport = glm::vec4(float(camera.width), float(camera.height), float(t.uniformLevel),
+                         float(t.maxLevel));
+  c.mode =
+      t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
+  c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
+            (options.statusColors ? shader::kFlagStatusColors : 0u) |
+            (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u);
+  return c;
+}
+
+void checkOptions(const vulkan::Context& context, const Camera& camera, const RenderTarget& target,
+                  const RenderOptions& options) {
+  const auto& t = options.tessellation;
+  const uint32_t deviceMax = context.info().limits.maxTessellationGenerationLevel;
+  if (t.maxLevel < 2 || t.maxLevel > deviceMax)
+    throw Error("tessellation maxLevel " + std::to_string(t.maxLevel) + " is not in [2, " +
+                std::to_string(deviceMax) + "]");
+  if (t.mode == TessellationOptions::Mode::Uniform &&
+      (t.uniformLevel < 1 || t.uniformLevel > t.maxLevel))
+    throw Error("uniform tessellation level " + std::to_string(t.uniformLevel) + " is not in [1, " +
+                std::to_string(t.maxLevel) + "]");
+  if (t.mode == TessellationOptions::Mode::Adaptive && !(t.pixelsPerSegment > 0.0))
+    throw Error("adaptive tessellation needs pixelsPerSegment > 0");
+  if (camera.width != target.width() || camera.height != target.height())
+    throw Error("camera viewport " + std::to_string(camera.width) + "x" +
+                std::to_string(camera.height) + " differs from the render target " +
+                std::to_string(target.width()) + "x" + std::to_string(target.height()));
+}
+
+}  // namespace
+
+Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(context, 1) {
+  if (context.info().timestampValidBits > 0) timestamps_.emplace(context, 2);
+  referencePass_ = createTargetRenderPass(context, true);
+  patchSetLayout_ = vulkan::createDescriptorSetLayout(context, patchSetBindings());
+  meshSetLayout_ = vulkan::createDescriptorSetLayout(context, triangleMeshBindings());
+  const VkDescriptorSetLayout p = patchSetLayout_.get();
+  const VkDescriptorSetLayout m = meshSetLayout_.get();
+  patchLayout_ =
+      vulkan::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
+  meshLayout_ =
+      vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
+}
+
+VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
+  auto& slot = patchPipelines_[{type, cullBackFaces}];
+  if (slot) return slot.get();
+  const std::string points = type == PatchType::Bezier ? "16" : "20";
+  const std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
+  vulkan::GraphicsPipelineDesc d;
+  d.stages.push_back(
+      {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"patch/patch.vert", defines}), {}});
+  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
+                      vulkan::compileShader({"patch/patch.tesc", defines}),
+                      {}});
+  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
+                      vulkan::compileShader({"patch/patch.tese", defines}),
+                      {}});
+  d.stages.push_back(
+      {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"patch/patch.frag", {}}), {}});
+  d.layout = patchLayout_.get();
+  d.renderPass = referencePass_.get();
+  d.colorAttachments = 2;
+  d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
+  d.patchControlPoints = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
+  d.cullMode = cullBackFaces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+  // With the y-flipping projections of camera.h, triangles of a patch whose dP/du x dP/dv
+  // faces the eye come out clockwise in framebuffer space.
+  d.frontFace = VK_FRONT_FACE_CLOCKWISE;
+  slot = vulkan::createGraphicsPipeline(context_, d);
+  return slot.get();
+}
+
+VkPipeline Renderer::trianglePipeline() {
+  if (trianglePipeline_) return trianglePipeline_.get();
+  vulkan::GraphicsPipelineDesc d;
+  d.stages.push_back(
+      {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"mesh/triangle.vert", {}}), {}});
+  d.stages.push_back(
+      {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"mesh/triangle.frag", {}}), {}});
+  d.layout = meshLayout_.get();
+  d.renderPass = referencePass_.get();
+  d.colorAttachments = 2;
+  trianglePipeline_ = vulkan::createGraphicsPipeline(context_, d);
+  return trianglePipeline_.get();
+}
+
+void Renderer::beginPass(VkCommandBuffer cmd, RenderTarget& target,
+                         const RenderOptions& options) const {
+  if (!options.clear && !target.hasContents())
+    throw Error("Renderer: RenderOptions::clear is false but the target was never drawn");
+  VkClearValue clears[3]{};
+  clears[0].color = {{options.background.r, options.background.g, options.background.b, 1.0f}};
+  clears[1].color.uint32[0] = shader::kItemBackground;
+  clears[2].depthStencil = {1.0f, 0};
+  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  begin.renderPass = options.clear ? target.clearPass() : target.loadPass();
+  begin.framebuffer = target.framebuffer();
+  begin.renderArea = {{0, 0}, {target.width(), target.height()}};
+  begin.clearValueCount = options.clear ? 3 : 0;
+  begin.pClearValues = options.clear ? clears : nullptr;
+  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  const VkViewport viewport{0.0f, 0.0f, float(target.width()), float(target.height()), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, {target.width(), target.height()}};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  target.markDrawn();
+}
+
+void Renderer::endPass(VkCommandBuffer cmd) const { vkCmdEndRenderPass(cmd); }
+
+void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
+                               std::span<const GpuTriangleMesh* const> occluders) {
+  if (occluders.empty()) return;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, trianglePipeline());
+  shader::DrawConstants c = drawConstants(camera, {});
+  c.pointStride = 4;
+  c.itemBase = shader::kItemOccluder;
+  vkCmdPushConstants(cmd, meshLayout_.get(), kGraphicsStages, 0, sizeof(c), &c);
+  for (const GpuTriangleMesh* mesh : occluders) {
+    const VkDescriptorSet set = mesh->descriptorSet();
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, meshLayout_.get(), 0, 1, &set, 0,
+                            nullptr);
+    vkCmdBindIndexBuffer(cmd, mesh->indices().handle(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdDrawIndexed(cmd, mesh->indexCount(), 1, 0, 0, 0);
+  }
+}
+
+void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                           PatchType type, const RenderOptions& options) {
+  const GpuPatchSet& gpu = *draw.gpu;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                    patchPipeline(type, options.cullBackFaces));
+  const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
+                          nullptr);
+  RenderOptions effective = options;
+  effective.tessellation = effectiveOptions(options.tessellation, gpu.hasTransitionEdges());
+  shader::DrawConstants c = drawConstants(camera, effective);
+  c.bezierCount = gpu.bezierCount();
+  c.pointStride = gpu.pointStride();
+  c.pointOffset = gpu.pointOffset();
+  c.itemBase = draw.itemBase;
+  vkCmdPushConstants(cmd, patchLayout_.get(), kGraphicsStages, 0, sizeof(c), &c);
+}
+
+void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                              PatchType type, const vulkan::Buffer& commands, VkDeviceSize offset,
+                              const vulkan::Buffer& count, VkDeviceSize countOffset, uint32_t maxDraws,
+                              const RenderOptions& options) {
+  if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
+  if (maxDraws == 0) return;
+  bindPatches(cmd, camera, draw, type, options);
+  vkCmdDrawIndirectCount(cmd, commands.handle(), offset, count.handle(), countOffset, maxDraws,
+                         sizeof(VkDrawIndirectCommand));
+}
+
+uint32_t Renderer::recordSlots(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                               PatchType type, uint32_t firstSlot, uint32_t count,
+                               std::span<const uint32_t> vertexBounds,
+                               const RenderOptions& options) {
+  if (count == 0) return 0;
+  bindPatches(cmd, camera, draw, type, options);
+  const uint32_t points = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
+  std::vector<DrawChunk> chunks;
+  if (!options.chunkDraws) {
+    chunks.push_back({0, count});
+  } else if (!vertexBounds.empty()) {
+    chunks = planDrawChunks(vertexBounds, points);
+  } else {
+    const auto& t = options.tessellation;
+    const uint32_t m = t.mode == TessellationOptions::Mode::Uniform
+                           ? std::min(t.uniformLevel * 2, t.maxLevel)
+                           : t.maxLevel;
+    const std::vector<uint32_t> bounds(count, (m + 1) * (m + 1));
+    chunks = planDrawChunks(bounds, points);
+  }
+  for (const DrawChunk& chunk : chunks)
+    vkCmdDraw(cmd, chunk.count * points, 1, (firstSlot + chunk.first) * points, 0);
+  return static_cast<uint32_t>(chunks.size());
+}
+
+uint32_t Renderer::recordPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                                 const RenderOptions& options) {
+  if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
+  const GpuPatchSet& gpu = *draw.gpu;
+  std::vector<uint32_t> bounds;
+  if (draw.host) {
+    if (draw.host->patchCount() != gpu.patchCount())
+      throw Error("Renderer: host PatchSet has " + std::to_string(draw.host->patchCount()) +
+                  " patches, the GpuPatchSet " + std::to_string(gpu.patchCount()));
+    bounds = tessVertexBounds(*draw.host, camera.viewProjection(),
+                              glm::dvec2(camera.width, camera.height), options.tessellation);
+  }
+  const std::span<const uint32_t> all(bounds);
+  const uint32_t nb = gpu.bezierCount();
+  const uint32_t ng = gpu.gregoryCount();
+  uint32_t draws = recordSlots(cmd, camera, draw, PatchType::Bezier, 0, nb,
+                               bounds.empty() ? all : all.subspan(0, nb), options);
+  draws += recordSlots(cmd, camera, draw, PatchType::Gregory, gpu.firstGregorySlot(), ng,
+                       bounds.empty() ? all : all.subspan(nb, ng), options);
+  return draws;
+}
+
+FrameStats Renderer::render(RenderTarget& target, const Camera& camera,
+                            std::span<const PatchDraw> patches,
+                            std::span<const GpuTriangleMesh* const> occluders,
+                            const RenderOptions& options) {
+  uint32_t patchesDrawn = 0;
+  FrameStats stats = renderWith(
+      target, camera, occluders, options, [](VkCommandBuffer) {},
+      [&](VkCommandBuffer cmd) {
+        uint32_t draws = 0;
+        for (const PatchDraw& d : patches) {
+          draws += recordPatches(cmd, camera, d, options);
+          patchesDrawn += d.gpu->patchCount();
+        }
+        return draws;
+      });
+  stats.patchesDrawn = patchesDrawn;
+  return stats;
+}
+
+FrameStats Renderer::renderWith(RenderTarget& target, const Camera& camera,
+                                std::span<const GpuTriangleMesh* const> occluders,
+                                const RenderOptions& options,
+                                const std::function<void(VkCommandBuffer)>& beforePass,
+                                const std::function<uint32_t(VkCommandBuffer)>& recordPatchDraws) {
+  checkOptions(context_, camera, target, options);
+  FrameStats stats;
+  const auto start = std::chrono::steady_clock::now();
+  context_.submit([&](VkCommandBuffer cmd) {
+    statistics_.reset(cmd);
+    if (timestamps_) {
+      timestamps_->reset(cmd);
+      timestamps_->write(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
+    }
+    beforePass(cmd);
+    beginPass(cmd, target, options);
+    statistics_.begin(cmd);
+    recordOccluders(cmd, camera, occluders);
+    stats.drawCalls += recordPatchDraws(cmd);
+    statistics_.end(cmd);
+    endPass(cmd);
+    if (timestamps_) timestamps_->write(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
+  });
+  stats.wallMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (timestamps_) stats.gpuMs = timestamps_->elapsedMs(0, 1);
+  stats.statistics = statistics_.result();
+  for (const GpuTriangleMesh* m : occluders) stats.occluderTriangles += m->indexCount() / 3;
+  stats.drawCalls += static_cast<uint32_t>(occluders.size());
+  return stats;
+}
+
+FrameStats Renderer::render(RenderTarget& target, const Camera& camera, const GpuPatchSet& patches,
+                            const PatchSet* host, const RenderOptions& options) {
+  const PatchDraw draw{&patches, host, 0};
+  return render(target, camera, {&draw, 1}, {}, options);
+}
+
+}  // namespace osd_cull::frame

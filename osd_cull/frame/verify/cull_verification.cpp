@@ -1,0 +1,216 @@
+#include "osd_cull/frame/verify/cull_verification.h"
+
+#include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/bound/occlusion.h"
+#include "osd_cull/error.h"
+
+#include <shared/cull_layout.h>
+#include <shared/draw_layout.h>
+
+#include <algorithm>
+
+namespace osd_cull::frame {
+
+struct CullVerifier::Method {
+  const CullMethod* method = nullptr;
+  std::unique_ptr<CullPass> pass;
+  MethodTotals* totals = nullptr;
+};
+
+double MethodTotals::referenceCullRate() const {
+  return referencePatchViews ? double(referenceCulled) / double(referencePatchViews) : 0.0;
+}
+
+double MethodTotals::referenceAgreement() const {
+  return referencePatchViews ? double(agreements) / double(referencePatchViews) : 0.0;
+}
+
+double MethodTotals::oracleInvisibleRate() const {
+  return oraclePatchViews ? double(oracleInvisible) / double(oraclePatchViews) : 0.0;
+}
+
+double MethodTotals::nsPerPatch(uint32_t patchCount) const {
+  if (wallMs.empty() || patchCount == 0) return 0.0;
+  std::vector<double> sorted = wallMs;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  return sorted[sorted.size() / 2] * 1e6 / patchCount;
+}
+
+CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
+                           const std::vector<std::string>& methods,
+                           const bound::BackPatchValidity& validity, const VerifyOptions& options)
+    : context_(context),
+      host_(host),
+      options_(options),
+      gpu_(context, host),
+      renderer_(context),
+      oracle_(context),
+      cullBackFaces_(options.cullBackFaces.value_or(validity.enabled)) {
+  if (options.imageCheck && !options.oracle)
+    throw Error("CullVerifier: the image check compares with the oracle's full draw; enable it");
+  std::vector<const CullMethod*> run;
+  for (const std::string& name : methods) {
+    const CullMethod& m = cullMethod(name);
+    if (m.stage == CullStage::Occlusion && !options.oracle) {
+      skipped_.push_back({name,
+                          "occlusion is tested against the depth of the oracle's draw; "
+                          "enable the oracle"});
+    } else if (m.stage == CullStage::BackPatch && !validity.enabled) {
+      skipped_.push_back({name, "back-patch culling is off for this mesh: " + validity.reason});
+    } else {
+      run.push_back(&m);
+    }
+  }
+  totals_.resize(run.size());
+  for (size_t i = 0; i < run.size(); ++i) {
+    auto m = std::make_unique<Method>();
+    m->method = run[i];
+    CullSettings settings;
+    settings.frustum = run[i]->stage == CullStage::Frustum;
+    if (run[i]->stage == CullStage::BackPatch) settings.backPatch = run[i]->name;
+    if (run[i]->stage == CullStage::Occlusion) settings.occlusion = run[i]->name;
+    settings.backPatchValidity = validity;
+    settings.drawnTriangles = options.drawnTriangles;
+    m->pass = std::make_unique<CullPass>(context, gpu_, host, settings);
+    m->totals = &totals_[i];
+    totals_[i].name = run[i]->name;
+    totals_[i].stage = run[i]->stage;
+    methods_.push_back(std::move(m));
+  }
+  if (options.samplingGrid > 0) {
+    samples_.reserve(host.patchCount());
+    for (uint32_t p = 0; p < host.patchCount(); ++p)
+      samples_.push_back(bound::samplePatch(host.controlPoints(p), options.samplingGrid));
+  }
+}
+
+CullVerifier::~CullVerifier() = default;
+
+void CullVerifier::checkSampling(Method& m, const Camera& camera,
+                                 std::span<const uint32_t> results) {
+  const glm::dmat4 viewProj = camera.viewProjection();
+  const bound::CullView view = bound::makeCullView(viewProj);
+  for (uint32_t p = 0; p < results.size(); ++p) {
+    const bound::CullCode code{results[p]};
+    if (!code.culled()) continue;
+    ++m.totals->sampledCulls;
+    bool visible = false;
+    if (code.stage() == shader::kStageFrustum)
+      visible = bound::anyInsideClipVolume(samples_[p], viewProj);
+    else if (code.stage() == shader::kStageBackPatch)
+      visible = !view.eye || bound::anyFrontFacing(samples_[p], *view.eye);
+    if (visible) ++m.totals->samplingViolations;
+  }
+}
+
+void CullVerifier::verifyView(const Camera& camera) {
+  const uint32_t n = host_.patchCount();
+  const bool reference = options_.referenceStride > 0 && viewIndex_ % options_.referenceStride == 0;
+  ++viewIndex_;
+  const bool occlusion = std::any_of(methods_.begin(), methods_.end(), [](const auto& m) {
+    return m->method->stage == CullStage::Occlusion;
+  });
+  if (!target_ || target_->width() != camera.width || target_->height() != camera.height) {
+    hizStage_.reset();
+    pyramid_.reset();
+    target_ = std::make_unique<RenderTarget>(context_, camera.width, camera.height);
+    if (occlusion) {
+      pyramid_ = std::make_unique<HiZPyramid>(context_, target_->depth(), options_.hiz);
+      hizStage_ = std::make_unique<HiZCullStage>(context_, *pyramid_);
+    }
+  }
+
+  VisibilityCounts counts;
+  std::vector<uint32_t> fullItems;
+  if (options_.oracle) {
+    counts = oracle_.query(renderer_, *target_, camera, gpu_, &host_, {}, options_.tessellation, 0,
+                           cullBackFaces_);
+    if (options_.imageCheck) fullItems = target_->readItems(context_);
+  }
+  // Occlusion: the pyramid of the full draw's depth (before the image checks draw over it),
+  // and its double-precision twin for the reference.
+  bound::HiZPyramid hizReference;
+  if (occlusion) {
+    pyramid_->build(context_, RenderTarget::kDepthLayout);
+    if (reference)
+      hizReference = bound::buildHiZPyramid(target_->readDepth(context_), camera.width,
+                                            camera.height, options_.hiz.fullResolution);
+  }
+  const bound::CullView view = bound::makeCullView(camera.viewProjection());
+  RenderOptions drawOptions;
+  drawOptions.tessellation = options_.tessellation;
+  drawOptions.cullBackFaces = cullBackFaces_;
+
+  for (auto& m : methods_) {
+    MethodTotals& t = *m->totals;
+    const bool hiz = m->method->stage == CullStage::Occlusion;
+    t.wallMs.push_back(
+        m->pass->run(camera, options_.tessellation, hiz ? hizStage_->set() : VK_NULL_HANDLE));
+    const std::vector<uint32_t> results(m->pass->results().begin(), m->pass->results().end());
+    ++t.views;
+    t.patchViews += n;
+    t.bezierViews += host_.bezierCount;
+    t.gregoryViews += host_.gregoryCount;
+    for (uint32_t p = 0; p < n; ++p) {
+      t.keptForDrawnTriangles +=
+          bound::CullCode{results[p]}.backPatch() == shader::kVerdictDrawnTriangles;
+      if (!bound::CullCode{results[p]}.culled()) continue;
+      ++t.culled;
+      ++(host_.type(p) == PatchType::Bezier ? t.culledBezier : t.culledGregory);
+    }
+    if (reference) {
+      std::vector<uint32_t> codes;
+      if (hiz) {
+        codes.resize(n, shader::kStageNone);
+        for (uint32_t p = 0; p < n; ++p)
+          if (bound::hizOcclusionTest(host_.controlPoints(p), view.viewProj, hizReference,
+                                      options_.hiz.lookup)
+                  .culled)
+            codes[p] = shader::kStageOcclusion;
+      } else {
+        std::vector<bound::TriangleShape> shapes;
+        codes = bound::referenceCull(host_, view,
+                                     m->pass->referenceTests(camera, options_.tessellation, shapes),
+                                     m->pass->cones());
+      }
+      ++t.referenceViews;
+      t.referencePatchViews += n;
+      for (uint32_t p = 0; p < n; ++p) {
+        const bool gpuCulled = bound::CullCode{results[p]}.culled();
+        const bool cpuCulled = bound::CullCode{codes[p]}.culled();
+        t.referenceCulled += cpuCulled;
+        t.agreements += gpuCulled == cpuCulled;
+        t.notInReference += gpuCulled && !cpuCulled;
+      }
+    }
+    if (options_.oracle) {
+      ++t.oracleViews;
+      t.oraclePatchViews += n;
+      for (uint32_t p = 0; p < n; ++p) {
+        const bool culled = bound::CullCode{results[p]}.culled();
+        t.oracleInvisible += counts.pixels[p] == 0;
+        t.culledOnOracleViews += culled;
+        t.falseCulls += culled && counts.pixels[p] > 0;
+        if (culled) t.falseCullPixels += counts.pixels[p];
+        if (culled && counts.pixels[p] > 0 && t.falseCullList.size() < 64)
+          t.falseCullList.push_back({viewIndex_ - 1, p, counts.pixels[p]});
+      }
+    }
+    if (!samples_.empty()) checkSampling(*m, camera, results);
+    if (options_.imageCheck) {
+      renderCulled(renderer_, *target_, camera, *m->pass, {}, drawOptions,
+                   hiz ? hizStage_->set() : VK_NULL_HANDLE);
+      const std::vector<uint32_t> items = target_->readItems(context_);
+      ++t.imageViews;
+      for (size_t i = 0; i < items.size(); ++i) {
+        if (fullItems[i] == shader::kItemBackground) continue;
+        if (items[i] == shader::kItemBackground)
+          ++t.pixelsLost;
+        else if (items[i] != fullItems[i])
+          ++t.pixelsChanged;
+      }
+    }
+  }
+}
+
+}  // namespace osd_cull::frame
