@@ -19,7 +19,8 @@ using test::runCommand;
   if (!fs::exists(osdCullProgram())) GTEST_SKIP() << "osd-cull not built"
 
 nlohmann::json infoJson(const std::string& arguments) {
-  const auto r = runCommand(osdCullProgram().string() + " info --json " + arguments + " 2>/dev/null");
+  const auto r =
+      runCommand(osdCullProgram().string() + " info --json " + arguments + " 2>/dev/null");
   EXPECT_EQ(r.exitCode(), 0) << r.output;
   return nlohmann::json::parse(r.output);
 }
@@ -54,7 +55,8 @@ TEST(InfoCommand, BigGuyAtLevelTwoHasTheKnownPatchCounts) {
   EXPECT_EQ(j["control_points"], 4778 * 16 + 776 * 20);
   const auto j3 = infoJson((test::dataDir() / "characters" / "bigguy.obj").string() + " --level 3");
   EXPECT_EQ(j3["patches"]["total"], 7882);
-  const auto b = infoJson((test::dataDir() / "characters" / "bigguy.obj").string() + " --endcap bspline");
+  const auto b =
+      infoJson((test::dataDir() / "characters" / "bigguy.obj").string() + " --endcap bspline");
   EXPECT_EQ(b["patches"]["gregory"], 0);
   EXPECT_EQ(b["patches"]["bspline_end_caps"], 776);
 }
@@ -76,7 +78,8 @@ TEST(InfoCommand, LoopMeshLoadsButSaysItsPatchesAreNotExtracted) {
   const auto j = infoJson((test::dataDir() / "shapes" / "loop_cube.obj").string());
   EXPECT_EQ(j["scheme"], "loop");
   EXPECT_TRUE(j["patches"].is_null());
-  EXPECT_NE(j["patches_error"].get<std::string>().find("Loop patches are not extracted"), std::string::npos);
+  EXPECT_NE(j["patches_error"].get<std::string>().find("Loop patches are not extracted"),
+            std::string::npos);
 }
 
 TEST(InfoCommand, BezierPatchFileIsUsedAsIs) {
@@ -92,8 +95,8 @@ TEST(InfoCommand, TextReportNamesEveryFigure) {
   REQUIRE_PROGRAM();
   const auto r = runCommand(osdCullProgram().string() + " info --level 1");
   ASSERT_EQ(r.exitCode(), 0) << r.output;
-  for (const char* key : {"vertices", "faces", "surface", "non-manifold", "patches", "control points",
-                          "time (ms)", "adaptive level 1"})
+  for (const char* key : {"vertices", "faces", "surface", "non-manifold", "patches",
+                          "control points", "time (ms)", "adaptive level 1"})
     EXPECT_NE(r.output.find(key), std::string::npos) << key << " missing in\n" << r.output;
 }
 
@@ -115,7 +118,8 @@ TEST(InfoCommand, ErrorsNameTheProblemAndExitNonZero) {
   };
   for (const Case& c : cases) {
     const auto r = runCommand(osdCullProgram().string() + " info " + c.args);
-    EXPECT_EQ(r.exitCode(), 1) << c.args << "\n" << r.output;
+    // A file that cannot be read exits 1; a bad command line is a usage error, 2.
+    EXPECT_EQ(r.exitCode(), c.args == missing.string() ? 1 : 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.args << "\n" << r.output;
   }
 }

@@ -11,25 +11,24 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <optional>
 
 namespace osd_cull::cli {
 namespace {
 
-const char* kUsage = R"(Usage: osd-cull info [MESH] [options]
-
-Prints what a mesh is and what osd_cull extracts from it: scheme, vertices, faces, closed
+const char* kDescription =
+    R"(Prints what a mesh is and what osd_cull extracts from it: scheme, vertices, faces, closed
 or open, non-manifold counts, patches by kind (regular, boundary, corner, Gregory),
 control points and the time each step took. With no MESH, a built-in mesh generated in
-code is used.
+code is used.)";
 
-MESH      OBJ (with OpenSubdiv tags), OFF, PLY, STL, or BPT (Bézier patches)
-Options:
-  --level N                 adaptive isolation level, 0..10 (default 2)
-  --endcap gregory|bspline  end caps of irregular patches (default gregory)
-  --scheme catmark|loop|bilinear   override the scheme (default: file-name prefix, else catmark)
-  --json                    print one JSON object instead of text
-)";
+/// \brief The parsed options of `osd-cull info`.
+struct InfoArgs {
+  MeshSource source;
+  PatchOptions patchOptions;
+  bool json = false;
+};
 
 std::string originCounts(const ExtractionStats& s) {
   char buf[256];
@@ -38,15 +37,15 @@ std::string originCounts(const ExtractionStats& s) {
   return buf;
 }
 
-int runInfo(Args& args) {
-  const PatchOptions patchOptions = patchOptionsFromArgs(args);
-  const bool json = args.flag("json");
-  MeshSource source = meshSourceFromArgs(args);
-  args.finish();
+int runInfo(const InfoArgs& args) {
+  const PatchOptions& patchOptions = args.patchOptions;
+  const bool json = args.json;
+  const MeshSource& source = args.source;
 
   const auto t0 = std::chrono::steady_clock::now();
   LoadedMesh mesh = loadMeshSource(source);
-  const double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const double loadMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
   nlohmann::ordered_json out;
   out["mesh"] = mesh.name;
@@ -57,7 +56,8 @@ int runInfo(Args& args) {
     out["vertices"] = p.points.size();
     out["faces"] = p.patchCount();
     out["closed"] = false;
-    out["patches"] = {{"total", p.patchCount()}, {"bezier", p.bezierCount}, {"gregory", p.gregoryCount}};
+    out["patches"] = {
+        {"total", p.patchCount()}, {"bezier", p.bezierCount}, {"gregory", p.gregoryCount}};
     out["control_points"] = p.points.size();
     out["timing_ms"] = {{"load", loadMs}};
   } else {
@@ -66,7 +66,7 @@ int runInfo(Args& args) {
     const TopologySummary s = summarize(*refiner);
     out["format"] = "cage";
     out["scheme"] = std::string(toString(cage.scheme));
-    out["vertices"] = s.vertices;
+    out["vertices"] = s.vertices + static_cast<int>(mesh.droppedVertices);  // as in the file
     out["faces"] = s.faces;
     out["edges"] = s.edges;
     out["face_sizes"] = {{"triangles", s.triangles}, {"quads", s.quads}, {"other", s.otherFaces}};
@@ -75,7 +75,7 @@ int runInfo(Args& args) {
     out["holes"] = s.holes;
     out["non_manifold_edges"] = s.nonManifoldEdges;
     out["non_manifold_vertices"] = s.nonManifoldVertices;
-    out["unused_vertices"] = s.unusedVertices;
+    out["unused_vertices"] = s.unusedVertices + static_cast<int>(mesh.droppedVertices);
     out["degenerate_faces"] = s.degenerateFaces;
     out["creased_edges"] = s.creasedEdges;
     out["corner_vertices"] = s.cornerVertices;
@@ -95,9 +95,12 @@ int runInfo(Args& args) {
                         {"bspline_end_caps", st.bsplineEndCaps}};
       out["control_points"] = st.controlPoints;
       out["matrix_non_zeros"] = st.matrixNonZeros;
-      out["timing_ms"] = {{"load", loadMs},         {"topology", st.topologyMs},
-                          {"refine", st.refineMs},  {"patch_table", st.patchTableMs},
-                          {"stencils", st.stencilMs}, {"matrix", st.matrixMs},
+      out["timing_ms"] = {{"load", loadMs},
+                          {"topology", st.topologyMs},
+                          {"refine", st.refineMs},
+                          {"patch_table", st.patchTableMs},
+                          {"stencils", st.stencilMs},
+                          {"matrix", st.matrixMs},
                           {"extract_total", st.totalMs}};
       if (!json) out["_origins"] = originCounts(st);
     } catch (const Error& e) {
@@ -128,9 +131,10 @@ int runInfo(Args& args) {
                       std::to_string(out["face_sizes"]["other"].get<int>()) + " other; " +
                       std::to_string(out["degenerate_faces"].get<int>()) + " repeat a vertex; " +
                       std::to_string(out["holes"].get<int>()) + " holes)");
-    line("surface", out["closed"].get<bool>() ? std::string("closed")
-                                              : "open (" + std::to_string(out["boundary_edges"].get<int>()) +
-                                                    " boundary edges)");
+    line("surface",
+         out["closed"].get<bool>()
+             ? std::string("closed")
+             : "open (" + std::to_string(out["boundary_edges"].get<int>()) + " boundary edges)");
     line("non-manifold", std::to_string(out["non_manifold_edges"].get<int>()) + " edges, " +
                              std::to_string(out["non_manifold_vertices"].get<int>()) + " vertices");
     line("features", std::to_string(out["creased_edges"].get<int>()) + " creased edges, " +
@@ -153,7 +157,8 @@ int runInfo(Args& args) {
   std::string timing;
   for (const auto& [k, v] : out["timing_ms"].items()) {
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%s%s %.2f", timing.empty() ? "" : ", ", k.c_str(), v.get<double>());
+    std::snprintf(buf, sizeof buf, "%s%s %.2f", timing.empty() ? "" : ", ", k.c_str(),
+                  v.get<double>());
     timing += buf;
   }
   line("time (ms)", timing);
@@ -162,8 +167,16 @@ int runInfo(Args& args) {
   return 0;
 }
 
-const Registration kInfo({"info", "describe a mesh and the patches osd_cull extracts from it", kUsage,
-                          {"json"}, runInfo});
+Runner setupInfo(CLI::App& app) {
+  auto args = std::make_shared<InfoArgs>();
+  addMeshOptions(app, args->source);
+  addPatchOptions(app, args->patchOptions);
+  app.add_flag("--json", args->json, "print one JSON object instead of text");
+  return [args] { return runInfo(*args); };
+}
+
+const Registration kInfo({"info", "describe a mesh and the patches osd_cull extracts from it",
+                          kDescription, setupInfo});
 
 }  // namespace
 }  // namespace osd_cull::cli

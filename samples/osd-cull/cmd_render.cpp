@@ -3,8 +3,10 @@
 #include "command.h"
 #include "cull_options.h"
 #include "cull_report.h"
+#include "device_options.h"
 #include "mesh_patches.h"
 #include "mesh_source.h"
+#include "option_checks.h"
 
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/default_scene.h"
@@ -17,6 +19,8 @@
 #include "osd_cull/frame/draw/png_io.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/shader_compiler.h"
+#include "osd_cull/vk/spirv_disk_cache.h"
 
 #include <cmath>
 #include <cstdio>
@@ -30,48 +34,35 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* kUsageHead = R"(Usage: osd-cull render [MESH] --out FILE.png [options]
-
-Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
+const char* kDescription =
+    R"(Draws MESH (or, without MESH, a built-in scene of subdivision tori, a patch sphere and
 triangle walls) with the Vulkan tessellation pipeline and writes the image as PNG.
-MESH: OBJ (with OpenSubdiv tags), OFF, PLY, STL (Catmull-Clark cages, refined adaptively
-into Bézier and Gregory patches) or BPT (Bézier patches, e.g. the Utah teapot).
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
 and fragment-shader invocations (pipeline statistics), and with --cull how many patches
-each test culled.
+each test culled.)";
 
-Options:
-  --level N              adaptive isolation level, 0..10 (default 2)
-  --endcap gregory|bspline  end caps of irregular patches (default gregory)
-  --scheme catmark|loop|bilinear  override the scheme (default: file-name prefix)
-  --out FILE.png         image of the last frame (required)
-  --occluders F[,F...]   OBJ files drawn as triangle occluders (before the patches)
-  --width W --height H   image size (default 640 x 480)
-  --tess N               uniform tessellation, N segments per patch edge (default 4)
-  --adaptive PIXELS      screen-space adaptive tessellation, PIXELS per segment
-  --camera E,T,U,FOVY    eye, target and up vectors and vertical field of view in degrees:
-                         ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy (default: frame the whole scene)
-  --frames N             draw N frames (default 1)
-  --orbit DEG            rotate the camera about the up axis by DEG per frame
-  --out-dir DIR          also keep every frame as DIR/frame_NNNN.png
-  --ids                  also write the item buffer (patch ID + 1 per pixel, 24-bit RGB)
-                         as FILE_ids.png and the depth as FILE_depth.png
-  --debug-colors         color each patch by its index
-  --device X             Vulkan device: index or name substring (default $OSD_CULL_DEVICE,
-                         else lavapipe)
-  --validate             enable the Vulkan validation layers
-  --level N              adaptive isolation level of MESH, 0..10 (default 2)
-  --scheme S             override the subdivision scheme of MESH
-  --stats FILE.json      write the per-frame figures as JSON
-  --status-view          with occlusion: also write FILE_status.png, patches colored by
-                         their status (green visible, yellow newly visible, blue frustum-,
-                         purple back-patch-, red occlusion-culled) from the camera, and
-                         FILE_status_side.png from 90 degrees around the up axis
-  --pyramid-dir DIR      with occlusion: write the Hi-Z levels of the last frame as
-                         DIR/hiz_level_NN.png
-)";
-
-std::string usage() { return std::string(kUsageHead) + kCullOptionsUsage; }
+/// \brief The parsed options of `osd-cull render`.
+struct RenderArgs {
+  MeshSource source;
+  PatchOptions patchOptions;
+  CullArgs cull;
+  vulkan::ContextOptions device;
+  std::string out;
+  uint32_t width = 640;
+  uint32_t height = 480;
+  uint32_t tess = 4;
+  double adaptive = 0.0;  ///< 0: uniform tessellation
+  std::string camera;
+  uint32_t frames = 1;
+  double orbitDegrees = 0.0;
+  std::string outDir;
+  bool ids = false;
+  bool debugColors = false;
+  std::string stats;
+  std::string occluders;
+  bool statusView = false;
+  std::string pyramidDir;
+};
 
 struct Scene {
   PatchSet patches;
@@ -79,12 +70,14 @@ struct Scene {
   glm::dvec3 up{0, 0, 1};
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
   bound::BackPatchValidity backPatch;
+  std::vector<std::string> notes;  ///< the loader's notes on the mesh
 };
 
 Scene loadScene(const MeshSource& source, const PatchOptions& options) {
   if (!source.path) {
     scene::Scene demo = scene::defaultScene(options);
-    Scene s{std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection, {}};
+    Scene s{
+        std::move(demo.patches), std::move(demo.occluders), demo.up, demo.viewDirection, {}, {}};
     // Every object is a closed manifold cage with outward normals (scene/procedural.h
     // tests this), and the walls are occluders, not patches.
     s.backPatch = {true, "built-in scene: closed cages, normals outward by construction"};
@@ -96,6 +89,7 @@ Scene loadScene(const MeshSource& source, const PatchOptions& options) {
   Scene scene;
   scene.patches = std::move(mesh.patches);
   scene.backPatch = mesh.backPatch;
+  scene.notes = std::move(mesh.notes);
   if (loaded.bezier) {  // BPT files (the teapot) are z up
     scene.up = {0, 0, 1};
     scene.viewDirection = {0.6, -1.0, 0.5};
@@ -114,12 +108,12 @@ std::vector<double> parseNumbers(const std::string& text, size_t count, const st
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
     if (item.empty() || *end != '\0' || !std::isfinite(v))
-      throw Error("option --" + option + ": '" + item + "' is not a finite number");
+      throw UsageError("option --" + option + ": '" + item + "' is not a finite number");
     out.push_back(v);
   }
   if (out.size() != count)
-    throw Error("option --" + option + ": expected " + std::to_string(count) +
-                " comma-separated numbers, got " + std::to_string(out.size()));
+    throw UsageError("option --" + option + ": expected " + std::to_string(count) +
+                     " comma-separated numbers, got " + std::to_string(out.size()));
   return out;
 }
 
@@ -127,48 +121,34 @@ fs::path sibling(const fs::path& out, const std::string& suffix) {
   return out.parent_path() / (out.stem().string() + suffix + ".png");
 }
 
-int run(Args& args) {
-  const auto out = args.value("out");
-  const uint32_t width = static_cast<uint32_t>(args.integer("width", 1, 16384).value_or(640));
-  const uint32_t height = static_cast<uint32_t>(args.integer("height", 1, 16384).value_or(480));
-  const auto tess = args.integer("tess", 1, 64);
-  const auto adaptive = args.number("adaptive", 0.01, 1e6);
-  const auto cameraText = args.value("camera");
-  const uint32_t frames = static_cast<uint32_t>(args.integer("frames", 1, 100000).value_or(1));
-  const double orbitDegrees = args.number("orbit", -360.0, 360.0).value_or(0.0);
-  const auto outDir = args.value("out-dir");
-  const bool ids = args.flag("ids");
-  const bool debugColors = args.flag("debug-colors");
-  const bool validate = args.flag("validate");
-  const auto device = args.value("device");
-  const PatchOptions patchOptions = patchOptionsFromArgs(args);
-  const CullChoice cull = cullChoiceFromArgs(args);
-  const auto statsPath = args.value("stats");
-  const auto occluderFiles = args.value("occluders");
-  const bool statusView = args.flag("status-view");
-  const auto pyramidDir = args.value("pyramid-dir");
-  const MeshSource source = meshSourceFromArgs(args);
-  args.finish();
-  if (!out) throw Error("--out FILE.png is required");
-  if (tess && adaptive) throw Error("--tess and --adaptive exclude each other");
-  if ((statusView || pyramidDir) && !cull.occlusion())
-    throw Error("--status-view and --pyramid-dir need --cull occlusion or --cull all");
+int run(const RenderArgs& args) {
+  const auto out = args.out;
+  const uint32_t width = args.width, height = args.height;
+  const uint32_t frames = args.frames;
+  const double orbitDegrees = args.orbitDegrees;
+  const bool ids = args.ids;
+  const PatchOptions& patchOptions = args.patchOptions;
+  const CullChoice cull = cullChoice(args.cull);
+  const MeshSource& source = args.source;
+  if ((args.statusView || !args.pyramidDir.empty()) && !cull.occlusion())
+    throw UsageError("--status-view and --pyramid-dir need --cull occlusion or --cull all");
+  std::vector<double> cameraNumbers;
+  if (!args.camera.empty()) cameraNumbers = parseNumbers(args.camera, 10, "camera");
+  // Every output is checked before the (possibly long) run, not when it is written.
+  checkOutputFile(out, "--out", {".png"});
+  if (!args.stats.empty()) checkOutputFile(args.stats, "--stats", {".json"});
+  if (!args.outDir.empty()) prepareOutputDirectory(args.outDir, "--out-dir");
+  if (!args.pyramidDir.empty()) prepareOutputDirectory(args.pyramidDir, "--pyramid-dir");
 
   Scene scene = loadScene(source, patchOptions);
-  if (occluderFiles) {
-    std::stringstream list(*occluderFiles);
-    std::string file;
-    while (std::getline(list, file, ','))
-      if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
-  }
-  vulkan::ContextOptions contextOptions;
-  contextOptions.device = device.value_or("");
-  contextOptions.validation = validate;
-  vulkan::Context context(contextOptions);
+  for (const std::string& file : splitList(args.occluders))
+    if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
+  vulkan::Context context(args.device);
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << scene.patches.source << ": " << scene.patches.bezierCount
             << " Bezier + " << scene.patches.gregoryCount << " Gregory patches, "
             << scene.occluders.size() << " triangle occluders\n";
+  for (const std::string& note : scene.notes) std::cout << "note: " << note << "\n";
 
   frame::GpuPatchSet gpu(context, scene.patches);
   std::vector<frame::GpuTriangleMesh> occluderMeshes;
@@ -184,8 +164,8 @@ int run(Args& args) {
   }
   frame::Camera camera;
   glm::dvec3 pivot = bounds.center(), up = scene.up;
-  if (cameraText) {
-    const auto v = parseNumbers(*cameraText, 10, "camera");
+  if (!cameraNumbers.empty()) {
+    const auto& v = cameraNumbers;
     const glm::dvec3 eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);
     up = glm::dvec3(v[6], v[7], v[8]);
     const double d = glm::distance(eye, bounds.center()), r = bounds.radius();
@@ -197,12 +177,12 @@ int run(Args& args) {
   }
 
   frame::RenderOptions options;
-  options.debugColors = debugColors;
-  if (adaptive) {
+  options.debugColors = args.debugColors;
+  if (args.adaptive > 0.0) {
     options.tessellation.mode = frame::TessellationOptions::Mode::Adaptive;
-    options.tessellation.pixelsPerSegment = *adaptive;
+    options.tessellation.pixelsPerSegment = args.adaptive;
   } else {
-    options.tessellation.uniformLevel = static_cast<uint32_t>(tess.value_or(4));
+    options.tessellation.uniformLevel = args.tess;
   }
   options.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
 
@@ -253,7 +233,6 @@ int run(Args& args) {
               << (frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper")
               << " lookup\n";
   }
-  if (outDir) fs::create_directories(*outDir);
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
   nlohmann::json jsonFrames = nlohmann::json::array();
   frame::Camera view = camera;
@@ -287,27 +266,27 @@ int run(Args& args) {
       jsonFrames.push_back(std::move(j));
     }
     const bool last = f + 1 == frames;
-    if (!outDir && !last) continue;
+    if (args.outDir.empty() && !last) continue;
     const auto color = frame::colorImage(width, height, target.readColor(context));
-    if (outDir) {
+    if (!args.outDir.empty()) {
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%04u.png", f);
-      frame::writePng(fs::path(*outDir) / name, color);
+      frame::writePng(fs::path(args.outDir) / name, color);
     }
     if (last) {
-      frame::writePng(*out, color);
-      std::cout << "wrote " << *out << "\n";
+      frame::writePng(out, color);
+      std::cout << "wrote " << out << "\n";
       if (ids) {
-        frame::writePng(sibling(*out, "_ids"),
+        frame::writePng(sibling(out, "_ids"),
                         frame::itemImage(width, height, target.readItems(context)));
-        frame::writePng(sibling(*out, "_depth"),
+        frame::writePng(sibling(out, "_depth"),
                         frame::depthImage(width, height, target.readDepth(context)));
-        std::cout << "wrote " << sibling(*out, "_ids").string() << " and "
-                  << sibling(*out, "_depth").string() << "\n";
+        std::cout << "wrote " << sibling(out, "_ids").string() << " and "
+                  << sibling(out, "_depth").string() << "\n";
       }
     }
   }
-  if (statsPath) {
+  if (!args.stats.empty()) {
     nlohmann::json doc{{"device", context.info().name},
                        {"scene", scene.patches.source},
                        {"width", width},
@@ -322,25 +301,32 @@ int run(Args& args) {
           {"hizFullResolution", frameOptions.hiz.fullResolution},
           {"hizLookup", frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper"},
           {"hizSampler", cullFrame->pyramid().usesSampler()}};
-    std::ofstream file(*statsPath);
-    if (!(file << doc.dump(2) << "\n")) throw Error(*statsPath + ": cannot write");
-    std::cout << "wrote " << *statsPath << "\n";
+    std::ofstream file(args.stats);
+    if (!(file << doc.dump(2) << "\n")) throw Error(args.stats + ": cannot write");
+    std::cout << "wrote " << args.stats << "\n";
   }
-  if (cullFrame && statusView) {
+  if (cullFrame && args.statusView) {
     frame::RenderTarget viewTarget(context, width, height);
     const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
     for (const auto& [statusCamera, suffix] :
          {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
       cullFrame->renderStatusView(viewTarget, statusCamera, occluders);
-      frame::writePng(sibling(*out, suffix),
+      frame::writePng(sibling(out, suffix),
                       frame::colorImage(width, height, viewTarget.readColor(context)));
-      std::cout << "wrote " << sibling(*out, suffix).string() << "\n";
+      std::cout << "wrote " << sibling(out, suffix).string() << "\n";
     }
   }
-  if (cullFrame && pyramidDir) {
-    const uint32_t n = writePyramidLevels(*pyramidDir, cullFrame->pyramid(), context);
-    std::cout << "wrote " << n << " pyramid levels to " << *pyramidDir << "\n";
+  if (cullFrame && !args.pyramidDir.empty()) {
+    const uint32_t n = writePyramidLevels(args.pyramidDir, cullFrame->pyramid(), context);
+    std::cout << "wrote " << n << " pyramid levels to " << args.pyramidDir << "\n";
   }
+  const vulkan::ShaderCacheStats shaders = vulkan::shaderCacheStats();
+  const std::string cacheDir = vulkan::spirvCacheDirectory().string();
+  std::printf(
+      "shader variants: %zu compiled with glslang, %zu loaded from the SPIR-V cache (%s), "
+      "%.1f ms\n",
+      shaders.compiles, shaders.diskHits, cacheDir.empty() ? "off" : cacheDir.c_str(),
+      shaders.milliseconds);
   if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
     return 1;
@@ -348,13 +334,70 @@ int run(Args& args) {
   return 0;
 }
 
+Runner setup(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  addMeshOptions(app, args->source);
+  addPatchOptions(app, args->patchOptions);
+  app.add_option("--out", args->out, "image of the last frame (required)")
+      ->type_name("FILE.png")
+      ->required();
+  app.add_option("--occluders", args->occluders,
+                 "OBJ files drawn as triangle occluders (before the patches)")
+      ->type_name("F[,F...]");
+  app.add_option("--width", args->width, "image width (default 640)")
+      ->type_name("W")
+      ->check(integerIn(1, 16384));
+  app.add_option("--height", args->height, "image height (default 480)")
+      ->type_name("H")
+      ->check(integerIn(1, 16384));
+  CLI::Option* tess = app.add_option("--tess", args->tess,
+                                     "uniform tessellation, N segments per patch edge (default 4)")
+                          ->type_name("N")
+                          ->check(integerIn(1, 64));
+  app.add_option("--adaptive", args->adaptive,
+                 "screen-space adaptive tessellation, PIXELS per segment")
+      ->type_name("PIXELS")
+      ->check(numberIn(0.01, 1e6))
+      ->excludes(tess);
+  app.add_option("--camera", args->camera,
+                 "eye, target and up vectors and vertical field of view in degrees:\n"
+                 "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy (default: frame the whole scene)")
+      ->type_name("E,T,U,FOVY");
+  app.add_option("--frames", args->frames, "draw N frames (default 1)")
+      ->type_name("N")
+      ->check(integerIn(1, 100000));
+  app.add_option("--orbit", args->orbitDegrees,
+                 "rotate the camera about the up axis by DEG per frame")
+      ->type_name("DEG")
+      ->check(numberIn(-360.0, 360.0));
+  app.add_option("--out-dir", args->outDir, "also keep every frame as DIR/frame_NNNN.png")
+      ->type_name("DIR");
+  app.add_flag("--ids", args->ids,
+               "also write the item buffer (patch ID + 1 per pixel, 24-bit RGB)\n"
+               "as FILE_ids.png and the depth as FILE_depth.png");
+  app.add_flag("--debug-colors", args->debugColors, "color each patch by its index");
+  app.add_option("--stats", args->stats, "write the per-frame figures as JSON")
+      ->type_name("FILE.json");
+  addDeviceOptions(app, args->device);
+  addCullOptions(app, args->cull);
+  app.add_flag("--status-view", args->statusView,
+               "with occlusion: also write FILE_status.png, patches colored by\n"
+               "their status (green visible, yellow newly visible, blue frustum-,\n"
+               "purple back-patch-, red occlusion-culled) from the camera, and\n"
+               "FILE_status_side.png from 90 degrees around the up axis")
+      ->group("Culling");
+  app.add_option("--pyramid-dir", args->pyramidDir,
+                 "with occlusion: write the Hi-Z levels of the last frame as\n"
+                 "DIR/hiz_level_NN.png")
+      ->type_name("DIR")
+      ->group("Culling");
+  return [args] { return run(*args); };
+}
+
 const Registration kRegistration(
     {"render",
      "draw a mesh or the built-in scene to PNG (optionally culled), print frame statistics",
-     usage(),
-     {"ids", "debug-colors", "validate", "status-view", "aggressive", "hiz-full", "hiz-tight",
-      "surface-exact"},
-     run});
+     kDescription, setup});
 
 }  // namespace
 }  // namespace osd_cull::cli

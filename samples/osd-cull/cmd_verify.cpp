@@ -2,7 +2,9 @@
 // against the double-precision CPU reference, the visibility oracle and (optionally) dense
 // sampling and the image; prints a table and writes JSON.
 #include "command.h"
+#include "device_options.h"
 #include "mesh_patches.h"
+#include "option_checks.h"
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/verify/cull_verification.h"
@@ -15,64 +17,59 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace osd_cull::cli {
 namespace {
 
-const char* kUsage = R"(Usage: osd-cull verify [MESH] [options]
-
-Runs each cull method alone (the frustum test, each back-patch method, the Hi-Z occlusion
+const char* kDescription =
+    R"(Runs each cull method alone (the frustum test, each back-patch method, the Hi-Z occlusion
 test against the pyramid of the full draw's depth) on random views of MESH (default: the
 built-in mesh) and checks every view: GPU culls must be culls of the
 double-precision CPU reference, culled patches must have no pixel in the visibility oracle
 (item buffer of the unculled draw), and optionally no visible sample on a dense sampling of
 the patch and no pixel lost in the image drawn from the survivors. Prints a table (progress
-on stderr) and optionally writes JSON.
+on stderr) and optionally writes JSON.)";
 
-Views (both keep the whole bounding sphere, centre of the bounding box and radius half its
+const char* kFooter =
+    R"(Views (both keep the whole bounding sphere, centre of the bounding box and radius half its
 diagonal, inside the view, with a random roll):
   sphere        eye uniformly distributed on the sphere of radius r / sin(fov/2) around the
                 centre (2.92 r for 40 degrees), looking at the centre (back-patch paper)
   whole-object  random direction, distance in [1, 2] times that radius, view direction
-                turned off-centre as far as the object stays in view (occlusion paper)
+                turned off-centre as far as the object stays in view (occlusion paper))";
 
-Options:
-  --views N             number of views (default 100)
-  --seed S              random seed of the views (default 1)
-  --view-set SET        sphere or whole-object (default sphere)
-  --methods A,B,...     methods to run (default: every registered method: frustum,
-                        back-patch and occlusion (hiz); back-patch methods are skipped with the
-                        reason when the mesh is not a closed, outward-oriented solid, hiz
-                        without the oracle)
-  --hiz-full            Hi-Z top level at full resolution (default: half, as the paper)
-  --hiz-tight           Hi-Z lookup one level finer where 2x2 texels still cover the box
-  --tess N              uniform tessellation level of the oracle draws (default 4)
-  --level L             adaptive isolation level of the patches (default 2)
-  --width W --height H  image size (default 256 x 256)
-  --fov DEG             vertical field of view (default 40)
-  --reference-every K   compare with the CPU reference on every K-th view (default 1;
-                        0: never)
-  --no-oracle           skip the oracle (no false-cull or oracle-rate figures)
-  --sample N            check culled patches on an (N+1) x (N+1) sampling grid (default 0: off)
-  --image-check         draw the survivors of each method and compare with the full draw
-  --surface-exact       back-patch tests exact for the surface only, as the papers measure
-                        them (default: also conservative for the drawn chord triangles,
-                        docs/algorithms/drawn-triangles.md); such culls can take single
-                        silhouette pixels, which are then reported but do not fail the run
-  --json FILE           write the results as JSON
-  --scheme S            override the subdivision scheme
-  --device X            Vulkan device: index or name substring
-  --validate            enable the Vulkan validation layers
-)";
+/// \brief The parsed options of `osd-cull verify`.
+struct VerifyArgs {
+  MeshSource source;
+  PatchOptions patchOptions;
+  vulkan::ContextOptions device;
+  uint32_t views = 100;
+  uint64_t seed = 1;
+  std::string viewSet = "sphere";
+  std::string methods;  ///< empty: every registered method
+  uint32_t tess = 4;
+  uint32_t width = 256;
+  uint32_t height = 256;
+  double fov = 40.0;
+  uint32_t referenceEvery = 1;
+  bool noOracle = false;
+  int sample = 0;
+  bool imageCheck = false;
+  bool hizFull = false;
+  bool hizTight = false;
+  std::string json;
+  bool surfaceExact = false;
+};
 
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
+/// \brief Every registered cull method, frustum first, then back-patch, then occlusion.
+std::vector<std::string> allMethods() {
+  std::vector<std::string> methods;
+  for (auto stage :
+       {frame::CullStage::Frustum, frame::CullStage::BackPatch, frame::CullStage::Occlusion})
+    for (const auto& m : frame::cullMethodNames(stage)) methods.push_back(m);
+  return methods;
 }
 
 double percent(uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; }
@@ -105,60 +102,38 @@ nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCo
   return m;
 }
 
-int run(Args& args) {
-  const uint32_t views = static_cast<uint32_t>(args.integer("views", 1, 10'000'000).value_or(100));
-  const uint64_t seed = static_cast<uint64_t>(args.integer("seed", 0, 1L << 62).value_or(1));
-  const frame::ViewSet viewSet = frame::parseViewSet(args.value("view-set").value_or("sphere"));
-  const auto methodsText = args.value("methods");
-  const uint32_t tess = static_cast<uint32_t>(args.integer("tess", 1, 64).value_or(4));
-  PatchOptions patchOptions;
-  patchOptions.isolationLevel = static_cast<int>(args.integer("level", 0, 10).value_or(2));
-  const uint32_t width = static_cast<uint32_t>(args.integer("width", 1, 16384).value_or(256));
-  const uint32_t height = static_cast<uint32_t>(args.integer("height", 1, 16384).value_or(256));
-  const double fov = args.number("fov", 1.0, 170.0).value_or(40.0);
-  const uint32_t referenceEvery =
-      static_cast<uint32_t>(args.integer("reference-every", 0, 1'000'000).value_or(1));
-  const bool noOracle = args.flag("no-oracle");
-  const int sample = static_cast<int>(args.integer("sample", 0, 256).value_or(0));
-  const bool imageCheck = args.flag("image-check");
-  const bool hizFull = args.flag("hiz-full");
-  const bool hizTight = args.flag("hiz-tight");
-  const auto jsonPath = args.value("json");
-  const auto device = args.value("device");
-  const bool validate = args.flag("validate");
-  const bool surfaceExact = args.flag("surface-exact");
-  const MeshSource source = meshSourceFromArgs(args);
-  args.finish();
-  if (imageCheck && noOracle)
-    throw Error("--image-check compares with the oracle's draw; drop --no-oracle");
-
-  std::vector<std::string> methods;
-  if (methodsText) {
-    methods = splitList(*methodsText);
-    for (const auto& m : methods) frame::cullMethod(m);  // reject unknown names early
-  } else {
-    for (auto stage :
-         {frame::CullStage::Frustum, frame::CullStage::BackPatch, frame::CullStage::Occlusion})
-      for (const auto& m : frame::cullMethodNames(stage)) methods.push_back(m);
-  }
+int run(const VerifyArgs& args) {
+  const uint32_t views = args.views;
+  const uint64_t seed = args.seed;
+  const frame::ViewSet viewSet = frame::parseViewSet(args.viewSet);
+  const uint32_t tess = args.tess;
+  const PatchOptions& patchOptions = args.patchOptions;
+  const uint32_t width = args.width, height = args.height;
+  const double fov = args.fov;
+  const int sample = args.sample;
+  const bool imageCheck = args.imageCheck;
+  const bool surfaceExact = args.surfaceExact;
+  const MeshSource& source = args.source;
+  if (imageCheck && args.noOracle)
+    throw UsageError("--image-check compares with the oracle's draw; drop --no-oracle");
+  const std::vector<std::string> methods =
+      args.methods.empty() ? allMethods() : splitList(args.methods);
+  if (!args.json.empty()) checkOutputFile(args.json, "--json", {".json"});
 
   const MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
   const PatchSet& patches = mesh.patches;
-  vulkan::ContextOptions contextOptions;
-  contextOptions.device = device.value_or("");
-  contextOptions.validation = validate;
-  vulkan::Context context(contextOptions);
+  vulkan::Context context(args.device);
 
   frame::VerifyOptions options;
   options.tessellation.uniformLevel = tess;
   options.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
-  options.oracle = !noOracle;
-  options.referenceStride = referenceEvery;
+  options.oracle = !args.noOracle;
+  options.referenceStride = args.referenceEvery;
   options.samplingGrid = sample;
   options.imageCheck = imageCheck;
   options.drawnTriangles = !surfaceExact;
-  options.hiz.fullResolution = hizFull;
-  options.hiz.lookup = hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
+  options.hiz.fullResolution = args.hizFull;
+  options.hiz.lookup = args.hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
   frame::CullVerifier verifier(context, patches, methods, mesh.backPatch, options);
 
   frame::ViewSetOptions viewOptions;
@@ -173,6 +148,7 @@ int run(Args& args) {
   std::printf("mesh: %s, %u patches (%u Bezier + %u Gregory), level %d\n", mesh.name.c_str(),
               patches.patchCount(), patches.bezierCount, patches.gregoryCount,
               patchOptions.isolationLevel);
+  for (const std::string& note : mesh.notes) std::printf("note: %s\n", note.c_str());
   std::printf("views: %u %s (seed %llu), %ux%u, fov %.1f, tess %u, device %s\n", views,
               frame::toString(viewSet), static_cast<unsigned long long>(seed), width, height, fov,
               tess, context.info().name.c_str());
@@ -247,7 +223,7 @@ int run(Args& args) {
                   static_cast<unsigned long long>(t.pixelsChanged));
   }
 
-  if (jsonPath) {
+  if (!args.json.empty()) {
     nlohmann::ordered_json out;
     out["mesh"] = mesh.name;
     out["patches"] = patches.patchCount();
@@ -274,10 +250,9 @@ int run(Args& args) {
       out["skipped"].push_back({{"name", name}, {"reason", why}});
     out["ok"] = ok;
     out["ok_except_silhouette_chords"] = okButSilhouettes;
-    std::ofstream file(*jsonPath);
-    if (!file) throw Error("cannot write " + *jsonPath);
-    file << out.dump(2) << "\n";
-    std::printf("\nwrote %s\n", jsonPath->c_str());
+    std::ofstream file(args.json);
+    if (!(file << out.dump(2) << "\n")) throw Error(args.json + ": cannot write");
+    std::printf("\nwrote %s\n", args.json.c_str());
   }
   if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
@@ -289,12 +264,69 @@ int run(Args& args) {
   return okButSilhouettes ? 0 : 1;
 }
 
+Runner setup(CLI::App& app) {
+  auto args = std::make_shared<VerifyArgs>();
+  addMeshOptions(app, args->source);
+  addPatchOptions(app, args->patchOptions);
+  app.add_option("--views", args->views, "number of views (default 100)")
+      ->type_name("N")
+      ->check(integerIn(1, 10'000'000));
+  app.add_option("--seed", args->seed, "random seed of the views (default 1)")
+      ->type_name("S")
+      ->check(integerIn(0, 1L << 62));
+  app.add_option("--view-set", args->viewSet, "sphere or whole-object (default sphere)")
+      ->type_name("SET")
+      ->check(oneOf({"sphere", "whole-object"}));
+  app.add_option("--methods", args->methods,
+                 "methods to run (default: every registered method: frustum,\n"
+                 "back-patch and occlusion (hiz); back-patch methods are skipped with\n"
+                 "the reason when the mesh is not a closed, outward-oriented solid, hiz\n"
+                 "without the oracle)")
+      ->type_name("A,B,...")
+      ->check(listOf(allMethods()));
+  app.add_flag("--hiz-full", args->hizFull,
+               "Hi-Z top level at full resolution (default: half, as the paper)");
+  app.add_flag("--hiz-tight", args->hizTight,
+               "Hi-Z lookup one level finer where 2x2 texels still cover the box");
+  app.add_option("--tess", args->tess, "uniform tessellation level of the oracle draws (default 4)")
+      ->type_name("N")
+      ->check(integerIn(1, 64));
+  app.add_option("--width", args->width, "image width (default 256)")
+      ->type_name("W")
+      ->check(integerIn(1, 16384));
+  app.add_option("--height", args->height, "image height (default 256)")
+      ->type_name("H")
+      ->check(integerIn(1, 16384));
+  app.add_option("--fov", args->fov, "vertical field of view in degrees (default 40)")
+      ->type_name("DEG")
+      ->check(numberIn(1.0, 170.0));
+  app.add_option("--reference-every", args->referenceEvery,
+                 "compare with the CPU reference on every K-th view (default 1;\n"
+                 "0: never)")
+      ->type_name("K")
+      ->check(integerIn(0, 1'000'000));
+  app.add_flag("--no-oracle", args->noOracle,
+               "skip the oracle (no false-cull or oracle-rate figures)");
+  app.add_option("--sample", args->sample,
+                 "check culled patches on an (N+1) x (N+1) sampling grid (default 0:\n"
+                 "off)")
+      ->type_name("N")
+      ->check(integerIn(0, 256));
+  app.add_flag("--image-check", args->imageCheck,
+               "draw the survivors of each method and compare with the full draw");
+  app.add_flag("--surface-exact", args->surfaceExact,
+               "back-patch tests exact for the surface only, as the papers measure\n"
+               "them (default: also conservative for the drawn chord triangles,\n"
+               "docs/algorithms/drawn-triangles.md); such culls can take single\n"
+               "silhouette pixels, which are then reported but do not fail the run");
+  app.add_option("--json", args->json, "write the results as JSON")->type_name("FILE.json");
+  addDeviceOptions(app, args->device);
+  return [args] { return run(*args); };
+}
+
 const Registration kRegistration(
-    {"verify",
-     "check every cull method against the CPU reference and the oracle on random views",
-     kUsage,
-     {"no-oracle", "image-check", "validate", "hiz-full", "hiz-tight", "surface-exact"},
-     run});
+    {"verify", "check every cull method against the CPU reference and the oracle on random views",
+     kDescription, setup, kFooter});
 
 }  // namespace
 }  // namespace osd_cull::cli

@@ -1,50 +1,46 @@
 #pragma once
 /// \file command.h
-/// \brief Subcommand registry and argument parsing of the osd-cull program.
+/// \brief Subcommand registry of the osd-cull program and its usage error.
 ///
-/// A subcommand is one .cpp file with a static `osd_cull::cli::Registration`.
+/// A subcommand is one .cpp file with a static `osd_cull::cli::Registration`. Its `setup`
+/// declares the command's options on a CLI11 `CLI::App` (bound to a struct the command
+/// owns) and returns the function that runs it once the line is parsed. Option groups
+/// shared by several commands (mesh, patches, culling, device) have an `add...Options`
+/// function next to the struct they fill (mesh_source.h, cull_options.h,
+/// device_options.h); option_checks.h has the validators (ranges, choices, lists) and the
+/// output-path checks. CLI11 rejects unknown options, options declared twice and missing
+/// values; main.cpp turns its errors into `osd-cull COMMAND: error: ...` and exit status 2.
+
+#include "osd_cull/error.h"
+
+#include <CLI/CLI.hpp>
 
 #include <functional>
 #include <map>
-#include <optional>
 #include <string>
-#include <vector>
 
 namespace osd_cull::cli {
 
-/// \brief Parsed command line of one subcommand: `--name value`, `--flag`, positionals.
-/// Every option a command reads is marked used; unknown options are an error.
-class Args {
+/// \brief A bad command line found after parsing (options that exclude each other, an
+/// option that needs another one). Exits with status 2, like CLI11's parse errors; bad
+/// input files and device failures are osd_cull::Error and exit with status 1.
+class UsageError : public Error {
  public:
-  Args(std::vector<std::string> argv, std::vector<std::string> flagNames);
-
-  /// Value of `--name V`, or nullopt.
-  std::optional<std::string> value(const std::string& name);
-  /// Value of `--name V` parsed as an integer in [lo, hi]; throws a clear error otherwise.
-  std::optional<long> integer(const std::string& name, long lo, long hi);
-  /// Value of `--name V` parsed as a finite number in [lo, hi].
-  std::optional<double> number(const std::string& name, double lo, double hi);
-  /// True when `--name` was given (a flag without value).
-  bool flag(const std::string& name);
-  /// Positional arguments in order.
-  const std::vector<std::string>& positional() const { return positional_; }
-  /// Throws if any option was given that no call above asked for.
-  void finish() const;
-
- private:
-  std::map<std::string, std::string> values_;
-  std::map<std::string, bool> flags_;
-  std::map<std::string, bool> used_;
-  std::vector<std::string> positional_;
+  using Error::Error;
 };
 
-/// \brief A subcommand: name, one-line summary, usage text, and the function to run.
+/// \brief Runs a parsed command; returns the exit status.
+using Runner = std::function<int()>;
+
+/// \brief A subcommand: name, one-line summary, help text, and its option declarations.
 struct Command {
   std::string name;
-  std::string summary;
-  std::string usage;                      ///< full help text, shown by `osd-cull NAME --help`
-  std::vector<std::string> flags;         ///< options that take no value
-  std::function<int(Args&)> run;
+  std::string summary;      ///< one line, listed by `osd-cull --help`
+  std::string description;  ///< paragraphs before the options in `osd-cull NAME --help`
+  /// Declares the command's options and positionals on `app` and returns the function
+  /// that runs the command with the parsed values.
+  std::function<Runner(CLI::App& app)> setup;
+  std::string footer = {};  ///< text after the options in `osd-cull NAME --help`
 };
 
 /// \brief Registers a subcommand at static-initialization time.

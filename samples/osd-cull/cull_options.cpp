@@ -1,95 +1,87 @@
 #include "cull_options.h"
 
+#include "option_checks.h"
+
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_methods.h"
 
 namespace osd_cull::cli {
 
-const char* const kCullOptionsUsage =
-    R"(  --cull MODE            cull patches on the GPU before drawing, and draw only the survivors:
-                         none (default), frustum, backpatch, occlusion, all (frustum +
-                         back-patch + occlusion). With occlusion a frame has two passes
-                         (Niessner & Loop): draw the patches visible last frame, build a Hi-Z
-                         pyramid of that depth, run the cull kernel on every patch, draw the
-                         patches that became visible
-  --backpatch-method M   back-patch test: tcone, ncone, tangent-plane (default),
-                         tangent-plane-16; used only on closed, outward-oriented meshes
-  --surface-exact        back-patch tests exact for the surface only, as the papers measure
-                         them (default: also conservative for the drawn chord triangles,
-                         which culls less but never takes a pixel; docs/algorithms/
-                         drawn-triangles.md)
-  --aggressive           occlusion: skip the second pass (newly visible patches appear one
-                         frame late)
-  --draw-mode M          occlusion: filtered (compact indirect draws, default) or tf0 (every
-                         patch, tessellation factor 0 for the ones not drawn)
-  --first-frame P        occlusion: status before the first frame: all (default), half, none
-  --hiz-full             occlusion: top pyramid level at full resolution (default: half)
-  --hiz-tight            occlusion: look boxes up one level finer when 2x2 texels still
-                         cover them (default: the paper's ceil(log2) level)
-  --hiz-reduction R      occlusion: auto (default), sampler (min/max sampler) or fourtap
-)";
+void addCullOptions(CLI::App& app, CullArgs& args) {
+  const std::string group = "Culling";
+  app.add_option("--cull", args.mode,
+                 "cull patches on the GPU before drawing, and draw only the survivors:\n"
+                 "none (default), frustum, backpatch, occlusion, all (frustum +\n"
+                 "back-patch + occlusion). With occlusion a frame has two passes\n"
+                 "(Niessner & Loop): draw the patches visible last frame, build a Hi-Z\n"
+                 "pyramid of that depth, run the cull kernel on every patch, draw the\n"
+                 "patches that became visible")
+      ->type_name("MODE")
+      ->group(group)
+      ->check(oneOf({"none", "frustum", "backpatch", "occlusion", "all"}));
+  app.add_option("--backpatch-method", args.backPatchMethod,
+                 "back-patch test: tcone, ncone, tangent-plane (default),\n"
+                 "tangent-plane-16; used only on closed, outward-oriented meshes")
+      ->type_name("M")
+      ->group(group)
+      ->check(oneOf(frame::cullMethodNames(frame::CullStage::BackPatch), "a back-patch method"));
+  app.add_flag("--surface-exact", args.surfaceExact,
+               "back-patch tests exact for the surface only, as the papers measure\n"
+               "them (default: also conservative for the drawn chord triangles,\n"
+               "which culls less but never takes a pixel; docs/algorithms/\n"
+               "drawn-triangles.md)")
+      ->group(group);
+  app.add_flag("--aggressive", args.aggressive,
+               "occlusion: skip the second pass (newly visible patches appear one\n"
+               "frame late)")
+      ->group(group);
+  app.add_option("--draw-mode", args.drawMode,
+                 "occlusion: filtered (compact indirect draws, default) or tf0 (every\n"
+                 "patch, tessellation factor 0 for the ones not drawn)")
+      ->type_name("M")
+      ->group(group)
+      ->check(oneOf({"filtered", "tf0"}));
+  app.add_option("--first-frame", args.firstFrame,
+                 "occlusion: status before the first frame: all (default), half, none")
+      ->type_name("P")
+      ->group(group)
+      ->check(oneOf({"all", "half", "none"}));
+  app.add_flag("--hiz-full", args.hizFull,
+               "occlusion: top pyramid level at full resolution (default: half)")
+      ->group(group);
+  app.add_flag("--hiz-tight", args.hizTight,
+               "occlusion: look boxes up one level finer when 2x2 texels still\n"
+               "cover them (default: the paper's ceil(log2) level)")
+      ->group(group);
+  app.add_option("--hiz-reduction", args.hizReduction,
+                 "occlusion: auto (default), sampler (min/max sampler) or fourtap")
+      ->type_name("R")
+      ->group(group)
+      ->check(oneOf({"auto", "sampler", "fourtap"}));
+}
 
-CullChoice cullChoiceFromArgs(Args& args) {
+CullChoice cullChoice(const CullArgs& args) {
   CullChoice c;
-  if (auto mode = args.value("cull")) {
-    if (*mode != "none" && *mode != "frustum" && *mode != "backpatch" && *mode != "occlusion" &&
-        *mode != "all")
-      throw Error("option --cull: '" + *mode +
-                  "' is not one of none, frustum, backpatch, occlusion, all");
-    c.mode = *mode;
-  }
-  if (auto method = args.value("backpatch-method")) {
-    if (frame::cullMethod(*method).stage != frame::CullStage::BackPatch)
-      throw Error("option --backpatch-method: '" + *method + "' is not a back-patch method");
-    c.backPatchMethod = *method;
-  }
-  if (args.flag("surface-exact")) {
+  c.mode = args.mode;
+  c.backPatchMethod = args.backPatchMethod;
+  if (args.surfaceExact) {
     if (c.mode != "backpatch" && c.mode != "all")
-      throw Error("--surface-exact needs --cull backpatch or --cull all");
+      throw UsageError("--surface-exact needs --cull backpatch or --cull all");
     c.surfaceExact = true;
   }
   frame::CullFrameOptions& f = c.frame;
-  bool frameOption = false;
-  if (args.flag("aggressive")) f.aggressive = frameOption = true;
-  if (auto mode = args.value("draw-mode")) {
-    frameOption = true;
-    if (*mode == "filtered")
-      f.drawMode = frame::CullDrawMode::Filtered;
-    else if (*mode == "tf0")
-      f.drawMode = frame::CullDrawMode::TessFactorZero;
-    else
-      throw Error("option --draw-mode: '" + *mode + "' is not one of filtered, tf0");
-  }
-  if (auto first = args.value("first-frame")) {
-    frameOption = true;
-    if (*first == "all")
-      f.firstFrame = frame::FirstFrame::AllVisible;
-    else if (*first == "half")
-      f.firstFrame = frame::FirstFrame::HalfVisible;
-    else if (*first == "none")
-      f.firstFrame = frame::FirstFrame::NoneVisible;
-    else
-      throw Error("option --first-frame: '" + *first + "' is not one of all, half, none");
-  }
-  if (args.flag("hiz-full")) f.hiz.fullResolution = frameOption = true;
-  if (args.flag("hiz-tight")) {
-    f.hiz.lookup = bound::HiZLookup::Tight;
-    frameOption = true;
-  }
-  if (auto reduction = args.value("hiz-reduction")) {
-    frameOption = true;
-    if (*reduction == "auto")
-      f.hiz.reduction = frame::HiZReduction::Auto;
-    else if (*reduction == "sampler")
-      f.hiz.reduction = frame::HiZReduction::Sampler;
-    else if (*reduction == "fourtap")
-      f.hiz.reduction = frame::HiZReduction::FourTap;
-    else
-      throw Error("option --hiz-reduction: '" + *reduction +
-                  "' is not one of auto, sampler, fourtap");
-  }
+  f.aggressive = args.aggressive;
+  if (args.drawMode == "tf0") f.drawMode = frame::CullDrawMode::TessFactorZero;
+  if (args.firstFrame == "half") f.firstFrame = frame::FirstFrame::HalfVisible;
+  if (args.firstFrame == "none") f.firstFrame = frame::FirstFrame::NoneVisible;
+  f.hiz.fullResolution = args.hizFull;
+  if (args.hizTight) f.hiz.lookup = bound::HiZLookup::Tight;
+  if (args.hizReduction == "sampler") f.hiz.reduction = frame::HiZReduction::Sampler;
+  if (args.hizReduction == "fourtap") f.hiz.reduction = frame::HiZReduction::FourTap;
+  const bool frameOption = args.aggressive || !args.drawMode.empty() || !args.firstFrame.empty() ||
+                           args.hizFull || args.hizTight || !args.hizReduction.empty();
   if (frameOption && !c.occlusion())
-    throw Error(
+    throw UsageError(
         "--aggressive, --draw-mode, --first-frame and --hiz-* need --cull occlusion "
         "or --cull all");
   return c;

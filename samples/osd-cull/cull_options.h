@@ -6,16 +6,13 @@
 #include "command.h"
 
 #include "osd_cull/bound/back_patch_validity.h"
-#include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/cull_frame.h"
 
 #include <optional>
 #include <string>
 
 namespace osd_cull::cli {
-
-/// \brief Help text of the options below, for usage strings.
-extern const char* const kCullOptionsUsage;
 
 /// \brief What the user asked to cull.
 struct CullChoice {
@@ -32,13 +29,29 @@ struct CullChoice {
   bool occlusion() const { return mode == "occlusion" || mode == "all"; }
 };
 
-/// \brief Reads `--cull MODE`, `--backpatch-method NAME`, `--surface-exact` and, for occlusion,
-/// `--aggressive`,
-/// `--draw-mode`, `--first-frame`, `--hiz-full`, `--hiz-tight`, `--hiz-reduction` (a command
-/// using this lists aggressive, hiz-full and hiz-tight among its Command::flags).
-/// \throws osd_cull::Error for unknown modes, methods or values, and for occlusion options
-/// without an occlusion mode.
-CullChoice cullChoiceFromArgs(Args& args);
+/// \brief The culling options as given on the command line (empty: not given).
+struct CullArgs {
+  std::string mode = "none";
+  std::string backPatchMethod = "tangent-plane";
+  bool surfaceExact = false;
+  bool aggressive = false;
+  std::string drawMode;
+  std::string firstFrame;
+  bool hizFull = false;
+  bool hizTight = false;
+  std::string hizReduction;
+};
+
+/// \brief Declares `--cull MODE`, `--backpatch-method NAME`, `--surface-exact` and the
+/// occlusion options `--aggressive`, `--draw-mode`, `--first-frame`, `--hiz-full`,
+/// `--hiz-tight`, `--hiz-reduction` in a "Culling" group of `app`; unknown values are
+/// parse errors that list the valid ones.
+void addCullOptions(CLI::App& app, CullArgs& args);
+
+/// \brief The choice the parsed options make.
+/// \throws UsageError for options that need another one (occlusion options without an
+/// occlusion mode, `--surface-exact` without back-patch culling).
+CullChoice cullChoice(const CullArgs& args);
 
 /// \brief The cull-pass settings of a choice on a mesh with the given validity (back-patch
 /// culling is left out with the reason where it is not valid).

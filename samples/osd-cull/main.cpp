@@ -1,12 +1,17 @@
 // osd-cull: command-line front end of osd_cull. `osd-cull --help` lists the subcommands.
+// Parsing is CLI11's; each subcommand declares its options (command.h). Exit status: 0
+// success, 1 bad input or a failed run, 2 a usage error (docs/user-guide.md).
 #include "command.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/version.h"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
+#include <opensubdiv/version.h>
+
 #include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
 
 namespace osd_cull::cli {
 
@@ -20,118 +25,92 @@ Registration::Registration(Command command) {
   commands().emplace(std::move(name), std::move(command));
 }
 
-Args::Args(std::vector<std::string> argv, std::vector<std::string> flagNames) {
-  for (size_t i = 0; i < argv.size(); ++i) {
-    const std::string& a = argv[i];
-    if (a.size() > 2 && a.starts_with("--")) {
-      std::string name = a.substr(2);
-      std::string val;
-      bool hasInline = false;
-      if (auto eq = name.find('='); eq != std::string::npos) {
-        val = name.substr(eq + 1);
-        name = name.substr(0, eq);
-        hasInline = true;
-      }
-      bool isFlag = false;
-      for (const auto& f : flagNames) isFlag |= (f == name);
-      if (isFlag) {
-        if (hasInline) throw Error("option --" + name + " takes no value");
-        flags_[name] = true;
-      } else if (hasInline) {
-        values_[name] = val;
-      } else {
-        if (i + 1 >= argv.size()) throw Error("option --" + name + " needs a value");
-        values_[name] = argv[++i];
-      }
-    } else {
-      positional_.push_back(a);
-    }
-  }
-}
-
-std::optional<std::string> Args::value(const std::string& name) {
-  used_[name] = true;
-  auto it = values_.find(name);
-  if (it == values_.end()) return std::nullopt;
-  return it->second;
-}
-
-std::optional<long> Args::integer(const std::string& name, long lo, long hi) {
-  auto v = value(name);
-  if (!v) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const long x = std::strtol(v->c_str(), &end, 10);
-  if (v->empty() || *end != '\0' || errno == ERANGE)
-    throw Error("option --" + name + ": '" + *v + "' is not an integer");
-  if (x < lo || x > hi)
-    throw Error("option --" + name + ": " + *v + " is out of range [" + std::to_string(lo) +
-                ", " + std::to_string(hi) + "]");
-  return x;
-}
-
-std::optional<double> Args::number(const std::string& name, double lo, double hi) {
-  auto v = value(name);
-  if (!v) return std::nullopt;
-  char* end = nullptr;
-  const double x = std::strtod(v->c_str(), &end);
-  if (v->empty() || *end != '\0' || !std::isfinite(x))
-    throw Error("option --" + name + ": '" + *v + "' is not a finite number");
-  if (x < lo || x > hi)
-    throw Error("option --" + name + ": " + *v + " is out of range [" + std::to_string(lo) +
-                ", " + std::to_string(hi) + "]");
-  return x;
-}
-
-bool Args::flag(const std::string& name) {
-  used_[name] = true;
-  return flags_.count(name) > 0;
-}
-
-void Args::finish() const {
-  for (const auto& [name, _] : values_)
-    if (!used_.count(name)) throw Error("unknown option --" + name);
-  for (const auto& [name, _] : flags_)
-    if (!used_.count(name)) throw Error("unknown option --" + name);
-}
-
 }  // namespace osd_cull::cli
 
 namespace {
 
-void printHelp() {
-  std::cout << "osd-cull: GPU culling of OpenSubdiv patches\n\nUsage: osd-cull COMMAND [options]\n\nCommands:\n";
-  for (const auto& [name, cmd] : osd_cull::cli::commands())
-    std::cout << "  " << name << std::string(name.size() < 10 ? 10 - name.size() : 1, ' ') << cmd.summary << "\n";
-  std::cout << "\n`osd-cull COMMAND --help` shows a command's options.\n";
+using namespace osd_cull::cli;
+
+/// CLI11's "The following argument was not expected: --x" as the guide words it.
+std::string extrasMessage(const CLI::App& app, bool commandChosen) {
+  for (const std::string& arg : app.remaining()) {
+    if (arg.starts_with("-") && arg.size() > 1)
+      return "unknown option " + arg.substr(0, arg.find('='));
+    if (!commandChosen) return "unknown command '" + arg + "'";
+    return "unexpected argument '" + arg + "'";
+  }
+  return "unexpected arguments";
+}
+
+/// Lists each command by its one-line summary (the first line of its description).
+class Formatter : public CLI::Formatter {
+ public:
+  std::string make_subcommand(const CLI::App* sub) const override {
+    std::stringstream out;
+    const std::string& d = sub->get_description();
+    CLI::detail::format_help(out, sub->get_display_name(), d.substr(0, d.find('\n')),
+                             column_width_);
+    return out.str();
+  }
+};
+
+std::string versionText() {
+  return std::string("osd-cull ") + osd_cull::libraryVersion() + " (OpenSubdiv " +
+         std::to_string(OPENSUBDIV_VERSION_MAJOR) + "." + std::to_string(OPENSUBDIV_VERSION_MINOR) +
+         "." + std::to_string(OPENSUBDIV_VERSION_PATCH) + ")";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace osd_cull::cli;
-  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-    printHelp();
-    return argc < 2 ? 2 : 0;
+  CLI::App app("osd-cull: GPU culling of OpenSubdiv patches", "osd-cull");
+  app.require_subcommand(1);
+  app.set_version_flag("--version", versionText(), "print the version and exit");
+  app.footer("`osd-cull COMMAND --help` shows a command's options.");
+  auto formatter = std::make_shared<Formatter>();
+  formatter->column_width(28);
+  app.formatter(formatter);
+  std::map<const CLI::App*, Runner> runners;
+  for (const auto& [name, command] : commands()) {
+    CLI::App* sub = app.add_subcommand(name, command.summary);
+    sub->description(command.summary + "\n\n" + command.description + "\n");
+    if (!command.footer.empty()) sub->footer(command.footer);
+    runners[sub] = command.setup(*sub);
   }
-  const std::string name = argv[1];
-  auto it = commands().find(name);
-  if (it == commands().end()) {
-    std::cerr << "osd-cull: unknown command '" << name << "'\n";
-    printHelp();
-    return 2;
-  }
-  std::vector<std::string> rest(argv + 2, argv + argc);
-  for (const auto& a : rest)
-    if (a == "--help" || a == "-h") {
-      std::cout << it->second.usage;
-      return 0;
-    }
+  const bool noArguments = argc < 2;
+  CLI::App* chosen = nullptr;
   try {
-    Args args(std::move(rest), it->second.flags);
-    return it->second.run(args);
+    app.parse(argc, argv);
+    chosen = app.get_subcommands().front();
+    return runners.at(chosen)();
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForVersion&) {
+    std::cout << versionText() << "\n";
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    const auto subs = app.get_subcommands();
+    const std::string prefix = subs.empty() ? "osd-cull" : "osd-cull " + subs.front()->get_name();
+    if (noArguments) {
+      std::cerr << app.help();
+      return 2;
+    }
+    // An unknown command is not a subcommand CLI11 could require: it is left over.
+    const bool extras = dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr ||
+                        (subs.empty() && !app.remaining().empty());
+    std::cerr << prefix << ": error: "
+              << (extras ? extrasMessage(subs.empty() ? app : *subs.front(), !subs.empty())
+                         : std::string(e.what()))
+              << "\n"
+              << "`" << prefix << " --help` lists the options.\n";
+    return 2;
+  } catch (const UsageError& e) {
+    std::cerr << "osd-cull " << chosen->get_name() << ": error: " << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
-    std::cerr << "osd-cull " << name << ": error: " << e.what() << "\n";
+    std::cerr << (chosen ? "osd-cull " + chosen->get_name() : std::string("osd-cull"))
+              << ": error: " << e.what() << "\n";
     return 1;
   }
 }

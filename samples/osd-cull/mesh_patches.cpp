@@ -16,6 +16,7 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
     return out;
   }
   const CageMesh& cage = *mesh.cage;
+  out.notes = cage.notes;
   out.backPatch =
       bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
   out.patches = extractPatches(cage, options).patches;

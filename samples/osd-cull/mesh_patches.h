@@ -10,6 +10,7 @@
 #include "osd_cull/patch/patch_set.h"
 
 #include <string>
+#include <vector>
 
 namespace osd_cull::cli {
 
@@ -18,6 +19,9 @@ struct MeshPatches {
   std::string name;
   PatchSet patches;
   bound::BackPatchValidity backPatch;
+  /// What the loader ignored or found unusual (CageMesh::notes): commands print these as
+  /// `note: ...`, so that e.g. a dropped `vertexedit` tag is never silent.
+  std::vector<std::string> notes;
 };
 
 /// \brief Extracts the patches of a cage (bound::backPatchValidity from its topology and

@@ -1,36 +1,47 @@
 #include "mesh_source.h"
 
+#include "option_checks.h"
+
 #include "adapters/load_mesh.h"
+#include "adapters/unused_vertices.h"
 #include "osd_cull/error.h"
 #include "osd_cull/scene/procedural.h"
 
 namespace osd_cull::cli {
 
-MeshSource meshSourceFromArgs(Args& args) {
-  MeshSource source;
-  if (auto scheme = args.value("scheme")) {
-    source.scheme = schemeFromString(*scheme);
-    if (!source.scheme)
-      throw Error("option --scheme: '" + *scheme + "' is not one of catmark, loop, bilinear");
-  }
-  const auto& pos = args.positional();
-  if (pos.size() > 1) throw Error("expected at most one MESH, got '" + pos[1] + "' too");
-  if (!pos.empty()) source.path = pos[0];
-  return source;
+void addMeshOptions(CLI::App& app, MeshSource& source) {
+  app.add_option_function<std::vector<std::string>>(
+         "MESH",
+         [&source](const std::vector<std::string>& paths) {
+           if (paths.size() > 1)
+             throw CLI::ValidationError("MESH",
+                                        "expected at most one MESH, got '" + paths[1] + "' too");
+           source.path = paths.front();
+         },
+         "OBJ (with OpenSubdiv tags), OFF, PLY, STL (Catmull-Clark cages, refined\n"
+         "adaptively into Bezier and Gregory patches) or BPT (Bezier patches, used as\n"
+         "they are); default: a built-in mesh generated in code")
+      ->type_name("");
+  app.add_option_function<std::string>(
+         "--scheme", [&source](const std::string& name) { source.scheme = schemeFromString(name); },
+         "override the subdivision scheme (default: file-name prefix catmark_,\n"
+         "loop_ or bilinear_, else catmark)")
+      ->type_name("S")
+      ->check(oneOf({"catmark", "loop", "bilinear"}));
 }
 
-PatchOptions patchOptionsFromArgs(Args& args) {
-  PatchOptions options;
-  if (auto level = args.integer("level", 0, 10)) options.isolationLevel = static_cast<int>(*level);
-  if (auto endcap = args.value("endcap")) {
-    if (*endcap == "gregory")
-      options.endCaps = EndCap::GregoryBasis;
-    else if (*endcap == "bspline")
-      options.endCaps = EndCap::BSplineBasis;
-    else
-      throw Error("option --endcap: '" + *endcap + "' is not one of gregory, bspline");
-  }
-  return options;
+void addPatchOptions(CLI::App& app, PatchOptions& options) {
+  app.add_option("--level", options.isolationLevel, "adaptive isolation level, 0..10 (default 2)")
+      ->type_name("N")
+      ->check(integerIn(0, 10));
+  app.add_option_function<std::string>(
+         "--endcap",
+         [&options](const std::string& name) {
+           options.endCaps = name == "bspline" ? EndCap::BSplineBasis : EndCap::GregoryBasis;
+         },
+         "end caps of irregular patches: gregory (default) or bspline")
+      ->type_name("E")
+      ->check(oneOf({"gregory", "bspline"}));
 }
 
 LoadedMesh loadMeshSource(const MeshSource& source) {
@@ -49,6 +60,7 @@ LoadedMesh loadMeshSource(const MeshSource& source) {
     adapters::LoadOptions options;
     options.scheme = source.scheme;
     mesh.cage = adapters::loadCage(*source.path, options);
+    mesh.droppedVertices = adapters::dropUnusedVertices(*mesh.cage);
   }
   return mesh;
 }

@@ -15,8 +15,8 @@ namespace osd_cull::cli {
 
 /// \brief What the user asked to load.
 struct MeshSource {
-  std::optional<std::string> path;    ///< empty: the built-in default mesh
-  std::optional<Scheme> scheme;       ///< --scheme
+  std::optional<std::string> path;  ///< empty: the built-in default mesh
+  std::optional<Scheme> scheme;     ///< --scheme
 };
 
 /// \brief A loaded mesh: a cage to refine, or Bézier patches used as they are.
@@ -24,17 +24,22 @@ struct LoadedMesh {
   std::string name;
   std::optional<CageMesh> cage;
   std::optional<PatchSet> bezier;
+  /// Vertices no face used, dropped before refinement (adapters::dropUnusedVertices): the
+  /// file had cage->vertexCount() + droppedVertices.
+  size_t droppedVertices = 0;
 };
 
-/// \brief Reads the optional positional MESH and `--scheme`; more than one positional is
-/// an error.
-MeshSource meshSourceFromArgs(Args& args);
+/// \brief Declares the optional positional MESH and `--scheme S`, filled into `source`
+/// when the line is parsed; more than one MESH is a usage error.
+void addMeshOptions(CLI::App& app, MeshSource& source);
 
-/// \brief Reads `--level N` (0..10, default 2) and `--endcap gregory|bspline` (default
-/// gregory) into patch options.
-PatchOptions patchOptionsFromArgs(Args& args);
+/// \brief Declares `--level N` (0..10, default 2) and `--endcap gregory|bspline` (default
+/// gregory), filled into `options` when the line is parsed.
+void addPatchOptions(CLI::App& app, PatchOptions& options);
 
-/// \brief Loads the mesh (adapters/) or generates the built-in one.
+/// \brief Loads the mesh (adapters/) or generates the built-in one. Unused vertices of a
+/// cage are dropped (counted in LoadedMesh::droppedVertices): nothing the commands do
+/// depends on them, and millions of them would cost refinement seconds and gigabytes.
 LoadedMesh loadMeshSource(const MeshSource& source);
 
 }  // namespace osd_cull::cli
