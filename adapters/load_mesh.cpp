@@ -1,5 +1,6 @@
 #include "adapters/load_mesh.h"
 
+#include "adapters/coordinate_limit.h"
 #include "adapters/obj_reader.h"
 #include "adapters/off_reader.h"
 #include "adapters/openmesh_reader.h"
@@ -37,16 +38,16 @@ CageMesh loadCage(const std::filesystem::path& path, const LoadOptions& options)
   const Scheme scheme =
       options.scheme ? *options.scheme : schemeFromFileName(file).value_or(Scheme::CatmullClark);
 
-  const std::string bytes = detail::readFileBytes(path);
-  CageMesh mesh;
-  if (ext == ".obj")
-    mesh = detail::readObj(bytes, path, scheme, options.leftHanded);
-  else if (ext == ".off")
-    mesh = detail::isBinaryOff(bytes) ? detail::readBinaryOff(bytes, file, scheme)
-                                      : detail::readOff(bytes, file, scheme);
-  else
-    mesh = detail::readWithOpenMesh(path, bytes, scheme);
+  CageMesh mesh = [&] {  // the file's bytes are released before the checks below
+    const std::string bytes = detail::readFileBytes(path);
+    if (ext == ".obj") return detail::readObj(bytes, path, scheme, options.leftHanded);
+    if (ext == ".off")
+      return detail::isBinaryOff(bytes) ? detail::readBinaryOff(bytes, file, scheme)
+                                        : detail::readOff(bytes, file, scheme);
+    return detail::readWithOpenMesh(path, bytes, scheme);
+  }();
 
+  checkCoordinateRange(mesh.positions, file);  // OFF, PLY, STL (OBJ checks per line)
   validate(mesh);  // the readers check as they go; this is the library's own contract
   noteTopology(mesh);
   return mesh;

@@ -1,5 +1,6 @@
 #include "adapters/obj_reader.h"
 
+#include "adapters/coordinate_limit.h"
 #include "adapters/obj_tags.h"
 #include "adapters/text_input.h"
 
@@ -18,6 +19,43 @@ namespace {
 bool isQuietKeyword(std::string_view k) {
   return k == "g" || k == "s" || k == "o" || k == "usemtl" || k == "mtllib";
 }
+
+// The texture coordinates ('vt') or normals ('vn') of a file and the largest index a face
+// corner gives them: the cage does not use them, but an index past the end is a broken file.
+struct AttributeIndices {
+  const char* what;     // "texture coordinate"
+  const char* keyword;  // "vt"
+  int64_t defined = 0;
+  int64_t largest = 0;
+  int largestLine = 0;
+  std::string largestToken;
+
+  void reference(int64_t index, std::string_view token, const LineReader& at) {
+    if (index == 0)
+      at.fail(std::string(what) + " index 0 in face corner " + quote(token) +
+              " (OBJ indices start at 1)");
+    if (index < 0) {  // relative to the ones defined so far
+      if (-index > defined)
+        at.fail("relative " + std::string(what) + " index " + std::to_string(index) +
+                " in face corner " + quote(token) + " reaches before the first one (" +
+                std::to_string(defined) + " defined so far)");
+      return;
+    }
+    if (index > largest) {
+      largest = index;
+      largestLine = at.lineNumber();
+      largestToken = quote(token);
+    }
+  }
+
+  void check(const std::string& file) const {
+    if (largest > defined)
+      fail(file, largestLine,
+           "face corner " + largestToken + " uses " + what + " " + std::to_string(largest) +
+               ", but the file defines only " + std::to_string(defined) + " ('" + keyword +
+               "' lines)");
+  }
+};
 
 class ObjParser {
  public:
@@ -38,11 +76,13 @@ class ObjParser {
       const std::string_view key = tokens[0];
       if (key == "v")
         vertex(tokens);
-      else if (key == "vt")
+      else if (key == "vt") {
         numbers(tokens, 1, "texture coordinate");
-      else if (key == "vn")
+        ++texCoords_.defined;
+      } else if (key == "vn") {
         numbers(tokens, 3, "normal");
-      else if (key == "f" || key == "fo")
+        ++normals_.defined;
+      } else if (key == "f" || key == "fo")
         face(tokens);
       else if (key == "t")
         tags_.parse(tokens, lines_, mesh_.scheme, mesh_.notes);
@@ -69,6 +109,9 @@ class ObjParser {
         lines_.fail("vertex " + std::to_string(mesh_.positions.size() + 1) +
                     " has a NaN or Inf coordinate (" + quote(tokens[static_cast<size_t>(i) + 1]) +
                     ")");
+      if (auto problem = coordinateProblem(*value))
+        lines_.fail("vertex " + std::to_string(mesh_.positions.size() + 1) + " coordinate " +
+                    *problem);
       c[i] = *value;
     }
     // Further numbers (w, or the r g b some exporters append) do not affect the cage.
@@ -99,6 +142,8 @@ class ObjParser {
           (slash2 != std::string_view::npos && vn.empty()))
         lines_.fail("face corner " + quote(token) +
                     " is not of the form v, v/vt, v//vn or v/vt/vn");
+      if (!vt.empty()) texCoords_.reference(*parseInt(vt), token, lines_);
+      if (!vn.empty()) normals_.reference(*parseInt(vn), token, lines_);
     }
     const auto index = parseInt(v);
     if (!index) lines_.fail("face corner " + quote(token) + " does not start with a vertex index");
@@ -155,6 +200,8 @@ class ObjParser {
     if (mesh_.positions.empty()) fail(file, 0, "no vertices ('v' lines): the mesh is empty");
     if (mesh_.faceSizes.empty()) fail(file, 0, "no faces ('f' lines): the mesh is empty");
 
+    texCoords_.check(file);
+    normals_.check(file);
     size_t offset = 0;
     for (size_t f = 0; f < mesh_.faceSizes.size(); ++f) {
       const auto n = static_cast<size_t>(mesh_.faceSizes[f]);
@@ -178,6 +225,8 @@ class ObjParser {
   LineReader lines_;
   CageMesh mesh_;
   ObjTags tags_;
+  AttributeIndices texCoords_{"texture coordinate", "vt"};
+  AttributeIndices normals_{"normal", "vn"};
   std::vector<int> faceLines_;
   std::map<std::string, std::pair<int, int>> ignored_;  // keyword → (count, first line)
 };

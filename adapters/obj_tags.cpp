@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace osd_cull::adapters::detail {
@@ -98,6 +99,13 @@ std::string_view singleString(const TagArgs& tag, const LineReader& at, const ch
   return tag.strings[0];
 }
 
+std::string sharpnessText(float s) {
+  std::string text = std::to_string(s);
+  text.erase(text.find_last_not_of('0') + 1);
+  if (text.back() == '.') text.pop_back();
+  return text;
+}
+
 uint64_t edgeKey(int a, int b) {
   return (static_cast<uint64_t>(static_cast<uint32_t>(std::max(a, b))) << 32) |
          static_cast<uint32_t>(std::min(a, b));
@@ -110,6 +118,7 @@ void ObjTags::parse(const std::vector<std::string_view>& tokens, const LineReade
   const TagArgs tag = splitTag(tokens, at, extraArgs_);
   if (extraArgs_ == 1 && extraArgsLine_ == 0) extraArgsLine_ = at.lineNumber();
   const int line = at.lineNumber();
+  noteRepeatedOption(tokens, at, notes);
   auto keep = [&](float s) {
     if (s >= 0.0f) return s;
     if (clampedSharpness_++ == 0) clampedSharpnessLine_ = line;
@@ -175,6 +184,24 @@ void ObjTags::parse(const std::vector<std::string_view>& tokens, const LineReade
   }
 }
 
+void ObjTags::noteRepeatedOption(const std::vector<std::string_view>& tokens, const LineReader& at,
+                                 std::vector<std::string>& notes) {
+  const std::string_view name = tokens[1];
+  if (name != "interpolateboundary" && name != "facevaryinginterpolateboundary" &&
+      name != "creasemethod" && name != "smoothtriangles")
+    return;
+  std::string value;
+  for (size_t i = 3; i < tokens.size(); ++i) value += (i > 3 ? " " : "") + std::string(tokens[i]);
+  auto [it, first] = optionTags_.try_emplace(std::string(name), at.lineNumber(), value);
+  if (first) return;
+  if (it->second.second != value)
+    notes.push_back(at.file() + ":" + std::to_string(at.lineNumber()) + ": tag " + quote(name) +
+                    " conflicts with line " + std::to_string(it->second.first) + " (" +
+                    quote(it->second.second) + " then " + quote(value) +
+                    "); the last one is used, as in OpenSubdiv");
+  it->second = {at.lineNumber(), value};
+}
+
 void ObjTags::apply(CageMesh& mesh, const std::string& file) const {
   const int64_t vertices = mesh.vertexCount();
   auto checkVertex = [&](int64_t v, int line, const char* what) {
@@ -200,6 +227,7 @@ void ObjTags::apply(CageMesh& mesh, const std::string& file) const {
       if (wanted.contains(key)) found.insert(key);
     }
   }
+  std::unordered_map<uint64_t, const Crease*> creaseOf;
   for (const Crease& c : creases_) {
     // OpenSubdiv refuses the whole mesh when a crease names a pair of vertices that no face
     // connects; say which pair.
@@ -208,9 +236,27 @@ void ObjTags::apply(CageMesh& mesh, const std::string& file) const {
            "tag 'crease': vertices " + std::to_string(c.v0) + " and " + std::to_string(c.v1) +
                " are not joined by an edge of any face");
     mesh.creases.push_back({static_cast<int>(c.v0), static_cast<int>(c.v1), c.sharpness});
+    // OpenSubdiv keeps the last sharpness given to an edge; a different earlier one is
+    // probably a mistake worth a note.
+    const Crease*& before = creaseOf[edgeKey(static_cast<int>(c.v0), static_cast<int>(c.v1))];
+    if (before && before->sharpness != c.sharpness)
+      mesh.notes.push_back(file + ":" + std::to_string(c.line) + ": edge (" + std::to_string(c.v0) +
+                           ", " + std::to_string(c.v1) + ") is creased again with sharpness " +
+                           sharpnessText(c.sharpness) + " (line " + std::to_string(before->line) +
+                           " gave " + sharpnessText(before->sharpness) + "); the last one is used");
+    before = &c;
   }
+  std::unordered_map<int64_t, const Corner*> cornerOf;
   for (const Corner& c : corners_) {
     checkVertex(c.vertex, c.line, "tag 'corner'");
+    const Corner*& before = cornerOf[c.vertex];
+    if (before && before->sharpness != c.sharpness)
+      mesh.notes.push_back(file + ":" + std::to_string(c.line) + ": vertex " +
+                           std::to_string(c.vertex) + " is given corner sharpness " +
+                           sharpnessText(c.sharpness) + " again (line " +
+                           std::to_string(before->line) + " gave " +
+                           sharpnessText(before->sharpness) + "); the last one is used");
+    before = &c;
     mesh.corners.push_back({static_cast<int>(c.vertex), c.sharpness});
   }
   for (const Hole& h : holes_) {

@@ -17,8 +17,8 @@
 /// Tag indices are 0-based (unlike `f` lines). Sharpness below zero is clamped to zero,
 /// as OpenSubdiv does. Unknown tag names are noted and ignored.
 
-#include "adapters/text_input.h"
 #include "osd_cull/patch/cage_mesh.h"
+#include "text_input.h"  // relative: also resolves where the headers are installed
 
 #include <map>
 #include <optional>
@@ -60,6 +60,11 @@ class ObjTags {
     int64_t face;
   };
 
+  /// Notes an option tag (interpolateboundary, creasemethod, ...) given again with another
+  /// value.
+  void noteRepeatedOption(const std::vector<std::string_view>& tokens, const LineReader& at,
+                          std::vector<std::string>& notes);
+
   std::vector<Crease> creases_;
   std::vector<Corner> corners_;
   std::vector<Hole> holes_;
@@ -71,6 +76,7 @@ class ObjTags {
   int clampedSharpnessLine_ = 0;
   int extraArgs_ = 0;
   int extraArgsLine_ = 0;
+  std::map<std::string, std::pair<int, std::string>> optionTags_;    ///< name → (line, value)
   std::map<std::string, std::pair<int, int>, std::less<>> unknown_;  ///< name → (count, first line)
 };
 

@@ -3,6 +3,7 @@
 #include "adapters/load_mesh.h"
 #include "osd_cull/error.h"
 #include "osd_cull/patch/refiner.h"
+#include "support/load_errors.h"
 #include "support/temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -28,32 +29,13 @@ struct TempDir : test::TempDir {
   TempDir() : test::TempDir("osd_cull_bad_") {}
 };
 
-// Loads `file` (a cage, or patches for .bpt) and returns the error message; fails the test
-// if there is no osd_cull::Error.
-std::string errorOf(const fs::path& file) {
-  try {
-    if (adapters::isBezierPatchFile(file))
-      loadBezierPatches(file);
-    else
-      loadCage(file);
-  } catch (const Error& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type for " << file << ": " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "no error for " << file;
-  return {};
-}
+using test::expectLoadError;
+using test::loadError;
 
-// The message starts with the file name (and ":LINE:" when `line` > 0) and contains every
-// phrase.
+// Short names: most tests here are lists of these calls.
+std::string errorOf(const fs::path& file) { return loadError(file); }
 void expectError(const fs::path& file, int line, std::initializer_list<const char*> phrases) {
-  const std::string message = errorOf(file);
-  const std::string prefix = file.string() + (line > 0 ? ":" + std::to_string(line) + ":" : ":");
-  EXPECT_TRUE(message.starts_with(prefix)) << "expected prefix '" << prefix << "' in: " << message;
-  for (const char* p : phrases)
-    EXPECT_NE(message.find(p), std::string::npos) << "'" << p << "' not in: " << message;
+  expectLoadError(file, line, phrases);
 }
 
 const std::string kTri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
