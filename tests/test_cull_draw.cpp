@@ -9,7 +9,7 @@
 #include "support/vk_test_context.h"
 #include "support/vk_test_images.h"
 
-#include <shared/draw_layout.h>
+#include <osd_cull/shared/draw_layout.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -12,7 +12,7 @@
 #include "support/vk_test_context.h"
 
 #include <gtest/gtest.h>
-#include <shared/draw_layout.h>
+#include <osd_cull/shared/draw_layout.h>
 
 #include <cstdio>
 

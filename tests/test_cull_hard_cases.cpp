@@ -15,7 +15,7 @@
 #include "support/test_data.h"
 #include "support/vk_test_context.h"
 
-#include <shared/cull_layout.h>
+#include <osd_cull/shared/cull_layout.h>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>

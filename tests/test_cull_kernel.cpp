@@ -9,7 +9,7 @@
 #include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
 
-#include <shared/cull_layout.h>
+#include <osd_cull/shared/cull_layout.h>
 
 #include <gtest/gtest.h>
 

@@ -5,6 +5,7 @@
 #include "osd_cull/frame/verify/cull_verification.h"
 #include "osd_cull/frame/verify/view_sets.h"
 #include "support/cull_test_meshes.h"
+#include "support/sanitizer.h"
 #include "support/test_data.h"
 #include "support/vk_test_context.h"
 
@@ -61,9 +62,10 @@ TEST_F(CullViewsTest, BigGuyNeverCullsWhatTheReferenceOrTheOracleKeeps) {
   frame::VerifyOptions options;
   options.tessellation.uniformLevel = 3;
   frame::CullVerifier verifier(context(), mesh.patches, kAllMethods, mesh.validity, options);
-  std::vector<frame::Camera> cameras = views(mesh.patches, ViewSet::Sphere, 40, 11);
-  for (const auto& c : views(mesh.patches, ViewSet::WholeObject, 40, 12)) cameras.push_back(c);
-  for (const auto& c : closeViews(mesh.patches, 40, 13)) cameras.push_back(c);
+  const uint32_t n = test::sanitizerScaled(40, 2);  // per view set; 20 under ASan
+  std::vector<frame::Camera> cameras = views(mesh.patches, ViewSet::Sphere, n, 11);
+  for (const auto& c : views(mesh.patches, ViewSet::WholeObject, n, 12)) cameras.push_back(c);
+  for (const auto& c : closeViews(mesh.patches, n, 13)) cameras.push_back(c);
   for (const auto& camera : cameras) verifier.verifyView(camera);
   test::expectNoViolations(verifier, mesh.name);
 
@@ -123,10 +125,10 @@ TEST_F(CullViewsTest, EveryCatmarkShapeNeverCullsWhatTheReferenceOrTheOracleKeep
     frame::CullVerifier verifier(context(), mesh.patches, kAllMethods, mesh.validity, options);
     // Open shapes: back-patch culling is off, only the frustum test runs.
     EXPECT_EQ(verifier.skipped().size(), mesh.validity.enabled ? 0u : 4u) << mesh.name;
-    std::vector<frame::Camera> cameras = views(mesh.patches, ViewSet::Sphere, 40, 31, 64);
-    for (const auto& c : views(mesh.patches, ViewSet::WholeObject, 40, 32, 64))
-      cameras.push_back(c);
-    for (const auto& c : closeViews(mesh.patches, 40, 33, 64)) cameras.push_back(c);
+    const uint32_t n = test::sanitizerScaled(40, 4);  // per view set; 10 under ASan
+    std::vector<frame::Camera> cameras = views(mesh.patches, ViewSet::Sphere, n, 31, 64);
+    for (const auto& c : views(mesh.patches, ViewSet::WholeObject, n, 32, 64)) cameras.push_back(c);
+    for (const auto& c : closeViews(mesh.patches, n, 33, 64)) cameras.push_back(c);
     for (const auto& camera : cameras) verifier.verifyView(camera);
     test::expectNoViolations(verifier, mesh.name);
     if (mesh.validity.enabled) {

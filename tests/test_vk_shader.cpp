@@ -5,10 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 namespace osd_cull {
 namespace {
 
 constexpr uint32_t kSpirvMagic = 0x07230203;
+
+// These tests check glslang itself: no SPIR-V from the disk cache (test_spirv_cache.cpp).
+const bool kDiskCacheOff = ::setenv("OSD_CULL_SHADER_CACHE", "off", 1) == 0;
 
 TEST(VkShader, StageComesFromTheExtension) {
   EXPECT_EQ(vulkan::shaderStageOf("a/b.comp"), VK_SHADER_STAGE_COMPUTE_BIT);
@@ -37,6 +42,7 @@ void main() { v[0] = VALUE; }
 )";
   const vulkan::ShaderDefine one[] = {{"VALUE", "1u"}};
   const vulkan::ShaderDefine two[] = {{"VALUE", "2u"}};
+  ASSERT_TRUE(kDiskCacheOff);
   const auto before = vulkan::shaderCacheStats();
   auto a = vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
   auto b = vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, two);

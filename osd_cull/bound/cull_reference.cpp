@@ -6,7 +6,7 @@
 #include "osd_cull/bound/tangent_plane.h"
 #include "osd_cull/error.h"
 
-#include <shared/cull_layout.h>
+#include <osd_cull/shared/cull_layout.h>
 
 #include <cmath>
 #include <limits>

@@ -17,7 +17,7 @@
 /// not nearer than the farthest depth of those texels: none of its fragments can pass the
 /// depth test. Points with w <= 0 (behind the eye) keep the patch.
 
-#include <shared/hiz_layout.h>
+#include <osd_cull/shared/hiz_layout.h>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

@@ -6,8 +6,8 @@
 #include "osd_cull/vk/descriptors.h"
 #include "osd_cull/vk/transfer.h"
 
-#include <shared/draw_layout.h>
-#include <shared/visibility_layout.h>
+#include <osd_cull/shared/draw_layout.h>
+#include <osd_cull/shared/visibility_layout.h>
 
 #include <chrono>
 

@@ -1,20 +1,25 @@
 #include "osd_cull/vk/shader_compiler.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/version.h"
 #include "osd_cull/vk/shader_sources.h"
+#include "osd_cull/vk/spirv_disk_cache.h"
 
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
+#include <glslang/build_info.h>
 
 #if defined(OSD_CULL_HAVE_OSD_GPU)
 #include <opensubdiv/osd/glslPatchShaderSource.h>
 #endif
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 namespace osd_cull::vulkan {
@@ -161,7 +166,32 @@ std::string cacheKey(std::string_view kind, std::string_view what, VkShaderStage
   return key;
 }
 
-Spirv cached(const std::string& key, const std::function<std::vector<uint32_t>()>& build) {
+/// Everything besides a variant's own text, stage and defines that its SPIR-V depends on:
+/// versions and a hash of every file an #include can reach.
+const std::string& environmentStamp() {
+  static const std::string stamp = [] {
+    uint64_t files = fnv1a64("");
+    for (const auto& s : embeddedShaders()) {
+      files = fnv1a64(s.path, files);
+      files = fnv1a64(std::string_view("\0", 1), files);
+      files = fnv1a64(s.text, files);
+    }
+    std::string basis = "none";
+#if defined(OSD_CULL_HAVE_OSD_GPU)
+    basis = std::to_string(fnv1a64(osdPatchBasisText()));
+#endif
+    return std::string("osd_cull ") + libraryVersion() + "; glslang " +
+           std::to_string(GLSLANG_VERSION_MAJOR) + "." + std::to_string(GLSLANG_VERSION_MINOR) +
+           "." + std::to_string(GLSLANG_VERSION_PATCH) + "; vulkan 1.2, spir-v 1.5; shaders " +
+           std::to_string(files) + "; osd basis " + basis;
+  }();
+  return stamp;
+}
+
+/// Memory first, then the disk cache, then glslang. `text` is the variant's own text (the
+/// memory key of a file names only its path).
+Spirv cached(const std::string& key, std::string_view text,
+             const std::function<std::vector<uint32_t>()>& build) {
   Cache& c = cache();
   {
     std::lock_guard lock(c.mutex);
@@ -170,14 +200,35 @@ Spirv cached(const std::string& key, const std::function<std::vector<uint32_t>()
       return it->second;
     }
   }
-  // Compile outside the lock; a concurrent compile of the same key is harmless.
-  auto spirv = std::make_shared<const std::vector<uint32_t>>(build());
+  // Load or compile outside the lock; a concurrent compile of the same key is harmless.
+  const auto start = std::chrono::steady_clock::now();
+  const std::string diskKey = shaderCacheKey(key, text);
+  std::optional<std::vector<uint32_t>> words = loadCachedSpirv(diskKey);
+  const bool fromDisk = words.has_value();
+  bool stored = false;
+  if (!fromDisk) {
+    words = build();
+    stored = storeCachedSpirv(diskKey, *words);
+  }
+  auto spirv = std::make_shared<const std::vector<uint32_t>>(std::move(*words));
   std::lock_guard lock(c.mutex);
-  ++c.stats.compiles;
+  ++(fromDisk ? c.stats.diskHits : c.stats.compiles);
+  c.stats.diskWrites += stored ? 1 : 0;
+  c.stats.milliseconds +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return c.entries.emplace(key, std::move(spirv)).first->second;
 }
 
 }  // namespace
+
+std::string shaderCacheKey(std::string_view memoryKey, std::string_view text) {
+  std::string key = environmentStamp();
+  key += '\0';
+  key += memoryKey;
+  key += '\0';
+  key += text;
+  return key;
+}
 
 VkShaderStageFlagBits shaderStageOf(std::string_view path) {
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -200,14 +251,14 @@ std::string_view shaderText(std::string_view path) {
 Spirv compileShader(const ShaderSource& source) {
   const VkShaderStageFlagBits stage = shaderStageOf(source.path);
   const std::string_view text = shaderText(source.path);
-  return cached(cacheKey("file", source.path, stage, source.defines),
+  return cached(cacheKey("file", source.path, stage, source.defines), text,
                 [&] { return compile(text, source.path, stage, source.defines); });
 }
 
 Spirv compileGlsl(std::string_view text, std::string_view name, VkShaderStageFlagBits stage,
                   std::span<const ShaderDefine> defines) {
   const std::string n(name);
-  return cached(cacheKey(std::string("text\0", 5) + n, text, stage, defines),
+  return cached(cacheKey(std::string("text\0", 5) + n, text, stage, defines), {},
                 [&] { return compile(text, n, stage, defines); });
 }
 

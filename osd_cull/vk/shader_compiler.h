@@ -8,7 +8,9 @@
 /// (Osd::GLSLPatchShaderSource::GetPatchBasisShaderSource(), with OSD_PATCH_BASIS_GLSL
 /// defined), so patches are evaluated with OpenSubdiv's functions.
 ///
-/// Every variant (file, stage, defines) is compiled once per process and cached.
+/// Every variant (file, stage, defines) is compiled once per process and cached in memory,
+/// and across processes in the SPIR-V disk cache (spirv_disk_cache.h): a program whose
+/// variants are all on disk never starts glslang.
 /// Shaders target Vulkan 1.2 / SPIR-V 1.5. Defines come before the first line of the
 /// file; GL_GOOGLE_include_directive is enabled for every shader.
 
@@ -55,11 +57,20 @@ Spirv compileShader(const ShaderSource& source);
 Spirv compileGlsl(std::string_view text, std::string_view name, VkShaderStageFlagBits stage,
                   std::span<const ShaderDefine> defines = {});
 
-/// \brief How often the cache compiled and how often it answered from memory.
+/// \brief What the caches did in this process: variants compiled by glslang, answered from
+/// memory, loaded from the disk cache, and written to it.
 struct ShaderCacheStats {
   size_t compiles = 0;
   size_t hits = 0;
+  size_t diskHits = 0;
+  size_t diskWrites = 0;
+  double milliseconds = 0.0;  ///< wall time spent compiling and loading (not memory hits)
 };
 ShaderCacheStats shaderCacheStats();
+
+/// \brief The disk-cache key of a variant: the environment (library and glslang versions,
+/// a hash of every embedded file and of OpenSubdiv's patch basis), then `memoryKey` (kind,
+/// name, stage, defines) and the variant's own `text`.
+std::string shaderCacheKey(std::string_view memoryKey, std::string_view text);
 
 }  // namespace osd_cull::vulkan

@@ -1,15 +1,18 @@
 # Install-and-consume check: installs this build into a temporary prefix, then configures,
 # builds and runs a tiny project that does find_package(osd_cull) and links
-# osd_cull::osd_cull and osd_cull::adapters.
+# osd_cull::osd_cull and osd_cull::adapters, with this build's compiler flags (sanitizers).
 add_test(NAME InstalledPackage.ConsumerBuildsAndRuns
   COMMAND ${CMAKE_COMMAND}
     -DBUILD_DIR=${PROJECT_BINARY_DIR}
     -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/consumer-check
     -DCONSUMER_SOURCE=${CMAKE_CURRENT_SOURCE_DIR}/cmake/consumer
     -DGENERATOR=${CMAKE_GENERATOR}
+    "-DCXX_FLAGS=${CMAKE_CXX_FLAGS}"
+    "-DLINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}"
     -P ${CMAKE_CURRENT_SOURCE_DIR}/cmake/consumer_check.cmake)
 set_tests_properties(InstalledPackage.ConsumerBuildsAndRuns PROPERTIES
-  TIMEOUT 600 PASS_REGULAR_EXPRESSION "consumer: cube patches=96 shift=10.000000")
+  TIMEOUT 600 PASS_REGULAR_EXPRESSION
+  "consumer: osd_cull ${PROJECT_VERSION} \\(headers ${PROJECT_VERSION}\\)\nconsumer: cube patches=96 shift=10.000000")
 
 # The minimal integration example runs and draws every patch of the built-in mesh.
 if(TARGET osd-cull-minimal)

@@ -9,7 +9,7 @@
 #include "osd_cull/vk/shader_compiler.h"
 #include "osd_cull/vk/transfer.h"
 
-#include <shared/draw_layout.h>
+#include <osd_cull/shared/draw_layout.h>
 
 #include <algorithm>
 #include <chrono>

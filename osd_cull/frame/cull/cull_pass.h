@@ -25,7 +25,7 @@
 #include "osd_cull/vk/descriptors.h"
 #include "osd_cull/vk/handle.h"
 
-#include <shared/cull_layout.h>
+#include <osd_cull/shared/cull_layout.h>
 
 #include <cstdint>
 #include <functional>

@@ -4,7 +4,7 @@
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/pipeline.h"
 
-#include <shared/draw_layout.h>
+#include <osd_cull/shared/draw_layout.h>
 
 #include <chrono>
 

@@ -14,7 +14,7 @@
 #include "osd_cull/vk/image.h"
 #include "osd_cull/vk/pipeline.h"
 
-#include <shared/hiz_layout.h>
+#include <osd_cull/shared/hiz_layout.h>
 
 #include <memory>
 #include <vector>

@@ -6,7 +6,7 @@
 #include "osd_cull/vk/descriptors.h"
 #include "osd_cull/vk/transfer.h"
 
-#include <shared/draw_layout.h>
+#include <osd_cull/shared/draw_layout.h>
 
 #include <algorithm>
 

@@ -17,7 +17,7 @@
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/pipeline.h"
 
-#include <shared/visibility_layout.h>
+#include <osd_cull/shared/visibility_layout.h>
 
 #include <array>
 #include <cstdint>

@@ -4,8 +4,8 @@
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/error.h"
 
-#include <shared/cull_layout.h>
-#include <shared/draw_layout.h>
+#include <osd_cull/shared/cull_layout.h>
+#include <osd_cull/shared/draw_layout.h>
 
 #include <algorithm>
 
