@@ -68,7 +68,7 @@ TEST(CommandLine, BackPatchMethodErrorListsOnlyBackPatchMethods) {
 
 TEST(CommandLine, HelpListsEveryOptionOnceAndExitsZero) {
   REQUIRE_PROGRAM();
-  for (const char* command : {"info", "render", "verify"}) {
+  for (const char* command : {"info", "render", "verify", "view"}) {
     const auto r = osdCull(std::string(command) + " --help");
     ASSERT_EQ(r.exitCode(), 0) << command << "\n" << r.output;
     std::multiset<std::string> options;

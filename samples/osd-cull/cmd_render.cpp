@@ -344,12 +344,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--occluders", args->occluders,
                  "OBJ files drawn as triangle occluders (before the patches)")
       ->type_name("F[,F...]");
-  app.add_option("--width", args->width, "image width (default 640)")
-      ->type_name("W")
-      ->check(integerIn(1, 16384));
-  app.add_option("--height", args->height, "image height (default 480)")
-      ->type_name("H")
-      ->check(integerIn(1, 16384));
+  addSizeOptions(app, args->width, args->height, 1, "image");
   CLI::Option* tess = app.add_option("--tess", args->tess,
                                      "uniform tessellation, N segments per patch edge (default 4)")
                           ->type_name("N")

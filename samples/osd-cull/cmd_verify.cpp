@@ -291,12 +291,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--tess", args->tess, "uniform tessellation level of the oracle draws (default 4)")
       ->type_name("N")
       ->check(integerIn(1, 64));
-  app.add_option("--width", args->width, "image width (default 256)")
-      ->type_name("W")
-      ->check(integerIn(1, 16384));
-  app.add_option("--height", args->height, "image height (default 256)")
-      ->type_name("H")
-      ->check(integerIn(1, 16384));
+  addSizeOptions(app, args->width, args->height, 1, "image");
   app.add_option("--fov", args->fov, "vertical field of view in degrees (default 40)")
       ->type_name("DEG")
       ->check(numberIn(1.0, 170.0));

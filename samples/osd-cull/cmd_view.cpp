@@ -1,8 +1,10 @@
 // osd-cull view: the interactive viewer (samples/viewer/), when built with GLFW and Dear
 // ImGui (libglfw3-dev, libimgui-dev).
 #include "command.h"
+#include "device_options.h"
 #include "mesh_patches.h"
 #include "mesh_source.h"
+#include "option_checks.h"
 
 #include "osd_cull/error.h"
 #include "osd_cull/scene/default_scene.h"
@@ -13,61 +15,49 @@
 
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 namespace osd_cull::cli {
 namespace {
 
-const char* kUsage = R"(Usage: osd-cull view [MESH] [options]
-
-Opens a window on MESH (or the built-in scene) drawn with the tessellation pipeline and
+const char* kDescription =
+    R"(Opens a window on MESH (or the built-in scene) drawn with the tessellation pipeline and
 culled as the keys say, with a HUD of per-frame figures (patches drawn by pass, culled by
 stage, TES invocations, ms per pass) and a live plot of cull rate and frame time. Needs an
-X11 display: on a machine without one, run under `xvfb-run -a`.
+X11 display: on a machine without one, run under `xvfb-run -a`.)";
 
-Options:
-  --level N              adaptive isolation level, 0..10 (default 2)
-  --endcap gregory|bspline  end caps of irregular patches (default gregory)
-  --scheme catmark|loop|bilinear  override the scheme (default: file-name prefix)
-  --width W --height H   window size (default 1280 x 720)
-  --tess N               initial uniform tessellation level (default 4)
-  --cull all|none        initial culling (default none; keys 1 2 3 c switch stages)
-  --frames N             stop after N frames (default: run until the window closes)
-  --screenshot FILE.png  with --frames: write the window's last frame (HUD included)
-  --script "STEPS"       keys to press, e.g. "@2 c @4 s": `@N` waits for frame N, a key
-                         name presses it (as below; also plus, minus, space, esc),
-                         orbit:YAW,PITCH and zoom:FACTOR move the camera
-  --no-hud               start with the HUD hidden (key h)
-  --device X             Vulkan device: index or name substring
-  --validate             enable the Vulkan validation layers (any message: exit 1)
-
-Keys:
-)";
+/// \brief The parsed options of `osd-cull view`.
+struct ViewArgs {
+  MeshSource source;
+  PatchOptions patchOptions;
+  uint32_t width = 1280;
+  uint32_t height = 720;
+  uint32_t tess = 4;
+  std::string cull = "none";
+  uint32_t frames = 0;
+  std::string screenshot;
+  std::string script;
+  bool noHud = false;
+  vulkan::ContextOptions device;
+};
 
 #if OSD_CULL_HAVE_VIEWER
-int run(Args& args) {
+int run(const ViewArgs& args) {
   viewer::ViewerOptions o;
-  o.width = static_cast<uint32_t>(args.integer("width", 16, 16384).value_or(1280));
-  o.height = static_cast<uint32_t>(args.integer("height", 16, 16384).value_or(720));
-  o.initial.tessLevel = static_cast<uint32_t>(args.integer("tess", 1, 64).value_or(4));
-  const std::string cull = args.value("cull").value_or("none");
-  if (cull != "all" && cull != "none")
-    throw Error("--cull: expected all or none, got '" + cull + "'");
-  o.initial.frustum = o.initial.backPatch = o.initial.occlusion = cull == "all";
-  o.frames = static_cast<uint32_t>(args.integer("frames", 1, 10000000).value_or(0));
-  o.screenshot = args.value("screenshot");
-  o.script = args.value("script").value_or("");
-  o.initial.showHud = !args.flag("no-hud");
-  o.device = args.value("device").value_or("");
-  o.validate = args.flag("validate");
-  const PatchOptions patchOptions = patchOptionsFromArgs(args);
-  const MeshSource source = meshSourceFromArgs(args);
-  args.finish();
-  if (o.screenshot && o.frames == 0) throw Error("--screenshot needs --frames N");
-  if (o.screenshot) {
-    const std::filesystem::path dir = std::filesystem::path(*o.screenshot).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-      throw Error("--screenshot: directory " + dir.string() + " does not exist");
-  }
+  o.width = args.width;
+  o.height = args.height;
+  o.initial.tessLevel = args.tess;
+  o.initial.frustum = o.initial.backPatch = o.initial.occlusion = args.cull == "all";
+  o.frames = args.frames;
+  if (!args.screenshot.empty()) o.screenshot = args.screenshot;
+  o.script = args.script;
+  o.initial.showHud = !args.noHud;
+  o.device = args.device.device;
+  o.validate = args.device.validation;
+  const PatchOptions& patchOptions = args.patchOptions;
+  const MeshSource& source = args.source;
+  if (o.screenshot && o.frames == 0) throw UsageError("--screenshot needs --frames N");
+  if (o.screenshot) checkOutputFile(*o.screenshot, "--screenshot", {".png"});
   viewer::ViewerScene scene;
   if (!source.path) {
     scene::Scene demo = scene::defaultScene(patchOptions);
@@ -80,6 +70,7 @@ int run(Args& args) {
     if (!std::filesystem::exists(*source.path)) throw Error(*source.path + ": no such file");
     const LoadedMesh loaded = loadMeshSource(source);
     MeshPatches mesh = meshPatches(loaded, patchOptions);
+    for (const std::string& note : mesh.notes) std::cout << "note: " << note << "\n";
     scene.patches = std::move(mesh.patches);
     scene.backPatch = mesh.backPatch;
     scene.up = loaded.bezier ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
@@ -88,26 +79,53 @@ int run(Args& args) {
   return viewer::runViewer(scene, o);
 }
 #else
-int run(Args&) {
+int run(const ViewArgs&) {
   throw Error(
       "this osd-cull was built without the viewer: install libglfw3-dev and "
       "libimgui-dev and rebuild");
 }
 #endif
 
-std::string usage() {
+Runner setup(CLI::App& app) {
+  auto args = std::make_shared<ViewArgs>();
+  addMeshOptions(app, args->source);
+  addPatchOptions(app, args->patchOptions);
+  addSizeOptions(app, args->width, args->height, 16, "window");
+  app.add_option("--tess", args->tess, "initial uniform tessellation level (default 4)")
+      ->type_name("N")
+      ->check(integerIn(1, 64));
+  app.add_option("--cull", args->cull,
+                 "initial culling: all or none (default none; keys 1 2 3 c switch stages)")
+      ->type_name("MODE")
+      ->check(oneOf({"all", "none"}));
+  app.add_option("--frames", args->frames,
+                 "stop after N frames (default: run until the window closes)")
+      ->type_name("N")
+      ->check(integerIn(1, 10000000));
+  app.add_option("--screenshot", args->screenshot,
+                 "with --frames: write the window's last frame (HUD included)")
+      ->type_name("FILE.png");
+  app.add_option("--script", args->script,
+                 "keys to press, e.g. \"@2 c @4 s\": `@N` waits for frame N, a key\n"
+                 "name presses it (as below; also plus, minus, space, esc),\n"
+                 "orbit:YAW,PITCH and zoom:FACTOR move the camera")
+      ->type_name("\"STEPS\"");
+  app.add_flag("--no-hud", args->noHud, "start with the HUD hidden (key h)");
+  addDeviceOptions(app, args->device);
+  return [args] { return run(*args); };
+}
+
+std::string keys() {
 #if OSD_CULL_HAVE_VIEWER
-  return std::string(kUsage) + viewer::keyHelp();
+  return "Keys:\n" + viewer::keyHelp();
 #else
-  return kUsage;
+  return {};
 #endif
 }
 
 const Registration kRegistration({"view",
                                   "interactive viewer with a HUD (GLFW window, Vulkan swapchain)",
-                                  usage(),
-                                  {"no-hud", "validate"},
-                                  run});
+                                  kDescription, setup, keys()});
 
 }  // namespace
 }  // namespace osd_cull::cli

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <sstream>
+#include <tuple>
 
 namespace osd_cull::cli {
 
@@ -98,6 +99,15 @@ CLI::Validator listOf(std::vector<std::string> choices) {
         return {};
       },
       "");
+}
+
+void addSizeOptions(CLI::App& app, uint32_t& width, uint32_t& height, uint32_t minimum,
+                    const std::string& what) {
+  for (auto [name, value, typeName] : {std::tuple{"width", &width, "W"}, {"height", &height, "H"}})
+    app.add_option(std::string("--") + name, *value,
+                   what + " " + name + " (default " + std::to_string(*value) + ")")
+        ->type_name(typeName)
+        ->check(integerIn(minimum, 16384));
 }
 
 std::vector<std::string> splitList(const std::string& text) {

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,11 @@ CLI::Validator oneOf(std::vector<std::string> choices, std::string what = {});
 
 /// \brief A comma-separated list of at least one item, none empty, each one of `choices`.
 CLI::Validator listOf(std::vector<std::string> choices);
+
+/// \brief Declares `--width W` and `--height H` (each in [minimum, 16384]) of an image or
+/// window (`what`), with the current values of `width` and `height` as the defaults.
+void addSizeOptions(CLI::App& app, uint32_t& width, uint32_t& height, uint32_t minimum,
+                    const std::string& what);
 
 /// \brief The items of a comma-separated list (empty items are kept, as empty strings).
 std::vector<std::string> splitList(const std::string& text);
