@@ -76,12 +76,14 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
     base += m.gpu->patchCount();
     visibility_.push_back(
         std::make_unique<VisibilityBuffer>(context, *programs_, *m.gpu, options.firstFrame));
-    passes_.push_back(anyStage ? std::make_unique<CullPass>(context, *m.gpu, *m.host, cull)
-                               : nullptr);
+    passes_.push_back(!anyStage ? nullptr
+                      : m.cullData
+                          ? std::make_unique<CullPass>(context, *m.gpu, *m.host, cull, *m.cullData)
+                          : std::make_unique<CullPass>(context, *m.gpu, *m.host, cull));
   }
   if (!anyStage) {
     survivedResults_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     vulkan::fill(context, survivedResults_, shader::kStageNone);
   }
 }

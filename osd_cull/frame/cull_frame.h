@@ -16,9 +16,9 @@
 /// tessellation factors 0. Both give the same image; pipeline statistics tell the cost.
 
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
-#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/hiz/visibility_buffer.h"
 #include "osd_cull/vk/query.h"
 
@@ -75,6 +75,10 @@ struct CullFrameStats {
 struct CullMesh {
   GpuPatchSet* gpu = nullptr;
   const PatchSet* host = nullptr;
+  /// The cone methods' per-patch cull data recomputed on the GPU for a moving mesh
+  /// (DynamicPatchMesh::cullData, bounds_pass.h), of the frame's back-patch method; null:
+  /// built once on the host (static mesh). Must outlive the CullFrame.
+  const vulkan::Buffer* cullData = nullptr;
 };
 
 /// \brief The frame pipeline of one view.
@@ -135,7 +139,7 @@ class CullFrame {
   std::unique_ptr<VisibilityPrograms> programs_;
   std::vector<std::unique_ptr<VisibilityBuffer>> visibility_;
   std::vector<std::unique_ptr<CullPass>> passes_;  // null when no stage is enabled
-  vulkan::Buffer survivedResults_;                     // all kStageNone, used without a pass
+  vulkan::Buffer survivedResults_;                 // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
   vulkan::PipelineStatisticsQuery queries_;
