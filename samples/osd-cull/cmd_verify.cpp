@@ -69,15 +69,6 @@ Options:
   --validate            enable the Vulkan validation layers
 )";
 
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
 int run(Args& args) {
   if (!args.positional().empty() && isSceneArgument(args.positional().front()))
     return verifyScene(args);

@@ -29,18 +29,7 @@ over instances and frames; the JSON has the mesh form's fields plus "frames".
   --device, --validate as above
 )";
 
-namespace {
-
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int verifyScene(Args& args) {
   const uint32_t frames = static_cast<uint32_t>(args.integer("frames", 1, 100000).value_or(2));

@@ -1,6 +1,7 @@
 #include "verify_report.h"
 
 #include <cstdio>
+#include <sstream>
 #include <string>
 
 namespace osd_cull::cli {
@@ -94,6 +95,15 @@ nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCo
   m["pixels_lost"] = t.pixelsLost;
   m["pixels_changed"] = t.pixelsChanged;
   return m;
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
 }
 
 void accumulate(frame::MethodTotals& a, const frame::MethodTotals& b) {

@@ -8,6 +8,8 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace osd_cull::cli {
 
@@ -25,6 +27,9 @@ VerifyVerdict printVerifyTables(std::span<const frame::MethodTotals> totals, uin
 
 /// \brief The JSON object of one method's totals.
 nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCount, bool oracle);
+
+/// \brief The items of a comma-separated list (empty items dropped), e.g. --methods.
+std::vector<std::string> splitList(const std::string& text);
 
 /// \brief Adds `b`'s counts to `a` (same method), e.g. over the instances and frames of a
 /// scene; the false-cull list keeps its first 64 entries.
