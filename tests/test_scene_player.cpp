@@ -36,8 +36,8 @@ TEST_F(ScenePlayerTest, EveryViewDrawsTheUnculledImageWithItsOwnStatus) {
   options.cull.backPatch = "tangent-plane";
   scene::ScenePlayer player(context(), s, options);
   ASSERT_EQ(player.viewCount(), 2u);
-  ASSERT_EQ(player.instanceCount(), 5u);
-  EXPECT_EQ(player.describe().size(), 4u);  // four meshes: the mirror shares the cube's points
+  ASSERT_EQ(player.instanceCount(), 6u);
+  EXPECT_EQ(player.describe().size(), 5u);  // five meshes: the mirror shares the cube's points
   frame::RenderTarget plain96(context(), 96, 96), plain128(context(), 128, 96);
   uint32_t culled[2] = {0, 0};
   for (uint32_t f = 0; f < 12; f += 3) {
