@@ -1,4 +1,5 @@
-// scene::ScenePlayer: every view of a scene (a main camera on a path and a shadow-map view)
+// scene::ScenePlayer: every view of a scene (a main camera on a path and a shadow-map view,
+// a spinning, sliding instance and a mirrored one)
 // keeps its own status over the shared meshes, and each frame's culled image equals the same
 // frame drawn without culling (0 pixels lost, < 0.01% differing).
 #include "osd_cull/scene/default_scene.h"
@@ -29,6 +30,10 @@ TEST_F(ScenePlayerTest, EveryViewDrawsTheUnculledImageWithItsOwnStatus) {
   mirror.name = "mirrored cube";
   mirror.transform = scene::composeTransform({1.0, -1.6, -0.4}, {0, 0, 30}, {-0.6, 0.6, 0.6});
   s.description.instances.push_back(mirror);
+  // The torus spins and slides: instance motion, re-tested every frame from its status.
+  s.description.instances[1].motion.spinAxis = {0.3, 0.0, 1.0};
+  s.description.instances[1].motion.spinDegreesPerSecond = 90.0;
+  s.description.instances[1].motion.keys = {{0.0, {0.0, 0.0, 0.0}}, {0.5, {-0.8, -0.6, 0.0}}};
 
   frame::CullFrameOptions options;
   options.render.tessellation.uniformLevel = 3;
