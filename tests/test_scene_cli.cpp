@@ -57,6 +57,30 @@ TEST(SceneCommand, RendersEveryViewOfEveryFrame) {
   EXPECT_TRUE(stats.at("frames")[0].contains("unculled"));
 }
 
+TEST(SceneCommand, VerifiesEveryInstanceOnEveryFrame) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  const fs::path scene = dir.write("scene.json", kScene);
+  const auto r = test::runCommand(test::osdCullProgram().string() + " verify " + scene.string() +
+                                  " --frames 2 --views 1 --width 64 --height 64 --image-check "
+                                  "--validate --json " +
+                                  (dir.path() / "verify.json").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  std::ifstream in(dir.path() / "verify.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("frames"), 2);
+  EXPECT_EQ(j.at("instances"), 3);
+  EXPECT_EQ(j.at("views"), 2 * 3);  // per frame: the two scene views and one random view
+  EXPECT_TRUE(j.at("ok").get<bool>());
+  ASSERT_EQ(j.at("methods").size(), 4u);
+  for (const auto& m : j.at("methods")) {
+    EXPECT_EQ(m.at("false_culls"), 0) << m.at("name");
+    EXPECT_EQ(m.at("culled_not_in_reference"), 0) << m.at("name");
+    EXPECT_EQ(m.at("pixels_lost"), 0) << m.at("name");
+  }
+  EXPECT_GT(j.at("methods")[3].at("cull_rate").get<double>(), 0.05);  // tangent plane
+}
+
 TEST(SceneCommand, UnwritableOutputFolderFailsBeforeRendering) {
   if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
   test::TempDir dir("scene_cli_");

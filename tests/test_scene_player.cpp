@@ -1,4 +1,5 @@
-// scene::ScenePlayer: every view of a scene (a main camera on a path and a shadow-map view)
+// scene::ScenePlayer: every view of a scene (a main camera on a path and a shadow-map view,
+// a spinning, sliding instance and a mirrored one)
 // keeps its own status over the shared meshes, and each frame's culled image equals the same
 // frame drawn without culling (0 pixels lost, < 0.01% differing).
 #include "osd_cull/scene/default_scene.h"
@@ -29,6 +30,10 @@ TEST_F(ScenePlayerTest, EveryViewDrawsTheUnculledImageWithItsOwnStatus) {
   mirror.name = "mirrored cube";
   mirror.transform = scene::composeTransform({1.0, -1.6, -0.4}, {0, 0, 30}, {-0.6, 0.6, 0.6});
   s.description.instances.push_back(mirror);
+  // The torus spins and slides: instance motion, re-tested every frame from its status.
+  s.description.instances[1].motion.spinAxis = {0.3, 0.0, 1.0};
+  s.description.instances[1].motion.spinDegreesPerSecond = 90.0;
+  s.description.instances[1].motion.keys = {{0.0, {0.0, 0.0, 0.0}}, {0.5, {-0.8, -0.6, 0.0}}};
 
   frame::CullFrameOptions options;
   options.render.tessellation.uniformLevel = 3;
@@ -36,8 +41,8 @@ TEST_F(ScenePlayerTest, EveryViewDrawsTheUnculledImageWithItsOwnStatus) {
   options.cull.backPatch = "tangent-plane";
   scene::ScenePlayer player(context(), s, options);
   ASSERT_EQ(player.viewCount(), 2u);
-  ASSERT_EQ(player.instanceCount(), 5u);
-  EXPECT_EQ(player.describe().size(), 4u);  // four meshes: the mirror shares the cube's points
+  ASSERT_EQ(player.instanceCount(), 6u);
+  EXPECT_EQ(player.describe().size(), 5u);  // five meshes: the mirror shares the cube's points
   frame::RenderTarget plain96(context(), 96, 96), plain128(context(), 128, 96);
   uint32_t culled[2] = {0, 0};
   for (uint32_t f = 0; f < 12; f += 3) {

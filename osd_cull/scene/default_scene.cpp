@@ -45,6 +45,7 @@ SceneDescription defaultSceneDescription(uint32_t frames) {
   mesh("torus", "torus");
   mesh("pole-sphere", "pole-sphere-5");
   mesh("creased-cube", "creased-cube");
+  mesh("character", "character");
   auto instance = [&](size_t m, const glm::dvec3& at, double size) {
     InstanceDescription i;
     i.name = d.meshes[m].name;
@@ -56,6 +57,13 @@ SceneDescription defaultSceneDescription(uint32_t frames) {
   instance(1, {2.6, 0.6, -0.6}, 1.0);
   instance(2, {-1.3, 2.8, 0.0}, 1.0);
   instance(3, {1.0, 2.4, -0.4}, 0.6);
+  // The character stands on the ground slab (top z = -1) in front of the wall, turned
+  // towards the first camera position.
+  InstanceDescription figure;
+  figure.name = "character";
+  figure.mesh = 4;
+  figure.transform = composeTransform({-1.6, -0.9, -1.0}, {0.0, 0.0, -20.0}, glm::dvec3(0.75));
+  d.instances.push_back(figure);
   OccluderDescription wall, ground;
   wall.boxMin = {-2.5, 1.45, -1.0};
   wall.boxMax = {-0.2, 1.55, 0.8};

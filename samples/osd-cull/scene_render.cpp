@@ -59,9 +59,11 @@ frame (Niessner & Loop) over the shared meshes, each instance with its own statu
   --out FILE.png         the last frame of the first view
   --cull MODE            as above; default all (frustum + back-patch + occlusion)
   --tess N               uniform tessellation level (default 4)
+  --width W --height H   image size of views that do not give their own
   --compare              also draw every frame without culling (same tessellation, back-face
                          culling, image size) and print what culling saved
-  --status-view          also write D/<view>_status_NNNN.png: patches colored by status
+  --status-view          also write D/<view>_status_NNNN.png: every patch colored by its
+                         status, seen from 120 degrees around the scene
   --stats FILE.json      per-frame, per-view figures as JSON
   --device X, --validate as above
 )";
@@ -74,6 +76,8 @@ int renderScene(Args& args) {
   const bool compare = args.flag("compare");
   const bool statusView = args.flag("status-view");
   const auto statsPath = args.value("stats");
+  const auto width = args.integer("width", 1, 16384);
+  const auto height = args.integer("height", 1, 16384);
   const auto device = args.value("device");
   const bool validate = args.flag("validate");
   const bool cullGiven = args.value("cull").has_value();
@@ -87,6 +91,8 @@ int renderScene(Args& args) {
   if (outDir) checkWritable(*outDir);
 
   scene::LoadedScene loaded = loadSceneArgument(argument, frames.value_or(0));
+  if (width) loaded.description.settings.width = uint32_t(*width);
+  if (height) loaded.description.settings.height = uint32_t(*height);
   const scene::SceneSettings& settings = loaded.description.settings;
   const uint32_t frameCount = frames ? uint32_t(*frames) : settings.frameCount;
 
@@ -145,7 +151,11 @@ int renderScene(Args& args) {
       }
       if (statusView) {
         frame::RenderTarget statusTarget(context, target.width(), target.height());
-        player.cullFrame(v).renderStatusView(statusTarget, vf.camera, player.occluders());
+        // Seen from 120 degrees around the scene, so that culled patches (back-facing,
+        // behind the wall, outside the view) show in their colors.
+        const frame::Camera side = frame::orbit(vf.camera, player.bounds().center(),
+                                                loaded.description.views[v].up, 120.0);
+        player.cullFrame(v).renderStatusView(statusTarget, side, player.occluders());
         frame::writePng(
             fs::path(*outDir) / frameFile(vf.view, "status_", f),
             frame::colorImage(target.width(), target.height(), statusTarget.readColor(context)));

@@ -64,8 +64,9 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
                                              kGraphicsStages);
 }
 
-VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool mirrored, bool wireframe) {
-  auto& slot = patchPipelines_[{type, cullBackFaces, mirrored, wireframe}];
+VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
+                                   bool mirrored) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
   const std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
@@ -158,8 +159,9 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
   const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    patchPipeline(type, options.cullBackFaces, isMirrored(camera), options.wireframe));
+  vkCmdBindPipeline(
+      cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+      patchPipeline(type, options.cullBackFaces, options.wireframe, isMirrored(camera)));
   const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
                           nullptr);

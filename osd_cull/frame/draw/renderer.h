@@ -127,7 +127,7 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool mirrored, bool wireframe);
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored);
   VkPipeline trianglePipeline();
   void bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw, PatchType type,
                    const RenderOptions& options);
