@@ -74,16 +74,17 @@ TEST(MeshLimits, BptPatchesOfOtherDegreesAreUnsupportedNotTruncated) {
 TEST(MeshLimits, TextureCoordinateAndNormalIndicesAreChecked) {
   TempDir dir;
   expectLoadError(dir.write("a.obj", kQuad + "f 1 2 3 4\nf 1/99999999/1 2 3\n"), 6,
-                  {"'1/99999999/1'", "texture coordinate 99999999", "defines only 0 ('vt' lines)"});
+                  {"'1/99999999/1'", "texture-coordinate index", "(0 defined so far)"});
   expectLoadError(dir.write("b.obj", kQuad + "vt 0 0\nf 1/1/3 2/1 3/1\n"), 6,
                   {"normal 3", "defines only 0 ('vn' lines)"});
   expectLoadError(dir.write("c.obj", kQuad + "vt 0 0\nf 1/-2 2/1 3/1\n"), 6,
-                  {"relative texture coordinate index -2"});
-  expectLoadError(dir.write("d.obj", kQuad + "f 1/0 2 3\n"), 5, {"texture coordinate index 0"});
-  // Defined after use is accepted (as for vertices): only the final count matters.
+                  {"texture-coordinate index", "(1 defined so far)"});
+  expectLoadError(dir.write("d.obj", kQuad + "f 1/0 2 3\n"), 5, {"texture-coordinate index"});
+  expectLoadError(dir.write("f.obj", kQuad + "vn 0 0 1\nf 1//-2 2//1 3//1\n"), 6,
+                  {"relative normal index -2"});
+  // Normals defined after use are accepted (as vertices are): only the final count matters.
   const CageMesh ok = adapters::loadCage(
-      dir.write("e.obj", kQuad + "f 1/1/1 2/2/1 3/3/1 4/4/1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                                 "vn 0 0 1\n"));
+      dir.write("e.obj", kQuad + "f 1//1 2//1 3//1 4//1\nvn 0 0 1\n"));
   EXPECT_EQ(ok.faceCount(), 1);
 }
 

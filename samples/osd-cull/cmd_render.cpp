@@ -7,6 +7,9 @@
 #include "mesh_patches.h"
 #include "mesh_source.h"
 #include "option_checks.h"
+#include "render_args.h"
+#include "scene_render.h"
+#include "scene_source.h"
 
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/default_scene.h"
@@ -40,29 +43,6 @@ triangle walls) with the Vulkan tessellation pipeline and writes the image as PN
 Prints per frame: wall and GPU time, patches drawn, draw calls, tessellation-evaluation
 and fragment-shader invocations (pipeline statistics), and with --cull how many patches
 each test culled.)";
-
-/// \brief The parsed options of `osd-cull render`.
-struct RenderArgs {
-  MeshSource source;
-  PatchOptions patchOptions;
-  CullArgs cull;
-  vulkan::ContextOptions device;
-  std::string out;
-  uint32_t width = 640;
-  uint32_t height = 480;
-  uint32_t tess = 4;
-  double adaptive = 0.0;  ///< 0: uniform tessellation
-  std::string camera;
-  uint32_t frames = 1;
-  double orbitDegrees = 0.0;
-  std::string outDir;
-  bool ids = false;
-  bool debugColors = false;
-  std::string stats;
-  std::string occluders;
-  bool statusView = false;
-  std::string pyramidDir;
-};
 
 struct Scene {
   PatchSet patches;
@@ -122,9 +102,12 @@ fs::path sibling(const fs::path& out, const std::string& suffix) {
 }
 
 int run(const RenderArgs& args) {
+  if (args.source.path && isSceneArgument(*args.source.path)) return renderScene(args);
+  if (args.compare) throw UsageError("--compare applies to the scene form (render SCENE)");
+  if (args.out.empty()) throw UsageError("--out FILE.png is required");
   const auto out = args.out;
-  const uint32_t width = args.width, height = args.height;
-  const uint32_t frames = args.frames;
+  const uint32_t width = args.width.value_or(640), height = args.height.value_or(480);
+  const uint32_t frames = args.frames.value_or(1);
   const double orbitDegrees = args.orbitDegrees;
   const bool ids = args.ids;
   const PatchOptions& patchOptions = args.patchOptions;
@@ -338,13 +321,13 @@ Runner setup(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   addMeshOptions(app, args->source);
   addPatchOptions(app, args->patchOptions);
-  app.add_option("--out", args->out, "image of the last frame (required)")
-      ->type_name("FILE.png")
-      ->required();
+  app.add_option("--out", args->out,
+                 "image of the last frame (required; a scene: of its first view)")
+      ->type_name("FILE.png");
   app.add_option("--occluders", args->occluders,
                  "OBJ files drawn as triangle occluders (before the patches)")
       ->type_name("F[,F...]");
-  addSizeOptions(app, args->width, args->height, 1, "image");
+  addSizeOptions(app, args->width, args->height, 1, "640 x 480; a scene: its own");
   CLI::Option* tess = app.add_option("--tess", args->tess,
                                      "uniform tessellation, N segments per patch edge (default 4)")
                           ->type_name("N")
@@ -358,15 +341,20 @@ Runner setup(CLI::App& app) {
                  "eye, target and up vectors and vertical field of view in degrees:\n"
                  "ex,ey,ez,tx,ty,tz,ux,uy,uz,fovy (default: frame the whole scene)")
       ->type_name("E,T,U,FOVY");
-  app.add_option("--frames", args->frames, "draw N frames (default 1)")
+  addOptional(app, "--frames", args->frames, "draw N frames (default 1; a scene: its frameCount)")
       ->type_name("N")
-      ->check(integerIn(1, 100000));
+      ->check(integerIn(1, 1000000));
   app.add_option("--orbit", args->orbitDegrees,
                  "rotate the camera about the up axis by DEG per frame")
       ->type_name("DEG")
       ->check(numberIn(-360.0, 360.0));
-  app.add_option("--out-dir", args->outDir, "also keep every frame as DIR/frame_NNNN.png")
+  app.add_option("--out-dir", args->outDir,
+                 "also keep every frame as DIR/frame_NNNN.png (a scene:\n"
+                 "DIR/<view>_NNNN.png)")
       ->type_name("DIR");
+  app.add_flag("--compare", args->compare,
+               "a scene: also draw every frame without culling (same tessellation,\n"
+               "back-face culling, image size) and print what culling saved");
   app.add_flag("--ids", args->ids,
                "also write the item buffer (patch ID + 1 per pixel, 24-bit RGB)\n"
                "as FILE_ids.png and the depth as FILE_depth.png");
@@ -392,7 +380,7 @@ Runner setup(CLI::App& app) {
 const Registration kRegistration(
     {"render",
      "draw a mesh or the built-in scene to PNG (optionally culled), print frame statistics",
-     kDescription, setup});
+     kDescription, setup, kSceneRenderUsage});
 
 }  // namespace
 }  // namespace osd_cull::cli

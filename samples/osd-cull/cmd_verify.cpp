@@ -5,6 +5,10 @@
 #include "device_options.h"
 #include "mesh_patches.h"
 #include "option_checks.h"
+#include "scene_source.h"
+#include "scene_verify.h"
+#include "verify_args.h"
+#include "verify_report.h"
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/verify/cull_verification.h"
@@ -40,29 +44,6 @@ diagonal, inside the view, with a random roll):
   whole-object  random direction, distance in [1, 2] times that radius, view direction
                 turned off-centre as far as the object stays in view (occlusion paper))";
 
-/// \brief The parsed options of `osd-cull verify`.
-struct VerifyArgs {
-  MeshSource source;
-  PatchOptions patchOptions;
-  vulkan::ContextOptions device;
-  uint32_t views = 100;
-  uint64_t seed = 1;
-  std::string viewSet = "sphere";
-  std::string methods;  ///< empty: every registered method
-  uint32_t tess = 4;
-  uint32_t width = 256;
-  uint32_t height = 256;
-  double fov = 40.0;
-  uint32_t referenceEvery = 1;
-  bool noOracle = false;
-  int sample = 0;
-  bool imageCheck = false;
-  bool hizFull = false;
-  bool hizTight = false;
-  std::string json;
-  bool surfaceExact = false;
-};
-
 /// \brief Every registered cull method, frustum first, then back-patch, then occlusion.
 std::vector<std::string> allMethods() {
   std::vector<std::string> methods;
@@ -72,48 +53,21 @@ std::vector<std::string> allMethods() {
   return methods;
 }
 
-double percent(uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; }
-
-nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCount, bool oracle) {
-  nlohmann::ordered_json m;
-  m["name"] = t.name;
-  m["stage"] = frame::toString(t.stage);
-  m["cull_rate"] = t.cullRate();
-  m["cull_rate_bezier"] = t.bezierViews ? double(t.culledBezier) / double(t.bezierViews) : 0.0;
-  m["cull_rate_gregory"] = t.gregoryViews ? double(t.culledGregory) / double(t.gregoryViews) : 0.0;
-  m["culled_per_view"] = t.views ? double(t.culled) / double(t.views) : 0.0;
-  m["kept_for_drawn_triangles_rate"] =
-      t.patchViews ? double(t.keptForDrawnTriangles) / double(t.patchViews) : 0.0;
-  m["false_culls"] = oracle ? nlohmann::ordered_json(t.falseCulls) : nlohmann::ordered_json();
-  m["false_cull_pixels"] =
-      oracle ? nlohmann::ordered_json(t.falseCullPixels) : nlohmann::ordered_json();
-  m["oracle_invisible_rate"] =
-      oracle ? nlohmann::ordered_json(t.oracleInvisibleRate()) : nlohmann::ordered_json();
-  m["ns_per_patch"] = t.nsPerPatch(patchCount);
-  m["reference_views"] = t.referenceViews;
-  m["reference_cull_rate"] = t.referenceCullRate();
-  m["cpu_reference_agreement"] = t.referenceAgreement();
-  m["culled_not_in_reference"] = t.notInReference;
-  m["sampled_culls"] = t.sampledCulls;
-  m["sampling_violations"] = t.samplingViolations;
-  m["image_views"] = t.imageViews;
-  m["pixels_lost"] = t.pixelsLost;
-  m["pixels_changed"] = t.pixelsChanged;
-  return m;
-}
-
 int run(const VerifyArgs& args) {
-  const uint32_t views = args.views;
+  if (args.source.path && isSceneArgument(*args.source.path)) return verifyScene(args);
+  if (args.frames) throw UsageError("--frames applies to the scene form (verify SCENE)");
+  const uint32_t views = args.views.value_or(100);
   const uint64_t seed = args.seed;
   const frame::ViewSet viewSet = frame::parseViewSet(args.viewSet);
   const uint32_t tess = args.tess;
   const PatchOptions& patchOptions = args.patchOptions;
-  const uint32_t width = args.width, height = args.height;
+  const uint32_t width = args.width.value_or(256), height = args.height.value_or(256);
   const double fov = args.fov;
   const int sample = args.sample;
   const bool imageCheck = args.imageCheck;
   const bool surfaceExact = args.surfaceExact;
   const MeshSource& source = args.source;
+  if (views == 0) throw UsageError("--views: the mesh form needs at least 1 view");
   if (imageCheck && args.noOracle)
     throw UsageError("--image-check compares with the oracle's draw; drop --no-oracle");
   const std::vector<std::string> methods =
@@ -172,56 +126,10 @@ int run(const VerifyArgs& args) {
     }
   }
 
-  std::printf("\n%-17s %7s %7s %7s %8s %7s %7s %9s %7s %8s %8s\n", "method", "cull%", "bezier%",
-              "greg%", "ref-cull%", "agree%", "!in-ref", "oracle-inv%", "false", "ns/patch",
-              "drawn%");
-  // ok: no violation at all. With --surface-exact, silhouette chords (a back-patch-culled
-  // patch, back-facing on every sample, whose drawn triangles still cover single oracle
-  // pixels that a neighbour covers in the culled image) are reported but do not fail the run.
-  bool ok = true, okButSilhouettes = true;
-  uint64_t silhouetteViews = 0, silhouettePixels = 0;
-  for (const auto& t : verifier.totals()) {
-    std::printf("%-17s %7.2f %7.2f %7.2f %8.2f %7.3f %7llu %9.2f %7s %8.0f %8.2f\n", t.name.c_str(),
-                100.0 * t.cullRate(), percent(t.culledBezier, t.bezierViews),
-                percent(t.culledGregory, t.gregoryViews), 100.0 * t.referenceCullRate(),
-                100.0 * t.referenceAgreement(), static_cast<unsigned long long>(t.notInReference),
-                100.0 * t.oracleInvisibleRate(),
-                options.oracle ? std::to_string(t.falseCulls).c_str() : "-",
-                t.nsPerPatch(patches.patchCount()), percent(t.keptForDrawnTriangles, t.patchViews));
-    const bool hard = t.notInReference == 0 && t.samplingViolations == 0 && t.pixelsLost == 0;
-    ok = ok && hard && t.falseCulls == 0;
-    okButSilhouettes =
-        okButSilhouettes && hard &&
-        (t.falseCulls == 0 || (surfaceExact && t.stage == frame::CullStage::BackPatch &&
-                               t.falseCullPixels == t.falseCulls));
-    if (t.stage == frame::CullStage::BackPatch) {
-      silhouetteViews += t.falseCulls;
-      silhouettePixels += t.falseCullPixels;
-    }
-  }
-  if (silhouetteViews > 0)
-    std::printf(
-        "\nnote: %llu back-patch-culled patch-views have %llu oracle pixels (single "
-        "silhouette pixels of drawn chord triangles%s; see "
-        "docs/algorithms/drawn-triangles.md)\n",
-        static_cast<unsigned long long>(silhouetteViews),
-        static_cast<unsigned long long>(silhouettePixels),
-        surfaceExact ? ", expected with --surface-exact" : "");
-  for (const auto& t : verifier.totals())
-    for (const auto& f : t.falseCullList)
-      std::printf("false cull: %s view %llu patch %u, %u pixels\n", t.name.c_str(),
-                  static_cast<unsigned long long>(f.view), f.patch, f.pixels);
-  if (sample > 0 || imageCheck) {
-    std::printf("\n%-17s %12s %12s %12s %12s %14s\n", "method", "false-pixels", "sampled",
-                "sample-viol", "pixels-lost", "pixels-changed");
-    for (const auto& t : verifier.totals())
-      std::printf("%-17s %12llu %12llu %12llu %12llu %14llu\n", t.name.c_str(),
-                  static_cast<unsigned long long>(t.falseCullPixels),
-                  static_cast<unsigned long long>(t.sampledCulls),
-                  static_cast<unsigned long long>(t.samplingViolations),
-                  static_cast<unsigned long long>(t.pixelsLost),
-                  static_cast<unsigned long long>(t.pixelsChanged));
-  }
+  const VerifyVerdict verdict =
+      printVerifyTables(verifier.totals(), patches.patchCount(), options.oracle, surfaceExact,
+                        sample > 0 || imageCheck);
+  const bool ok = verdict.ok, okButSilhouettes = verdict.okButSilhouettes;
 
   if (!args.json.empty()) {
     nlohmann::ordered_json out;
@@ -268,9 +176,13 @@ Runner setup(CLI::App& app) {
   auto args = std::make_shared<VerifyArgs>();
   addMeshOptions(app, args->source);
   addPatchOptions(app, args->patchOptions);
-  app.add_option("--views", args->views, "number of views (default 100)")
+  addOptional(app, "--views", args->views,
+              "number of views (default 100; a scene: random views per frame, default 4)")
       ->type_name("N")
-      ->check(integerIn(1, 10'000'000));
+      ->check(integerIn(0, 10'000'000));
+  addOptional(app, "--frames", args->frames, "a scene: frames from its frameStart (default 2)")
+      ->type_name("N")
+      ->check(integerIn(1, 100000));
   app.add_option("--seed", args->seed, "random seed of the views (default 1)")
       ->type_name("S")
       ->check(integerIn(0, 1L << 62));
@@ -281,7 +193,7 @@ Runner setup(CLI::App& app) {
                  "methods to run (default: every registered method: frustum,\n"
                  "back-patch and occlusion (hiz); back-patch methods are skipped with\n"
                  "the reason when the mesh is not a closed, outward-oriented solid, hiz\n"
-                 "without the oracle)")
+                 "without the oracle; a scene: frustum, tcone, ncone, tangent-plane)")
       ->type_name("A,B,...")
       ->check(listOf(allMethods()));
   app.add_flag("--hiz-full", args->hizFull,
@@ -291,7 +203,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--tess", args->tess, "uniform tessellation level of the oracle draws (default 4)")
       ->type_name("N")
       ->check(integerIn(1, 64));
-  addSizeOptions(app, args->width, args->height, 1, "image");
+  addSizeOptions(app, args->width, args->height, 1, "256 x 256; a scene: 128 x 128");
   app.add_option("--fov", args->fov, "vertical field of view in degrees (default 40)")
       ->type_name("DEG")
       ->check(numberIn(1.0, 170.0));
@@ -321,7 +233,7 @@ Runner setup(CLI::App& app) {
 
 const Registration kRegistration(
     {"verify", "check every cull method against the CPU reference and the oracle on random views",
-     kDescription, setup, kFooter});
+     kDescription, setup, std::string(kFooter) + "\n" + kSceneVerifyUsage});
 
 }  // namespace
 }  // namespace osd_cull::cli

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace osd_cull::cli {
 namespace {
@@ -30,8 +31,8 @@ X11 display: on a machine without one, run under `xvfb-run -a`.)";
 struct ViewArgs {
   MeshSource source;
   PatchOptions patchOptions;
-  uint32_t width = 1280;
-  uint32_t height = 720;
+  std::optional<uint32_t> width;   ///< default 1280
+  std::optional<uint32_t> height;  ///< default 720
   uint32_t tess = 4;
   std::string cull = "none";
   uint32_t frames = 0;
@@ -44,8 +45,8 @@ struct ViewArgs {
 #if OSD_CULL_HAVE_VIEWER
 int run(const ViewArgs& args) {
   viewer::ViewerOptions o;
-  o.width = args.width;
-  o.height = args.height;
+  o.width = args.width.value_or(1280);
+  o.height = args.height.value_or(720);
   o.initial.tessLevel = args.tess;
   o.initial.frustum = o.initial.backPatch = o.initial.occlusion = args.cull == "all";
   o.frames = args.frames;
@@ -90,7 +91,7 @@ Runner setup(CLI::App& app) {
   auto args = std::make_shared<ViewArgs>();
   addMeshOptions(app, args->source);
   addPatchOptions(app, args->patchOptions);
-  addSizeOptions(app, args->width, args->height, 16, "window");
+  addSizeOptions(app, args->width, args->height, 16, "1280 x 720");
   app.add_option("--tess", args->tess, "initial uniform tessellation level (default 4)")
       ->type_name("N")
       ->check(integerIn(1, 64));

@@ -62,7 +62,7 @@ void addCullOptions(CLI::App& app, CullArgs& args) {
 
 CullChoice cullChoice(const CullArgs& args) {
   CullChoice c;
-  c.mode = args.mode;
+  c.mode = args.mode.empty() ? "none" : args.mode;
   c.backPatchMethod = args.backPatchMethod;
   if (args.surfaceExact) {
     if (c.mode != "backpatch" && c.mode != "all")

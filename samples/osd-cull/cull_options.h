@@ -31,7 +31,7 @@ struct CullChoice {
 
 /// \brief The culling options as given on the command line (empty: not given).
 struct CullArgs {
-  std::string mode = "none";
+  std::string mode;  ///< empty: not given (none, unless a form has its own default)
   std::string backPatchMethod = "tangent-plane";
   bool surfaceExact = false;
   bool aggressive = false;

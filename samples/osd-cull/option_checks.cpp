@@ -13,7 +13,6 @@
 #include <cstring>
 #include <filesystem>
 #include <sstream>
-#include <tuple>
 
 namespace osd_cull::cli {
 
@@ -101,13 +100,14 @@ CLI::Validator listOf(std::vector<std::string> choices) {
       "");
 }
 
-void addSizeOptions(CLI::App& app, uint32_t& width, uint32_t& height, uint32_t minimum,
-                    const std::string& what) {
-  for (auto [name, value, typeName] : {std::tuple{"width", &width, "W"}, {"height", &height, "H"}})
-    app.add_option(std::string("--") + name, *value,
-                   what + " " + name + " (default " + std::to_string(*value) + ")")
-        ->type_name(typeName)
-        ->check(integerIn(minimum, 16384));
+void addSizeOptions(CLI::App& app, std::optional<uint32_t>& width, std::optional<uint32_t>& height,
+                    uint32_t minimum, const std::string& defaults) {
+  addOptional(app, "--width", width, "width (default " + defaults + ")")
+      ->type_name("W")
+      ->check(integerIn(minimum, 16384));
+  addOptional(app, "--height", height, "height (default " + defaults + ")")
+      ->type_name("H")
+      ->check(integerIn(minimum, 16384));
 }
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -143,10 +143,11 @@ void prepareOutputDirectory(const std::string& dir, const std::string& option) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
-    throw Error("option " + option + ": cannot create directory '" + dir + "'" +
-                (ec ? ": " + ec.message() : ""));
+    throw Error("option " + option + ": '" + dir +
+                "': cannot write there (cannot create the directory" +
+                (ec ? ": " + ec.message() : "") + ")");
   if (const std::string problem = writeProblem(dir); !problem.empty())
-    throw Error("option " + option + ": cannot write in directory '" + dir + "': " + problem);
+    throw Error("option " + option + ": '" + dir + "': cannot write there (" + problem + ")");
 }
 
 }  // namespace osd_cull::cli

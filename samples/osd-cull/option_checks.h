@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,20 @@ CLI::Validator oneOf(std::vector<std::string> choices, std::string what = {});
 /// \brief A comma-separated list of at least one item, none empty, each one of `choices`.
 CLI::Validator listOf(std::vector<std::string> choices);
 
+/// \brief Declares option `name` whose value (checked by the validators the caller adds)
+/// is stored in `target`; `target` stays empty when the option is not given, for options
+/// whose default depends on other input (a scene's own image size, say).
+template <class T>
+CLI::Option* addOptional(CLI::App& app, const std::string& name, std::optional<T>& target,
+                         const std::string& description) {
+  return app.add_option_function<T>(
+      name, [&target](const T& value) { target = value; }, description);
+}
+
 /// \brief Declares `--width W` and `--height H` (each in [minimum, 16384]) of an image or
-/// window (`what`), with the current values of `width` and `height` as the defaults.
-void addSizeOptions(CLI::App& app, uint32_t& width, uint32_t& height, uint32_t minimum,
-                    const std::string& what);
+/// window; `defaults` says what is used when they are not given ("640 x 480").
+void addSizeOptions(CLI::App& app, std::optional<uint32_t>& width, std::optional<uint32_t>& height,
+                    uint32_t minimum, const std::string& defaults);
 
 /// \brief The items of a comma-separated list (empty items are kept, as empty strings).
 std::vector<std::string> splitList(const std::string& text);
