@@ -1,6 +1,6 @@
 // The Hi-Z pyramid built in compute equals the double-precision reference texel for texel,
-// with the min/max sampler reduction and with four texel fetches, at half and full
-// resolution, for power-of-two, odd and tiny sizes.
+// in one dispatch (single pass) and per level with the min/max sampler reduction and with
+// four texel fetches, at half and full resolution, for power-of-two, odd and tiny sizes.
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
 #include "osd_cull/vk/buffer.h"
@@ -68,6 +68,8 @@ class HiZPyramidTest : public test::VkTest {
     if (reduction != HiZReduction::Auto) {
       EXPECT_EQ(pyramid.usesSampler(), reduction == HiZReduction::Sampler);
     }
+    EXPECT_EQ(pyramid.singlePass(),
+              reduction == HiZReduction::Auto || reduction == HiZReduction::SinglePass);
     pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
     const auto levels = pyramid.readLevels(context());
     const bound::HiZPyramid ref = bound::buildHiZPyramid(depth, w, h, full);
@@ -100,6 +102,33 @@ TEST_F(HiZPyramidTest, FourTapReductionEqualsTheReference) {
   for (const Size s : kSizes)
     for (bool full : {false, true})
       buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w * 31 + s.h), full, HiZReduction::FourTap);
+}
+
+TEST_F(HiZPyramidTest, SinglePassBuildEqualsTheReference) {
+  for (const Size s : kSizes)
+    for (bool full : {false, true})
+      buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w * 31 + s.h), full,
+                      HiZReduction::SinglePass);
+}
+
+TEST_F(HiZPyramidTest, SinglePassBuildsLargeAndElongatedImagesInOneDispatch) {
+  // 1280x720: many 64x64 tiles, the last workgroup builds levels 7-11. 4100x9: level 0 is
+  // 8192x16 at full resolution, one row of tiles, the top levels one texel high.
+  for (const Size s : {Size{1280, 720}, Size{4100, 9}, Size{130, 300}})
+    for (bool full : {false, true}) {
+      const vulkan::Image image = depthImage(s.w, s.h, randomDepth(s.w, s.h, s.w + 7 * s.h));
+      EXPECT_EQ(frame::HiZPyramid(context(), image, {full}).dispatchCount(), 1u);
+      buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w + 7 * s.h), full,
+                      HiZReduction::SinglePass);
+    }
+}
+
+TEST_F(HiZPyramidTest, SinglePassAndPerLevelBuildsAgree) {
+  const uint32_t w = 300, h = 200;
+  const std::vector<float> d = randomDepth(w, h, 5);
+  for (bool full : {false, true})
+    EXPECT_EQ(buildAndCompare(w, h, d, full, HiZReduction::SinglePass),
+              buildAndCompare(w, h, d, full, HiZReduction::FourTap));
 }
 
 TEST_F(HiZPyramidTest, MinmaxSamplerReductionEqualsTheReference) {

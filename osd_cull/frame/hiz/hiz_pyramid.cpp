@@ -61,7 +61,26 @@ bool formatHasMinmax(const vulkan::Context& context, VkFormat format) {
   return (props.optimalTilingFeatures & need) == need;
 }
 
+const vulkan::DescriptorBinding kSinglePassBindings[] = {
+    {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT, shader::kHiZMaxLevels},
+    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+
 }  // namespace
+
+const char* toString(HiZReduction reduction) {
+  switch (reduction) {
+    case HiZReduction::Auto:
+      return "auto";
+    case HiZReduction::SinglePass:
+      return "single";
+    case HiZReduction::Sampler:
+      return "sampler";
+    case HiZReduction::FourTap:
+      return "fourtap";
+  }
+  return "?";
+}
 
 bool supportsMinmaxReduction(const vulkan::Context& context) {
   return context.info().optional.samplerFilterMinmax && formatHasMinmax(context, kPyramidFormat);
@@ -82,15 +101,25 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth, con
     throw Error("HiZPyramid: min/max sampler reduction requested, but device '" +
                 context.info().name +
                 "' lacks samplerFilterMinmax or MINMAX and LINEAR filtering of R32_SFLOAT");
-  sampler_ = options.reduction == HiZReduction::Sampler ||
-             (options.reduction == HiZReduction::Auto && minmax);
+  singlePass_ =
+      options.reduction == HiZReduction::Auto || options.reduction == HiZReduction::SinglePass;
+  sampler_ = options.reduction == HiZReduction::Sampler;
   depthSampler_ = sampler_ && supportsMinmaxDepthReduction(context);
   lookup_ = options.lookup;
+  if (singlePass_ && layout_.levelCount > shader::kHiZMaxLevels)
+    throw Error("HiZPyramid: " + std::to_string(layout_.levelCount) +
+                " levels for a depth image of " + std::to_string(depth.width()) + "x" +
+                std::to_string(depth.height()) + " exceed the single-pass build's " +
+                std::to_string(shader::kHiZMaxLevels));
 
   image_ = vulkan::Image(context,
                      {layout_.levelWidth(0), layout_.levelHeight(0), kPyramidFormat,
                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, layout_.levelCount});
   fetchSampler_ = createSampler(context, false, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  if (singlePass_) {
+    createSinglePass(context);
+    return;
+  }
   if (depthSampler_)
     depthMaxSampler_ = createSampler(context, true, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
   if (sampler_)
@@ -137,11 +166,76 @@ shader::HiZParams HiZPyramid::params() const {
   return p;
 }
 
+void HiZPyramid::createSinglePass(vulkan::Context& context) {
+  singlePassProgram_ = std::make_unique<vulkan::ComputeProgram>(
+      context, vulkan::ShaderSource{"hiz/hiz_single_pass.comp", {}}, kSinglePassBindings,
+      sizeof(shader::HiZSinglePassConstants));
+  counter_ = vulkan::Buffer(context, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kSinglePassBindings);
+  singlePassSet_ = pool_->allocate(singlePassProgram_->setLayout());
+  const VkDescriptorImageInfo depthInfo{fetchSampler_.get(), depth_.view(), kDepthReadLayout};
+  // Entries past the last level repeat it: the shader never writes them (level < count).
+  std::vector<VkDescriptorImageInfo> levelInfos;
+  for (uint32_t l = 0; l < shader::kHiZMaxLevels; ++l)
+    levelInfos.push_back({VK_NULL_HANDLE, image_.mipView(std::min(l, layout_.levelCount - 1)),
+                          kPyramidLayout});
+  const VkDescriptorBufferInfo counterInfo = counter_.descriptor();
+  VkWriteDescriptorSet w[3]{};
+  for (auto& x : w) {
+    x.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    x.dstSet = singlePassSet_;
+    x.descriptorCount = 1;
+  }
+  w[0].dstBinding = 0;
+  w[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w[0].pImageInfo = &depthInfo;
+  w[1].dstBinding = 1;
+  w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  w[1].descriptorCount = shader::kHiZMaxLevels;
+  w[1].pImageInfo = levelInfos.data();
+  w[2].dstBinding = 2;
+  w[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  w[2].pBufferInfo = &counterInfo;
+  vkUpdateDescriptorSets(context.device(), 3, w, 0, nullptr);
+}
+
+void HiZPyramid::recordSinglePass(VkCommandBuffer cmd) {
+  // The finished-workgroup counter starts at 0 (earlier builds' atomics come first).
+  vulkan::bufferBarrier(cmd, counter_, vulkan::scope::kComputeReadWrite,
+                        vulkan::scope::kTransferWrite);
+  vkCmdFillBuffer(cmd, counter_.handle(), 0, VK_WHOLE_SIZE, 0);
+  vulkan::bufferBarrier(cmd, counter_, vulkan::scope::kTransferWrite,
+                        vulkan::scope::kComputeReadWrite);
+  shader::HiZSinglePassConstants c{};
+  c.width = layout_.width;
+  c.height = layout_.height;
+  c.level0Width = layout_.levelWidth(0);
+  c.level0Height = layout_.levelHeight(0);
+  c.levelCount = layout_.levelCount;
+  c.baseShift = layout_.baseShift;
+  singlePassProgram_->dispatch(cmd, singlePassSet_, std::as_bytes(std::span(&c, 1)),
+                               vulkan::groupCount(c.level0Width, shader::kHiZTile),
+                               vulkan::groupCount(c.level0Height, shader::kHiZTile));
+  vulkan::imageBarrier(cmd, image_, kPyramidLayout, kPyramidLayout, vulkan::scope::kComputeWrite,
+                       {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT});
+}
+
 void HiZPyramid::record(VkCommandBuffer cmd, VkImageLayout depthLayout) {
   vulkan::imageBarrier(cmd, depth_, depthLayout, kDepthReadLayout, kDepthWrite,
                    vulkan::scope::kComputeRead);
   vulkan::imageBarrier(cmd, image_, built_ ? kPyramidLayout : VK_IMAGE_LAYOUT_UNDEFINED, kPyramidLayout,
-                   kPyramidUsers, vulkan::scope::kComputeWrite);
+                   kPyramidUsers, singlePass_ ? vulkan::scope::kComputeReadWrite : vulkan::scope::kComputeWrite);
+  if (singlePass_)
+    recordSinglePass(cmd);
+  else
+    recordPerLevel(cmd);
+  vulkan::imageBarrier(cmd, depth_, kDepthReadLayout, depthLayout, vulkan::scope::kComputeRead,
+                   kDepthTests);
+  built_ = true;
+}
+
+void HiZPyramid::recordPerLevel(VkCommandBuffer cmd) {
   for (uint32_t level = 0; level < layout_.levelCount; ++level) {
     shader::HiZReduceConstants c{};
     if (level == 0) {
@@ -166,9 +260,6 @@ void HiZPyramid::record(VkCommandBuffer cmd, VkImageLayout depthLayout) {
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT},
                      level, 1);
   }
-  vulkan::imageBarrier(cmd, depth_, kDepthReadLayout, depthLayout, vulkan::scope::kComputeRead,
-                   kDepthTests);
-  built_ = true;
 }
 
 void HiZPyramid::build(vulkan::Context& context, VkImageLayout depthLayout) {
