@@ -100,7 +100,7 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
   }
   if (!anyStage) {
     survivedResults_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     vulkan::fill(context, survivedResults_, shader::kStageNone);
   }
 }
@@ -278,16 +278,15 @@ CullFrameStats CullFrame::render(const Camera& camera,
     // Diagnostic: the same commands, one submission and wait per pass.
     StatsSlot& slot = beginFrame(camera);
     frame = *slot.frame;
-    pass1Ms = timedSubmit(context_, [&](VkCommandBuffer cmd) {
-      recordFirstPass(cmd, camera, occluders, slot);
-    });
+    pass1Ms = timedSubmit(
+        context_, [&](VkCommandBuffer cmd) { recordFirstPass(cmd, camera, occluders, slot); });
     if (pyramid_)
       pyramidMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {
         pyramid_->record(cmd, RenderTarget::kDepthLayout);
       });
     cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) { recordCull(cmd, camera, slot); });
-    pass2Ms = timedSubmit(context_,
-                          [&](VkCommandBuffer cmd) { recordSecondPass(cmd, camera, slot); });
+    pass2Ms =
+        timedSubmit(context_, [&](VkCommandBuffer cmd) { recordSecondPass(cmd, camera, slot); });
     for (auto& v : visibility_) v->advance();
   }
   const double frameMs = msSince(start);

@@ -22,9 +22,9 @@
 /// tessellation factors 0. Both give the same image; pipeline statistics tell the cost.
 
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
-#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/hiz/visibility_buffer.h"
 #include "osd_cull/vk/query.h"
 
@@ -193,7 +193,7 @@ class CullFrame {
   std::unique_ptr<VisibilityPrograms> programs_;
   std::vector<std::unique_ptr<VisibilityBuffer>> visibility_;
   std::vector<std::unique_ptr<CullPass>> passes_;  // null when no stage is enabled
-  vulkan::Buffer survivedResults_;                     // all kStageNone, used without a pass
+  vulkan::Buffer survivedResults_;                 // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
   std::vector<std::unique_ptr<StatsSlot>> slots_;  // the statistics ring

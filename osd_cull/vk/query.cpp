@@ -102,9 +102,9 @@ std::optional<PipelineStatistics> PipelineStatisticsQuery::tryResult(uint32_t in
   checkIndex(index, count_, "PipelineStatisticsQuery::tryResult");
   // The counters, then the availability word.
   std::array<uint64_t, kStatisticCount + 1> v{};
-  const VkResult r = vkGetQueryPoolResults(
-      device_, pool_.get(), index, 1, sizeof(v), v.data(), sizeof(v),
-      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+  const VkResult r =
+      vkGetQueryPoolResults(device_, pool_.get(), index, 1, sizeof(v), v.data(), sizeof(v),
+                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
   if (r == VK_NOT_READY || v[kStatisticCount] == 0) return std::nullopt;
   check(r, "vkGetQueryPoolResults (pipeline statistics)");
   return toStatistics(v.data());

@@ -61,7 +61,7 @@ struct HiZReduceConstants {
 // kHiZSinglePassThreads threads per kHiZTile x kHiZTile texels of level 0, at most
 // kHiZMaxLevels levels (level 0 of 2^15 texels per axis).
 OSD_CULL_CONST uint kHiZMaxLevels = 16u;
-OSD_CULL_CONST uint kHiZTile = 64u;
+OSD_CULL_CONST uint kHiZTile = 32u;
 OSD_CULL_CONST uint kHiZSinglePassThreads = 256u;
 
 // Push constants of the single-pass build.
@@ -72,8 +72,8 @@ struct HiZSinglePassConstants {
   uint level0Height;
   uint levelCount;
   uint baseShift;  // 0: level 0 copies the depth, 1: reduces 2x2 pixels
-  uint pad0;
-  uint pad1;
+  float invWidth;  // 1 / width, 1 / height: normalized coordinates of the gathers
+  float invHeight;
 };
 
 // What the occlusion test needs to know about the pyramid (part of the cull constants).

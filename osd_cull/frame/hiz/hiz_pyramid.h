@@ -32,7 +32,7 @@ namespace osd_cull::frame {
 
 /// \brief How each level is reduced.
 enum class HiZReduction {
-  Auto,        ///< SinglePass
+  Auto,        ///< Sampler where supported (fastest on lavapipe), else SinglePass
   SinglePass,  ///< all levels in one dispatch (texel fetches, shared memory)
   Sampler,     ///< one dispatch per level, min/max sampler reduction (throws when unsupported)
   FourTap,     ///< one dispatch per level, four texelFetch() and max()
@@ -47,6 +47,9 @@ struct HiZOptions {
   HiZReduction reduction = HiZReduction::Auto;
   /// Level at which the occlusion test looks a box up (params().lookup).
   bound::HiZLookup lookup = bound::HiZLookup::Paper;
+  /// For measurements only: the per-level build as it was before the gathered top level and
+  /// the skipped padding (every texel written in every build). Same values.
+  bool legacyBuild = false;
 };
 
 /// \brief True when the device can reduce pyramid levels with a MAX sampler: the
@@ -104,18 +107,24 @@ class HiZPyramid {
   void createSinglePass(vulkan::Context& context);
   void recordSinglePass(VkCommandBuffer cmd);
   void recordPerLevel(VkCommandBuffer cmd);
+  /// Texels of `level` a build must write: all the first time, later only those whose
+  /// footprint overlaps the depth image.
+  VkExtent2D updatedExtent(uint32_t level) const;
 
   bool singlePass_ = false;
+  bool legacy_ = false;
   bool sampler_ = false;
   bool depthSampler_ = false;
   bound::HiZLookup lookup_ = bound::HiZLookup::Paper;
   bool built_ = false;
   vulkan::Image image_;
-  vulkan::UniqueSampler depthMaxSampler_;  // MAX, clamp to border (opaque white = far)
+  vulkan::UniqueSampler depthMaxSampler_;  // clamp to an opaque white border (far): MAX
+                                           // filter, or nearest for gathers
   vulkan::UniqueSampler levelMaxSampler_;  // MAX, clamp to edge
   vulkan::UniqueSampler fetchSampler_;     // nearest, for texelFetch
   std::unique_ptr<vulkan::ComputeProgram> fetchProgram_;
   std::unique_ptr<vulkan::ComputeProgram> samplerProgram_;
+  std::unique_ptr<vulkan::ComputeProgram> gatherProgram_;  // sampler build, depth level
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   std::vector<VkDescriptorSet> sets_;  // one per level
   std::unique_ptr<vulkan::ComputeProgram> singlePassProgram_;

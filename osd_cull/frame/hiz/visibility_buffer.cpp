@@ -62,9 +62,9 @@ VisibilityPrograms::VisibilityPrograms(vulkan::Context& context)
     : update_(std::make_unique<vulkan::ComputeProgram>(
           context, vulkan::ShaderSource{"hiz/visibility_update.comp", {}}, updateBindings(),
           sizeof(VisibilityConstants))),
-      draws_(std::make_unique<vulkan::ComputeProgram>(context,
-                                                  vulkan::ShaderSource{"hiz/visibility_draws.comp", {}},
-                                                  drawsBindings(), sizeof(VisibilityConstants))) {}
+      draws_(std::make_unique<vulkan::ComputeProgram>(
+          context, vulkan::ShaderSource{"hiz/visibility_draws.comp", {}}, drawsBindings(),
+          sizeof(VisibilityConstants))) {}
 
 VisibilityPrograms::~VisibilityPrograms() = default;
 
@@ -98,7 +98,8 @@ VisibilityBuffer::VisibilityBuffer(vulkan::Context& context, const VisibilityPro
   };
   auto makeList = [&](DrawListBuffers& l) {
     l.list = vulkan::Buffer(context, size_t{n} * 4, storage);
-    l.counters = vulkan::Buffer(context, kListCounterCount * 4, indirect, vulkan::MemoryUse::Readback);
+    l.counters =
+        vulkan::Buffer(context, kListCounterCount * 4, indirect, vulkan::MemoryUse::Readback);
     l.commands = vulkan::Buffer(context, maxCommands * 16, indirect);
     l.drawSet = drawSet(l.list);
     l.draws = pool_->allocate(programs.draws().setLayout());
