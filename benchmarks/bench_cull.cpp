@@ -2,7 +2,7 @@
 // a frame, on BigGuy (or another cage). Prints Markdown tables; see docs/results/backpatch.md.
 //
 //   bench-cull [--mesh FILE] [--levels 1,2,3] [--views 20] [--tess 4,8,16]
-//              [--width 640] [--height 480] [--repeats 3] [--device X]
+//              [--width 640] [--height 480] [--repeats 3] [--parts 12] [--device X]
 //
 // Part 1: wall time of one cull submission (counter reset, cull dispatch, draw-command
 // dispatch, wait), median over views x repeats, per patch; "empty" is a pass with no test.
@@ -38,6 +38,7 @@ struct Options {
   std::vector<uint32_t> tess = {4, 8, 16};
   uint32_t views = 20, width = 640, height = 480, repeats = 3;
   std::string device;
+  std::string parts = "12";  ///< which parts run
 };
 
 std::vector<uint32_t> numbers(const std::string& text) {
@@ -72,6 +73,8 @@ Options parse(int argc, char** argv) {
       o.repeats = std::max(1u, numbers(next()).at(0));
     else if (a == "--device")
       o.device = next();
+    else if (a == "--parts")
+      o.parts = next();
     else
       throw Error("unknown option " + a + " (see the comment at the top of bench_cull.cpp)");
   }
@@ -191,8 +194,8 @@ int main(int argc, char** argv) {
     co.device = o.device;
     vulkan::Context context(co);
     std::printf("bench-cull: %s on %s\n", o.mesh.c_str(), context.info().name.c_str());
-    kernelCost(context, o);
-    frameSavings(context, o);
+    if (o.parts.find('1') != std::string::npos) kernelCost(context, o);
+    if (o.parts.find('2') != std::string::npos) frameSavings(context, o);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench-cull: %s\n", e.what());
