@@ -144,9 +144,11 @@ class ObjParser {
     if (vt.empty()) return -1;
     const int64_t index = *parseInt(vt);
     const auto defined = static_cast<int64_t>(mesh_.uvs.size());
-    if (index == 0 || index > INT_MAX || -index > defined)
-      lines_.fail("texture-coordinate index in face corner " + quote(token) +
-                  " is out of range (" + std::to_string(defined) + " defined so far)");
+    // Texture coordinates must come before the faces that use them (as most exporters
+    // write them); an index past them is an error here, not a read out of range later.
+    if (index == 0 || index > defined || -index > defined)
+      lines_.fail("texture-coordinate index in face corner " + quote(token) + " is out of range (" +
+                  std::to_string(defined) + " defined so far)");
     return static_cast<int>(index < 0 ? defined + index : index - 1);
   }
 
