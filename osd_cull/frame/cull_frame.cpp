@@ -60,6 +60,8 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
       programs_(std::make_unique<VisibilityPrograms>(context)),
       queries_(context, 2) {
   const CullSettings& cull = options.cull;
+  if (!cull.occlusion.empty() && target.format().samples != VK_SAMPLE_COUNT_1_BIT)
+    throw Error("CullFrame: Hi-Z occlusion needs a single-sample depth attachment");
   if (!cull.occlusion.empty()) {
     pyramid_ = std::make_unique<HiZPyramid>(context, target.depth(), options.hiz);
     stage_ = std::make_unique<HiZCullStage>(context, *pyramid_);
@@ -175,7 +177,7 @@ CullFrameStats CullFrame::render(const Camera& camera,
   // 2. The Hi-Z pyramid of that depth.
   if (pyramid_)
     s.pyramidMs = timedSubmit(
-        context_, [&](VkCommandBuffer cmd) { pyramid_->record(cmd, RenderTarget::kDepthLayout); });
+        context_, [&](VkCommandBuffer cmd) { pyramid_->record(cmd, target_.depthLayout()); });
 
   // 3. Cull every patch, update the status, build the lists.
   s.cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {

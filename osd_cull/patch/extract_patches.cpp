@@ -20,12 +20,23 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-struct PatchRef {
-  int array;
-  int index;
-};
-
 }  // namespace
+
+PatchOrder patchOrder(const Far::PatchTable& table, const std::string& where) {
+  PatchOrder order;
+  for (int a = 0; a < table.GetNumPatchArrays(); ++a) {
+    const Far::PatchDescriptor::Type type = table.GetPatchArrayDescriptor(a).GetType();
+    std::vector<PatchRef>* list = type == Far::PatchDescriptor::REGULAR         ? &order.bezier
+                                  : type == Far::PatchDescriptor::GREGORY_BASIS ? &order.gregory
+                                                                                : nullptr;
+    if (!list)
+      throw Error(where + ": OpenSubdiv produced patches of type " +
+                  std::to_string(static_cast<int>(type)) +
+                  "; only REGULAR and GREGORY_BASIS patches are extracted");
+    for (int p = 0; p < table.GetNumPatches(a); ++p) list->push_back({a, p});
+  }
+  return order;
+}
 
 PatchOrigin bsplinePatchOrigin(const Far::PatchParam& param) {
   if (!param.IsRegular()) return PatchOrigin::BSplineEndCap;
@@ -70,22 +81,23 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
   }
+  return extractPatches(adaptive, positions, source);
+}
+
+PatchExtraction extractPatches(const AdaptivePatches& adaptive,
+                               std::span<const glm::dvec3> positions, const std::string& source) {
+  const std::string where = source.empty() ? std::string("mesh") : source;
+  const int cageVertices = adaptive.refinedStencils->GetNumControlVertices();
+  if (positions.size() != static_cast<std::size_t>(cageVertices))
+    throw Error(where + ": " + std::to_string(positions.size()) + " positions for a cage of " +
+                std::to_string(cageVertices) + " vertices");
   const Far::PatchTable& table = *adaptive.patchTable;
 
   const auto start = Clock::now();
   // Bézier patches first, then Gregory (patch_set.h), each in patch-table order.
-  std::vector<PatchRef> bezier, gregory;
-  for (int a = 0; a < table.GetNumPatchArrays(); ++a) {
-    const Far::PatchDescriptor::Type type = table.GetPatchArrayDescriptor(a).GetType();
-    std::vector<PatchRef>* list = type == Far::PatchDescriptor::REGULAR         ? &bezier
-                                  : type == Far::PatchDescriptor::GREGORY_BASIS ? &gregory
-                                                                                : nullptr;
-    if (!list)
-      throw Error(where + ": OpenSubdiv produced patches of type " +
-                  std::to_string(static_cast<int>(type)) +
-                  "; only REGULAR and GREGORY_BASIS patches are extracted");
-    for (int p = 0; p < table.GetNumPatches(a); ++p) list->push_back({a, p});
-  }
+  const PatchOrder order = patchOrder(table, where);
+  const std::vector<PatchRef>& bezier = order.bezier;
+  const std::vector<PatchRef>& gregory = order.gregory;
 
   PatchExtraction out;
   PatchSet& set = out.patches;

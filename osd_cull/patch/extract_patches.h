@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace osd_cull {
 
@@ -60,6 +61,28 @@ PatchExtraction extractPatches(const CageMesh& cage, const PatchOptions& options
 /// vertices. The refiner is refined adaptively in place.
 PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const glm::dvec3> positions,
                                const PatchOptions& options = {}, const std::string& source = {});
+
+/// \brief The composition step alone: the PatchSet and matrix of refinement results (from
+/// buildAdaptivePatches() or adoptPatchTable()) for level-0 `positions`.
+PatchExtraction extractPatches(const AdaptivePatches& adaptive,
+                               std::span<const glm::dvec3> positions, const std::string& source);
+
+/// \brief A patch of a Far::PatchTable: patch array and index in it.
+struct PatchRef {
+  int array;
+  int index;
+};
+
+/// \brief The patches of a table in PatchSet order: all REGULAR (→ Bézier) patches, then all
+/// GREGORY_BASIS ones, each in table order.
+struct PatchOrder {
+  std::vector<PatchRef> bezier;
+  std::vector<PatchRef> gregory;
+};
+
+/// \brief PatchOrder of `table`.
+/// \throws osd_cull::Error naming `where` for any other patch type.
+PatchOrder patchOrder(const Far::PatchTable& table, const std::string& where);
 
 /// \brief The origin of a regular B-spline patch from its PatchParam: BSplineEndCap if
 /// OpenSubdiv marks it irregular, else by its boundary edges: none → Regular, one →
