@@ -19,7 +19,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onMessage(VkDebugUtilsMessageSeverityFlagBitsEXT 
                                          const VkDebugUtilsMessengerCallbackDataEXT* data,
                                          void* user) {
   if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
-    ++*static_cast<uint32_t*>(user);
+    static_cast<std::vector<std::string>*>(user)->push_back(data->pMessage);
     std::fprintf(stderr, "[validation] %s\n", data->pMessage);
   }
   return VK_FALSE;
@@ -33,10 +33,10 @@ uint32_t memoryType(VkPhysicalDevice physical, uint32_t bits, VkMemoryPropertyFl
   throw std::runtime_error("no suitable memory type");
 }
 
-VkRenderPass makePass(VkDevice device, bool clear) {
+VkRenderPass makePass(VkDevice device, VkFormat color, VkFormat depth, bool clear) {
   VkAttachmentDescription a[2]{};
-  a[0].format = Target::kColor;
-  a[1].format = Target::kDepth;
+  a[0].format = color;
+  a[1].format = depth;
   const VkImageLayout layouts[2] = {Target::kColorLayout, Target::kDepthLayout};
   for (int i = 0; i < 2; ++i) {
     a[i].samples = VK_SAMPLE_COUNT_1_BIT;
@@ -47,12 +47,13 @@ VkRenderPass makePass(VkDevice device, bool clear) {
     a[i].initialLayout = clear ? VK_IMAGE_LAYOUT_UNDEFINED : layouts[i];
     a[i].finalLayout = layouts[i];
   }
-  const VkAttachmentReference color{0, Target::kColorLayout}, depth{1, Target::kDepthLayout};
+  const VkAttachmentReference colorRef{0, Target::kColorLayout};
+  const VkAttachmentReference depthRef{1, Target::kDepthLayout};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   subpass.colorAttachmentCount = 1;
-  subpass.pColorAttachments = &color;
-  subpass.pDepthStencilAttachment = &depth;
+  subpass.pColorAttachments = &colorRef;
+  subpass.pDepthStencilAttachment = &depthRef;
   // Earlier work on the images (osd_cull's Hi-Z build reads depth between the passes)
   // before this pass, this pass before later work.
   VkSubpassDependency deps[2]{};
@@ -84,7 +85,8 @@ VkRenderPass makePass(VkDevice device, bool clear) {
 
 }  // namespace
 
-Device::Device(bool validation) {
+Device::Device(const DeviceOptions& options) {
+  const bool validation = options.validation;
   VkApplicationInfo appInfo{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   appInfo.pApplicationName = "osd_cull integration sample";
   appInfo.apiVersion = VK_API_VERSION_1_3;
@@ -98,10 +100,16 @@ Device::Device(bool validation) {
       VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT;
   messengerInfo.pfnUserCallback = onMessage;
   messengerInfo.pUserData = &validationMessages;
+  const VkValidationFeatureEnableEXT sync =
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT validationFeatures{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  validationFeatures.enabledValidationFeatureCount = 1;
+  validationFeatures.pEnabledValidationFeatures = &sync;
+  validationFeatures.pNext = &messengerInfo;
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &appInfo;
   if (validation) {
-    info.pNext = &messengerInfo;
+    info.pNext = &validationFeatures;
     info.enabledLayerCount = 1;
     info.ppEnabledLayerNames = &layer;
     info.enabledExtensionCount = 1;
@@ -144,13 +152,13 @@ Device::Device(bool validation) {
   // What osd_cull needs; the same chain is handed to it.
   features.pNext = &features12;
   features12.pNext = &features13;
-  features.features.tessellationShader = VK_TRUE;
+  features.features.tessellationShader = options.tessellationShader;
   features.features.pipelineStatisticsQuery = VK_TRUE;
   features.features.multiDrawIndirect = VK_TRUE;
-  features12.drawIndirectCount = VK_TRUE;
+  features12.drawIndirectCount = options.drawIndirectCount;
   features12.samplerFilterMinmax = VK_TRUE;
   features12.hostQueryReset = VK_TRUE;
-  features13.dynamicRendering = VK_TRUE;
+  features13.dynamicRendering = options.dynamicRendering;
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   queueInfo.queueFamilyIndex = family;
@@ -174,9 +182,9 @@ Device::~Device() {
   vkDestroyInstance(instance, nullptr);
 }
 
-Image::Image(const Device& d, uint32_t width, uint32_t height, VkFormat f, VkImageUsageFlags u,
-             VkImageAspectFlags aspect)
-    : device(d.device), format(f), usage(u) {
+Image::Image(VkPhysicalDevice physical, VkDevice d, uint32_t w, uint32_t h, VkFormat f,
+             VkImageUsageFlags u, VkImageAspectFlags aspect)
+    : device(d), width(w), height(h), format(f), usage(u) {
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
   info.imageType = VK_IMAGE_TYPE_2D;
   info.format = format;
@@ -192,7 +200,7 @@ Image::Image(const Device& d, uint32_t width, uint32_t height, VkFormat f, VkIma
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex =
-      memoryType(d.physical, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+      memoryType(physical, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   APP_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
   APP_VK(vkBindImageMemory(device, image, memory, 0));
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -209,17 +217,21 @@ Image::~Image() {
   vkFreeMemory(device, memory, nullptr);
 }
 
-Target::Target(const Device& d, uint32_t w, uint32_t h)
-    : device(d),
+Target::Target(VkPhysicalDevice p, VkDevice d, uint32_t w, uint32_t h, VkFormat colorFormat,
+               VkFormat depthFormat, bool renderPasses)
+    : physical(p),
+      device(d),
       width(w),
       height(h),
-      color(d, w, h, kColor, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+      color(p, d, w, h, colorFormat,
+            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
             VK_IMAGE_ASPECT_COLOR_BIT),
-      depth(d, w, h, kDepth,
+      depth(p, d, w, h, depthFormat,
             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
             VK_IMAGE_ASPECT_DEPTH_BIT) {
-  clearPass = makePass(d.device, true);
-  loadPass = makePass(d.device, false);
+  if (!renderPasses) return;
+  clearPass = makePass(d, colorFormat, depthFormat, true);
+  loadPass = makePass(d, colorFormat, depthFormat, false);
   const VkImageView views[2] = {color.view, depth.view};
   VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   info.renderPass = clearPass;
@@ -228,13 +240,13 @@ Target::Target(const Device& d, uint32_t w, uint32_t h)
   info.width = w;
   info.height = h;
   info.layers = 1;
-  APP_VK(vkCreateFramebuffer(d.device, &info, nullptr, &framebuffer));
+  APP_VK(vkCreateFramebuffer(d, &info, nullptr, &framebuffer));
 }
 
 Target::~Target() {
-  vkDestroyFramebuffer(device.device, framebuffer, nullptr);
-  vkDestroyRenderPass(device.device, loadPass, nullptr);
-  vkDestroyRenderPass(device.device, clearPass, nullptr);
+  vkDestroyFramebuffer(device, framebuffer, nullptr);
+  vkDestroyRenderPass(device, loadPass, nullptr);
+  vkDestroyRenderPass(device, clearPass, nullptr);
 }
 
 std::vector<uint8_t> Target::readColor(Commands& commands) const {
@@ -243,17 +255,17 @@ std::vector<uint8_t> Target::readColor(Commands& commands) const {
   info.size = size;
   info.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   VkBuffer buffer = VK_NULL_HANDLE;
-  APP_VK(vkCreateBuffer(device.device, &info, nullptr, &buffer));
+  APP_VK(vkCreateBuffer(device, &info, nullptr, &buffer));
   VkMemoryRequirements req;
-  vkGetBufferMemoryRequirements(device.device, buffer, &req);
+  vkGetBufferMemoryRequirements(device, buffer, &req);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex =
-      memoryType(device.physical, req.memoryTypeBits,
+      memoryType(physical, req.memoryTypeBits,
                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  APP_VK(vkAllocateMemory(device.device, &alloc, nullptr, &memory));
-  APP_VK(vkBindBufferMemory(device.device, buffer, memory, 0));
+  APP_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
+  APP_VK(vkBindBufferMemory(device, buffer, memory, 0));
 
   VkCommandBuffer cmd = commands.begin();
   VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
@@ -289,31 +301,31 @@ std::vector<uint8_t> Target::readColor(Commands& commands) const {
 
   std::vector<uint8_t> pixels(size);
   void* mapped = nullptr;
-  APP_VK(vkMapMemory(device.device, memory, 0, size, 0, &mapped));
+  APP_VK(vkMapMemory(device, memory, 0, size, 0, &mapped));
   std::memcpy(pixels.data(), mapped, size);
-  vkUnmapMemory(device.device, memory);
-  vkDestroyBuffer(device.device, buffer, nullptr);
-  vkFreeMemory(device.device, memory, nullptr);
+  vkUnmapMemory(device, memory);
+  vkDestroyBuffer(device, buffer, nullptr);
+  vkFreeMemory(device, memory, nullptr);
   return pixels;
 }
 
-Commands::Commands(const Device& d) : device(d) {
+Commands::Commands(VkDevice d, VkQueue q, uint32_t family) : device(d), queue(q) {
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = d.family;
-  APP_VK(vkCreateCommandPool(d.device, &poolInfo, nullptr, &pool));
+  poolInfo.queueFamilyIndex = family;
+  APP_VK(vkCreateCommandPool(device, &poolInfo, nullptr, &pool));
   VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   alloc.commandPool = pool;
   alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   alloc.commandBufferCount = 1;
-  APP_VK(vkAllocateCommandBuffers(d.device, &alloc, &cmd));
+  APP_VK(vkAllocateCommandBuffers(device, &alloc, &cmd));
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  APP_VK(vkCreateFence(d.device, &fenceInfo, nullptr, &fence));
+  APP_VK(vkCreateFence(device, &fenceInfo, nullptr, &fence));
 }
 
 Commands::~Commands() {
-  vkDestroyFence(device.device, fence, nullptr);
-  vkDestroyCommandPool(device.device, pool, nullptr);
+  vkDestroyFence(device, fence, nullptr);
+  vkDestroyCommandPool(device, pool, nullptr);
 }
 
 VkCommandBuffer Commands::begin() {
@@ -329,9 +341,9 @@ void Commands::submitAndWait() {
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
-  APP_VK(vkResetFences(device.device, 1, &fence));
-  APP_VK(vkQueueSubmit(device.queue, 1, &submit, fence));
-  APP_VK(vkWaitForFences(device.device, 1, &fence, VK_TRUE, UINT64_MAX));
+  APP_VK(vkResetFences(device, 1, &fence));
+  APP_VK(vkQueueSubmit(queue, 1, &submit, fence));
+  APP_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
 }
 
 }  // namespace app

@@ -15,7 +15,16 @@ namespace app {
 void check(VkResult result, const char* call);
 #define APP_VK(call) ::app::check((call), #call)
 
-/// The device with what osd_cull needs enabled (docs/integration.md lists it).
+/// What the program enables on its device: what osd_cull needs by default
+/// (docs/integration.md); tests switch features off to see osd_cull name them.
+struct DeviceOptions {
+  bool validation = false;  ///< VK_LAYER_KHRONOS_validation with synchronization validation
+  bool tessellationShader = true;
+  bool drawIndirectCount = true;
+  bool dynamicRendering = true;  ///< Vulkan 1.3 core feature
+};
+
+/// The device, a GPU when there is one.
 struct Device {
   VkInstance instance = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
@@ -30,10 +39,9 @@ struct Device {
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceVulkan13Features features13{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  uint32_t validationMessages = 0;  // warnings and errors of the validation layer
+  std::vector<std::string> validationMessages;  // warnings and errors of the layer
 
-  /// `validation`: enable VK_LAYER_KHRONOS_validation and count its messages.
-  explicit Device(bool validation);
+  explicit Device(const DeviceOptions& options);
   ~Device();
   Device(const Device&) = delete;
   Device& operator=(const Device&) = delete;
@@ -42,45 +50,49 @@ struct Device {
 /// A 2D image with its own memory and one view.
 struct Image {
   VkDevice device = VK_NULL_HANDLE;
+  uint32_t width = 0, height = 0;
   VkImage image = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkImageUsageFlags usage = 0;
-  Image(const Device& device, uint32_t width, uint32_t height, VkFormat format,
-        VkImageUsageFlags usage, VkImageAspectFlags aspect);
+  Image(VkPhysicalDevice physical, VkDevice device, uint32_t width, uint32_t height,
+        VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect);
   ~Image();
   Image(const Image&) = delete;
   Image& operator=(const Image&) = delete;
 };
 
-/// The application's attachments and passes: B8G8R8A8 color, D32 depth (sampled, for the
-/// Hi-Z pyramid), a clearing and a loading render pass, one framebuffer.
+/// The application's attachments and passes: color (B8G8R8A8 by default, readable by
+/// transfers), depth (D32 by default, sampled: osd_cull's Hi-Z pyramid reads it), and either
+/// a clearing and a loading render pass with one framebuffer, or none (dynamic rendering).
 struct Target {
-  static constexpr VkFormat kColor = VK_FORMAT_B8G8R8A8_UNORM;
-  static constexpr VkFormat kDepth = VK_FORMAT_D32_SFLOAT;
   static constexpr VkImageLayout kColorLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   static constexpr VkImageLayout kDepthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  const Device& device;
+  VkPhysicalDevice physical;
+  VkDevice device;
   uint32_t width, height;
   Image color, depth;
   VkRenderPass clearPass = VK_NULL_HANDLE, loadPass = VK_NULL_HANDLE;
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
-  Target(const Device& device, uint32_t width, uint32_t height);
+  Target(VkPhysicalDevice physical, VkDevice device, uint32_t width, uint32_t height,
+         VkFormat colorFormat = VK_FORMAT_B8G8R8A8_UNORM,
+         VkFormat depthFormat = VK_FORMAT_D32_SFLOAT, bool renderPasses = true);
   ~Target();
   Target(const Target&) = delete;
   Target& operator=(const Target&) = delete;
-  /// The color image's pixels, 4 bytes (B, G, R, A) each, rows top to bottom (waits).
+  /// The color image's pixels, 4 bytes in its format's order, rows top to bottom (waits).
   std::vector<uint8_t> readColor(struct Commands& commands) const;
 };
 
 /// One primary command buffer and a fence: record, submit, wait.
 struct Commands {
-  const Device& device;
+  VkDevice device;
+  VkQueue queue;
   VkCommandPool pool = VK_NULL_HANDLE;
   VkCommandBuffer cmd = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
-  explicit Commands(const Device& device);
+  Commands(VkDevice device, VkQueue queue, uint32_t family);
   ~Commands();
   Commands(const Commands&) = delete;
   Commands& operator=(const Commands&) = delete;

@@ -9,6 +9,7 @@
 // attachments. At the end its image is compared with osd_cull's own renderer drawing the
 // same patches unculled: the program fails when they differ or validation complained.
 #include "app_vulkan.h"
+#include "lend.h"
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/draw/png_io.h"
 #include "osd_cull/osd/gpu_point_update.h"
@@ -16,7 +17,6 @@
 #include "osd_cull/patch/application_patches.h"
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/scene/procedural.h"
-#include "osd_cull/vk/external_device.h"
 
 #include <cmath>
 #include <cstdio>
@@ -64,39 +64,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// What the program lends osd_cull: its device (feature chain included) and attachments.
-vulkan::ExternalDevice lendDevice(const app::Device& d) {
-  vulkan::ExternalDevice lent;
-  lent.instance = d.instance;
-  lent.physicalDevice = d.physical;
-  lent.device = d.device;
-  lent.queue = d.queue;
-  lent.queueFamily = d.family;
-  lent.apiVersion = VK_API_VERSION_1_3;
-  lent.enabledFeatures = &d.features;
-  return lent;
-}
-
-frame::ExternalTarget lendTarget(const app::Target& t) {
-  frame::ExternalTarget lent;
-  lent.width = t.width;
-  lent.height = t.height;
-  lent.colorImage = t.color.image;
-  lent.colorView = t.color.view;
-  lent.colorFormat = t.color.format;
-  lent.colorUsage = t.color.usage;
-  lent.colorLayout = app::Target::kColorLayout;
-  lent.depthImage = t.depth.image;
-  lent.depthView = t.depth.view;
-  lent.depthFormat = t.depth.format;
-  lent.depthUsage = t.depth.usage;
-  lent.depthLayout = app::Target::kDepthLayout;
-  lent.clearPass = t.clearPass;
-  lent.loadPass = t.loadPass;
-  lent.framebuffer = t.framebuffer;
-  return lent;
-}
-
 // The one place osd_cull draws into the program's frame: the two-pass culled frame.
 frame::CullFrameStats drawCulled(frame::CullFrame& cull, const frame::Camera& camera) {
   return cull.render(camera, {});
@@ -114,9 +81,9 @@ std::vector<float> animatedCage(const CageMesh& cage, int frame) {
 }
 
 int run(const Options& options) {
-  app::Device device(options.validation);
-  app::Target target(device, options.width, options.height);
-  app::Commands commands(device);
+  app::Device device({.validation = options.validation});
+  app::Target target(device.physical, device.device, options.width, options.height);
+  app::Commands commands(device.device, device.queue, device.family);
   std::printf("application device: %s\n", device.name.c_str());
 
   uint32_t differ = 0, pixels = 0;
@@ -187,9 +154,9 @@ int run(const Options& options) {
     }
   }
   std::printf("image vs osd_cull's renderer: %u of %u pixels differ\n", differ, pixels);
-  std::printf("validation messages: %u\n", device.validationMessages);
+  std::printf("validation messages: %zu\n", device.validationMessages.size());
   // Culled and unculled draws may resolve a depth tie differently on a rare pixel.
-  const bool pass = differ * 10000u <= pixels && device.validationMessages == 0;
+  const bool pass = differ * 10000u <= pixels && device.validationMessages.empty();
   std::printf("integration: %s\n", pass ? "PASS" : "FAIL");
   return pass ? 0 : 1;
 }
