@@ -179,7 +179,22 @@ void Context::createInstance(const ContextOptions& options) {
   info.pApplicationInfo = &app;
 
   const char* layer = "VK_LAYER_KHRONOS_validation";
-  const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  std::vector<const char*> extensions;
+  for (const std::string& e : options.instanceExtensions) extensions.push_back(e.c_str());
+  if (!extensions.empty()) {
+    uint32_t count = 0;
+    OSD_CULL_VK(vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> present(count);
+    OSD_CULL_VK(vkEnumerateInstanceExtensionProperties(nullptr, &count, present.data()));
+    std::string missing;
+    for (const std::string& e : options.instanceExtensions) {
+      bool found = false;
+      for (const auto& p : present) found |= e == p.extensionName;
+      if (!found) missing += (missing.empty() ? "" : ", ") + e;
+    }
+    if (!missing.empty())
+      throw Error("the Vulkan instance lacks required extensions: " + missing);
+  }
   VkValidationFeatureEnableEXT enables[] = {
       VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
   VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
@@ -208,9 +223,10 @@ void Context::createInstance(const ContextOptions& options) {
     info.pNext = &features;
     info.enabledLayerCount = 1;
     info.ppEnabledLayerNames = &layer;
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = &extension;
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   OSD_CULL_VK(vkCreateInstance(&info, nullptr, &instance_));
   if (options.validation) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -262,6 +278,19 @@ void Context::pickDevice(const ContextOptions& options) {
     }
   }
   if (!found) missing.push_back("a queue family with graphics and compute");
+  if (!options.deviceExtensions.empty()) {
+    uint32_t count = 0;
+    OSD_CULL_VK(vkEnumerateDeviceExtensionProperties(physicalDevice_, nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> present(count);
+    OSD_CULL_VK(
+        vkEnumerateDeviceExtensionProperties(physicalDevice_, nullptr, &count, present.data()));
+    for (const std::string& e : options.deviceExtensions) {
+      bool has = false;
+      for (const auto& p : present) has |= e == p.extensionName;
+      if (!has) missing.push_back("extension " + e);
+    }
+  }
+  deviceExtensions_ = options.deviceExtensions;
 
   if (!missing.empty())
     throw Error("Vulkan device " + std::to_string(info_.index) + " '" + info_.name +
@@ -298,7 +327,6 @@ void Context::createDevice() {
   VkPhysicalDeviceDynamicRenderingFeatures dynamic{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
   dynamic.dynamicRendering = VK_TRUE;
-  const char* dynamicExtension = VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME;
   if (opt.dynamicRendering) f12.pNext = &dynamic;
 
   const float priority = 1.0f;
@@ -307,14 +335,16 @@ void Context::createDevice() {
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
 
+  std::vector<const char*> extensions;
+  for (const std::string& e : deviceExtensions_)
+    if (e != VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME) extensions.push_back(e.c_str());
+  if (opt.dynamicRendering) extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &f;
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queueInfo;
-  if (opt.dynamicRendering) {
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = &dynamicExtension;
-  }
   OSD_CULL_VK(vkCreateDevice(physicalDevice_, &info, nullptr, &device_));
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
   createOwnObjects();

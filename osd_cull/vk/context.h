@@ -38,6 +38,12 @@ struct ContextOptions {
   bool printValidationMessages = true;
   /// Size of the memory blocks resources are sub-allocated from.
   VkDeviceSize memoryBlockSize = VkDeviceSize{64} << 20;
+  /// Further instance extensions to enable, e.g. a window system's surface extensions
+  /// (glfwGetRequiredInstanceExtensions) for a viewer. Missing ones are an error naming them.
+  std::vector<std::string> instanceExtensions;
+  /// Further device extensions to enable, e.g. VK_KHR_swapchain. The device check names
+  /// any the chosen device lacks.
+  std::vector<std::string> deviceExtensions;
 };
 
 /// \brief Optional device features; enabled when the device has them.
@@ -151,6 +157,7 @@ class Context {
   bool ownsDevice_ = true;
   PFN_vkCmdBeginRenderingKHR beginRendering_ = nullptr;
   PFN_vkCmdEndRenderingKHR endRendering_ = nullptr;
+  std::vector<std::string> deviceExtensions_;
 };
 
 }  // namespace osd_cull::vulkan

@@ -33,6 +33,12 @@ struct RenderOptions {
   /// Color each patch by the status field of its draw-list entry (kDrawStatus* in
   /// shaders/shared/draw_layout.h): the debug view of the cull frame.
   bool statusColors = false;
+  /// Color each patch by its type: regular, boundary (one boundary edge), corner (two or
+  /// more), Gregory (the viewer's patch-type view, as OpenSubdiv's glViewer).
+  bool patchTypeColors = false;
+  /// Draw the tessellated triangles' edges only (needs fillModeNonSolid). The item buffer
+  /// then holds the lines: for viewing, not for the oracle.
+  bool wireframe = false;
   /// Cull triangles facing away (surface normal dPdu x dPdv pointing away from the eye).
   bool cullBackFaces = false;
   /// Back-facing fragments lose depth ties with front-facing ones: they are pushed back by
@@ -127,7 +133,8 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, const TargetFormat& format);
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
+                           const TargetFormat& format);
   VkPipeline trianglePipeline(const TargetFormat& format);
   // Render pass, subpass and formats of pipelines for `format`.
   void describeTarget(vulkan::GraphicsPipelineDesc& d, const TargetFormat& format);
@@ -144,7 +151,8 @@ class Renderer {
   vulkan::UniqueDescriptorSetLayout meshSetLayout_;
   vulkan::UniquePipelineLayout patchLayout_;
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool, TargetFormat>, vulkan::UniquePipeline> patchPipelines_;
+  std::map<std::tuple<PatchType, bool, bool, TargetFormat>, vulkan::UniquePipeline>
+      patchPipelines_;
   std::map<TargetFormat, vulkan::UniquePipeline> trianglePipelines_;
   vulkan::PipelineStatisticsQuery statistics_;
   std::optional<vulkan::TimestampQuery> timestamps_;  // absent when the queue has no timestamps
