@@ -83,8 +83,8 @@ void Renderer::describeTarget(vulkan::GraphicsPipelineDesc& d, const TargetForma
 }
 
 VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
-                                   const TargetFormat& format) {
-  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, format}];
+                                   bool mirrored, const TargetFormat& format) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored, format}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
   const std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
@@ -112,8 +112,9 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
     d.polygonMode = VK_POLYGON_MODE_LINE;
   }
   // With the y-flipping projections of camera.h, triangles of a patch whose dP/du x dP/dv
-  // faces the eye come out clockwise in framebuffer space.
-  d.frontFace = VK_FRONT_FACE_CLOCKWISE;
+  // faces the eye come out clockwise in framebuffer space; a mirroring model matrix
+  // (instanceCamera() with a negative determinant) turns them counter-clockwise.
+  d.frontFace = mirrored ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE;
   slot = vulkan::createGraphicsPipeline(context_, d);
   return slot.get();
 }
@@ -198,11 +199,13 @@ void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
   }
 }
 
-void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const PatchDraw& draw,
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
+  const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    patchPipeline(type, options.cullBackFaces, options.wireframe, drawFormat_));
+                    patchPipeline(type, options.cullBackFaces, options.wireframe,
+                                  isMirrored(camera), drawFormat_));
   const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
                           nullptr);

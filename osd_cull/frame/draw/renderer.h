@@ -62,6 +62,9 @@ struct PatchDraw {
   /// Descriptor set to draw with instead of gpu->descriptorSet(), e.g. one from
   /// GpuPatchSet::descriptorSetWithDrawList() for a culled draw list.
   VkDescriptorSet set = VK_NULL_HANDLE;
+  /// Object → world matrix of this draw (an instance, scene/scene_eval.h); null: identity.
+  /// The draw uses instanceCamera(camera, *model), composed in double.
+  const glm::dmat4* model = nullptr;
 };
 
 /// \brief What one frame did.
@@ -133,7 +136,7 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored,
                            const TargetFormat& format);
   VkPipeline trianglePipeline(const TargetFormat& format);
   // Render pass, subpass and formats of pipelines for `format`.
@@ -151,7 +154,7 @@ class Renderer {
   vulkan::UniqueDescriptorSetLayout meshSetLayout_;
   vulkan::UniquePipelineLayout patchLayout_;
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool, bool, TargetFormat>, vulkan::UniquePipeline>
+  std::map<std::tuple<PatchType, bool, bool, bool, TargetFormat>, vulkan::UniquePipeline>
       patchPipelines_;
   std::map<TargetFormat, vulkan::UniquePipeline> trianglePipelines_;
   vulkan::PipelineStatisticsQuery statistics_;
