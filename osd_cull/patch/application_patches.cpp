@@ -50,7 +50,8 @@ PatchPointMatrix patchPointMatrix(const Far::PatchTable& table, int refinedVerte
 ApplicationPatches extractApplicationPatches(const Far::TopologyRefiner& refiner,
                                              const Far::PatchTable& table,
                                              std::span<const glm::dvec3> cage,
-                                             const std::string& source) {
+                                             const std::string& source,
+                                             std::span<const glm::dvec2> uvs) {
   const std::string where = source.empty() ? std::string("application mesh") : source;
   AdaptivePatches adopted;
   try {
@@ -59,7 +60,7 @@ ApplicationPatches extractApplicationPatches(const Far::TopologyRefiner& refiner
     throw Error(where + ": " + e.what());
   }
   ApplicationPatches out;
-  out.extraction = extractPatches(adopted, cage, where);
+  out.extraction = extractPatches(refiner, adopted, cage, where, uvs);
   out.extraction.patches.source = source;
   out.fromPatchPoints = patchPointMatrix(table, refiner.GetNumVerticesTotal());
   return out;

@@ -14,6 +14,7 @@
 
 #include "osd_cull/patch/extract_patches.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <span>
@@ -35,13 +36,16 @@ struct ApplicationPatches {
 };
 
 /// \brief Builds the patch set from the application's refiner and patch table (see
-/// adoptPatchTable() for what they must be); `cage` holds the refiner's level-0 positions.
+/// adoptPatchTable() for what they must be); `cage` holds the refiner's level-0 positions,
+/// `uvs` (optional) the values of its face-varying channel 0, for which the table must
+/// have been built with face-varying tables (PatchExtraction::uvCorners).
 /// The refiner and table are only read, and may be destroyed afterwards.
 /// \throws osd_cull::Error for a table osd_cull cannot use (named) or a cage of another size.
 ApplicationPatches extractApplicationPatches(const Far::TopologyRefiner& refiner,
                                              const Far::PatchTable& table,
                                              std::span<const glm::dvec3> cage,
-                                             const std::string& source = {});
+                                             const std::string& source = {},
+                                             std::span<const glm::dvec2> uvs = {});
 
 /// \brief The fromPatchPoints matrix of `table`, whose refiner has `refinedVertexCount`
 /// vertices over all levels (TopologyRefiner::GetNumVerticesTotal()).

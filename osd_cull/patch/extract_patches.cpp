@@ -84,11 +84,12 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
   }
-  return extractPatches(adaptive, positions, source);
+  return extractPatches(refiner, adaptive, positions, source, uvs);
 }
 
-PatchExtraction extractPatches(const AdaptivePatches& adaptive,
-                               std::span<const glm::dvec3> positions, const std::string& source) {
+PatchExtraction extractPatches(const Far::TopologyRefiner& refiner, const AdaptivePatches& adaptive,
+                               std::span<const glm::dvec3> positions, const std::string& source,
+                               std::span<const glm::dvec2> uvs) {
   const std::string where = source.empty() ? std::string("mesh") : source;
   const int cageVertices = adaptive.refinedStencils->GetNumControlVertices();
   if (positions.size() != static_cast<std::size_t>(cageVertices))

@@ -70,9 +70,11 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
                                std::span<const glm::dvec2> uvs = {});
 
 /// \brief The composition step alone: the PatchSet and matrix of refinement results (from
-/// buildAdaptivePatches() or adoptPatchTable()) for level-0 `positions`.
-PatchExtraction extractPatches(const AdaptivePatches& adaptive,
-                               std::span<const glm::dvec3> positions, const std::string& source);
+/// buildAdaptivePatches() or adoptPatchTable() on `refiner`) for level-0 `positions`, and
+/// with `uvs` (face-varying channel 0 of the base level) the uvCorners.
+PatchExtraction extractPatches(const Far::TopologyRefiner& refiner, const AdaptivePatches& adaptive,
+                               std::span<const glm::dvec3> positions, const std::string& source,
+                               std::span<const glm::dvec2> uvs = {});
 
 /// \brief A patch of a Far::PatchTable: patch array and index in it.
 struct PatchRef {
