@@ -133,6 +133,9 @@ class Context {
   void submit(const std::function<void(VkCommandBuffer)>& record);
   /// \brief vkDeviceWaitIdle.
   void waitIdle();
+  /// \brief How many queue submissions submit() has made since the Context was created
+  /// (lets tests check how many round trips a frame costs).
+  uint64_t submissionCount() const { return submissions_; }
 
  private:
   void createInstance(const ContextOptions& options);
@@ -157,6 +160,7 @@ class Context {
   bool ownsDevice_ = true;
   PFN_vkCmdBeginRenderingKHR beginRendering_ = nullptr;
   PFN_vkCmdEndRenderingKHR endRendering_ = nullptr;
+  uint64_t submissions_ = 0;
   std::vector<std::string> deviceExtensions_;
 };
 

@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -64,9 +65,17 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// The one place osd_cull draws into the program's frame: the two-pass culled frame.
-frame::CullFrameStats drawCulled(frame::CullFrame& cull, const frame::Camera& camera) {
-  return cull.render(camera, {});
+// The one place osd_cull draws into the program's frame: the two-pass culled frame,
+// recorded into the program's command buffer (osd_cull never submits it), submitted and
+// waited for by the program; the frame's statistics are read after its fence.
+frame::CullFrameStats drawCulled(frame::CullFrame& cull, app::Commands& commands,
+                                 const frame::Camera& camera) {
+  VkCommandBuffer cmd = commands.begin();
+  const uint64_t frame = cull.record(cmd, camera, {});
+  commands.submitAndWait();
+  const std::optional<frame::CullFrameStats> stats = cull.stats(frame);
+  if (!stats) throw std::runtime_error("the statistics of a finished frame are missing");
+  return *stats;
 }
 
 // A non-rigid wobble of the cage, frame by frame.
@@ -126,7 +135,7 @@ int run(const Options& options) {
       camera = frame::orbit(frame::frameBounds(bounds, {1.0, 0.6, 1.4}, {0, 1, 0}, 40.0,
                                                options.width, options.height),
                             bounds.center(), {0, 1, 0}, 6.0 * f);
-      const frame::CullFrameStats s = drawCulled(cull, camera);
+      const frame::CullFrameStats s = drawCulled(cull, commands, camera);
       std::printf(
           "frame %d: %u patches, drawn %u + %u, culled frustum %u, back-patch %u, "
           "occlusion %u\n",
