@@ -16,10 +16,10 @@
 /// whatever is missing): Vulkan 1.2 (VkApplicationInfo::apiVersion and the device),
 /// tessellationShader, pipelineStatisticsQuery, multiDrawIndirect in
 /// VkPhysicalDeviceFeatures, and drawIndirectCount in a VkPhysicalDeviceVulkan12Features
-/// on the chain. Used when enabled: samplerFilterMinmax, hostQueryReset,
-/// bufferDeviceAddress (1.2 struct), shaderFloat64, and dynamic rendering (Vulkan 1.3
-/// feature or VK_KHR_dynamic_rendering with its features struct) for targets without a
-/// VkRenderPass. The queue must support graphics and compute.
+/// on the chain; hostQueryReset (1.2 struct) for frame::CullFrame. Used when enabled:
+/// samplerFilterMinmax, bufferDeviceAddress (1.2 struct), shaderFloat64, and dynamic
+/// rendering (Vulkan 1.3 feature or VK_KHR_dynamic_rendering with its features struct) for
+/// targets without a VkRenderPass. The queue must support graphics and compute.
 ///
 /// What the application must keep alive: instance, device and queue until the Context
 /// and every osd_cull object made with it are destroyed. osd_cull submits to the queue
