@@ -48,7 +48,10 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
   for (const Instance& inst : instances_) {
     Points& p = *points_[inst.points];
     const SceneMesh& mesh = scene.meshes[p.mesh];
-    frame::CullMesh m{p.gpu.get(), &p.host, inst.model, mesh.validity};
+    frame::CullMesh m{.gpu = p.gpu.get(),
+                      .host = &p.host,
+                      .model = inst.model,
+                      .backPatchValidity = mesh.validity};
     // Until the per-frame bounds pass recomputes the cones, a deforming mesh is culled by
     // the tests that read its control points only (frustum, occlusion).
     if (mesh.animation)
