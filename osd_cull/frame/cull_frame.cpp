@@ -78,8 +78,10 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
         std::make_unique<VisibilityBuffer>(context, *programs_, *m.gpu, options.firstFrame));
     CullSettings settings = cull;
     if (m.backPatchValidity) settings.backPatchValidity = *m.backPatchValidity;
-    passes_.push_back(anyStage ? std::make_unique<CullPass>(context, *m.gpu, *m.host, settings)
-                               : nullptr);
+    passes_.push_back(!anyStage ? nullptr
+                      : m.cullData
+                          ? std::make_unique<CullPass>(context, *m.gpu, *m.host, settings, *m.cullData)
+                          : std::make_unique<CullPass>(context, *m.gpu, *m.host, settings));
   }
   if (!anyStage) {
     survivedResults_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
