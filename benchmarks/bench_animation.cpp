@@ -125,7 +125,11 @@ void speedSweep(vulkan::Context& context, const Options& o) {
       const frame::Bounds bounds = frame::boundsOf(mesh.patches().points);
       const double diagonal = glm::length(bounds.hi - bounds.lo);
       double culled = 0, notDrawn = 0, tes = 0, n = 0, move = 0;
-      const uint64_t fullTes = uint64_t{mesh.patches().patchCount()} * 25;
+      // Tessellation work of drawing every patch (transition edges tessellate finer, so not
+      // simply patches x 25): one unculled draw, counted by pipeline statistics.
+      const uint64_t fullTes =
+          renderer.render(target, viewOf(bounds, 0, o.size), mesh.gpu(), &mesh.patches(), fo.render)
+              .statistics.tessEvaluationInvocations;
       std::vector<glm::dvec3> positions(c.cage.positions.size()), last;
       for (int view = 0; view < 3; ++view) {
         frame::CullFrame cull(context, renderer, target, meshes, fo);
