@@ -11,6 +11,7 @@
 #include "adapters/load_mesh.h"
 #include "bench_support.h"
 #include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/bound/drawn_triangles.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/cull/cull_pass.h"
@@ -23,6 +24,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -253,8 +255,20 @@ void kernels(vulkan::Context& context, const Options& o) {
   frame::CullPass cullT(context, mesh.gpu(), host, st, tcone.cullData());
   frame::CullPass cullN(context, mesh.gpu(), host, sn, ncone.cullData());
   const frame::Camera camera = viewOf(frame::boundsOf(host.points), 0, o.size);
-  std::vector<double> bt, bn, ct, cn;
+  std::vector<double> bt, bn, ct, cn, ht, hn;
+  auto hostBuild = [&](BackPatchMethod m) {  // the double reference, one thread (no upload)
+    const auto start = std::chrono::steady_clock::now();
+    const auto cones = bound::buildPatchCones(host, m);
+    double g = 0;
+    for (uint32_t p = 0; p < host.bezierCount; ++p)
+      g += bound::bezierDerivativeBounds(host.controlPoints(p)).g;
+    if (cones.size() != host.patchCount() || !(g >= 0)) throw Error("host cones");
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  };
   for (int i = 0; i < 2 * o.frames + 1; ++i) {
+    ht.push_back(hostBuild(BackPatchMethod::TCone));
+    hn.push_back(hostBuild(BackPatchMethod::NCone));
     bt.push_back(tcone.run(mesh.pointError()));
     bn.push_back(ncone.run(mesh.pointError()));
     ct.push_back(cullT.run(camera));
@@ -271,6 +285,10 @@ void kernels(vulkan::Context& context, const Options& o) {
               ns(bt));
   std::printf("| bounds pass, NCONE (+ Gregory TCONE, G, H) | %.2f | %.0f |\n", bench::median(bn),
               ns(bn));
+  std::printf("| host reference in double, TCONE + G, H (1 thread, no upload) | %.2f | %.0f |\n",
+              bench::median(ht), ns(ht));
+  std::printf("| host reference in double, NCONE + G, H (1 thread, no upload) | %.2f | %.0f |\n",
+              bench::median(hn), ns(hn));
   std::printf("| cull kernel, frustum + tcone (+ draw commands) | %.2f | %.0f |\n",
               bench::median(ct), ns(ct));
   std::printf("| cull kernel, frustum + ncone (+ draw commands) | %.2f | %.0f |\n",

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Cull rate and not-drawn share against deformation speed (bench-animation section 1).
 
 The analogue of Niessner & Loop Fig. 9 right for motion of the mesh instead of the camera:
