@@ -120,8 +120,9 @@ void speedSweep(vulkan::Context& context, const Options& o) {
       frame::CullFrameOptions fo;
       fo.render.tessellation.uniformLevel = 4;
       fo.cull = {true, std::string(stages) == "hiz" ? "" : "tcone", "hiz", c.validity};
-      const frame::CullMesh meshes[] = {
-          {&mesh.gpu(), &mesh.patches(), &mesh.cullData(BackPatchMethod::TCone)}};
+      const frame::CullMesh meshes[] = {{.gpu = &mesh.gpu(),
+                                         .host = &mesh.patches(),
+                                         .cullData = &mesh.cullData(BackPatchMethod::TCone)}};
       frame::RenderTarget target(context, o.size, o.size);
       frame::Renderer renderer(context);
       const frame::Bounds bounds = frame::boundsOf(mesh.patches().points);
@@ -206,8 +207,9 @@ void frameCost(vulkan::Context& context, const Options& o) {
     for (Run& r : runs) {
       r.mesh = std::make_unique<frame::DynamicPatchMesh>(context, c.cage, PatchOptions{}, r.path);
       r.target = std::make_unique<frame::RenderTarget>(context, o.size, o.size);
-      const frame::CullMesh meshes[] = {
-          {&r.mesh->gpu(), &r.mesh->patches(), &r.mesh->cullData(BackPatchMethod::TCone)}};
+      const frame::CullMesh meshes[] = {{.gpu = &r.mesh->gpu(),
+                                         .host = &r.mesh->patches(),
+                                         .cullData = &r.mesh->cullData(BackPatchMethod::TCone)}};
       r.frame = std::make_unique<frame::CullFrame>(context, renderer, *r.target, meshes, fo);
     }
     const frame::Camera camera = viewOf(frame::boundsOf(runs[0].mesh->patches().points), 0, o.size);

@@ -174,8 +174,9 @@ TEST_F(AnimatedCullTest, TwoPassFramesOfASkinnedMeshEqualTheUnculledImage) {
     frame::CullFrameOptions o;
     o.render.tessellation.uniformLevel = 4;
     o.cull = {true, "tcone", "hiz", validityOf(cage)};
-    const frame::CullMesh meshes[] = {
-        {&mesh.gpu(), &mesh.patches(), &mesh.cullData(BackPatchMethod::TCone)}};
+    const frame::CullMesh meshes[] = {{.gpu = &mesh.gpu(),
+                                       .host = &mesh.patches(),
+                                       .cullData = &mesh.cullData(BackPatchMethod::TCone)}};
     frame::CullFrame cull(context(), renderer, target, meshes, o);
     const frame::Bounds bounds = frame::boundsOf(mesh.patches().points);
     const frame::Camera camera =
