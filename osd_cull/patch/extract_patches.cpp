@@ -6,6 +6,7 @@
 #include "osd_cull/patch/refiner.h"
 
 #include <opensubdiv/far/patchDescriptor.h>
+#include <opensubdiv/far/primvarRefiner.h>
 
 #include <bit>
 #include <chrono>
@@ -24,6 +25,34 @@ struct PatchRef {
   int array;
   int index;
 };
+
+// A position as OpenSubdiv's primvar refiner and stencil tables want it.
+struct Position {
+  glm::dvec3 p{0.0};
+  void Clear(void* = nullptr) { p = glm::dvec3(0.0); }
+  void AddWithWeight(const Position& src, double weight) { p += weight * src.p; }
+};
+
+// Positions of every patch point (Far::PatchTable::GetPatchVertices index): the vertices of
+// all refinement levels, refined level by level (what the refinement stencils give, without
+// building them), then the local (end-cap) points from their stencils.
+std::vector<Position> patchPointPositions(const Far::TopologyRefiner& refiner,
+                                          const AdaptivePatches& adaptive,
+                                          std::span<const glm::dvec3> cage) {
+  std::vector<Position> out(static_cast<std::size_t>(adaptive.refinedVertexCount) +
+                            static_cast<std::size_t>(adaptive.localPointCount));
+  for (std::size_t v = 0; v < cage.size(); ++v) out[v].p = cage[v];
+  Far::PrimvarRefinerReal<double> primvar(refiner);
+  Position* level = out.data();
+  for (int l = 1; l <= refiner.GetMaxLevel(); ++l) {
+    Position* next = level + refiner.GetLevel(l - 1).GetNumVertices();
+    primvar.Interpolate(l, level, next);
+    level = next;
+  }
+  if (adaptive.localPointStencils)
+    adaptive.localPointStencils->UpdateValues(out.data(), out.data() + adaptive.refinedVertexCount);
+  return out;
+}
 
 }  // namespace
 
@@ -96,26 +125,49 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
   set.params.reserve(set.patchCount());
   set.origins.reserve(set.patchCount());
 
-  MatrixComposer rows(adaptive, cageVertices);
+  const std::size_t pointCount = bezier.size() * kBezierPoints + gregory.size() * kGregoryPoints;
   for (const PatchRef& ref : bezier) {
     const Far::PatchParam param = table.GetPatchParam(ref.array, ref.index);
-    rows.addBezierPatch(table.GetPatchVertices(ref.array, ref.index),
-                        bsplineToBezierWeights(param.GetBoundary()));
     set.params.push_back(param);
     set.origins.push_back(bsplinePatchOrigin(param));
   }
   for (const PatchRef& ref : gregory) {
-    rows.addPoints(table.GetPatchVertices(ref.array, ref.index));
     set.params.push_back(table.GetPatchParam(ref.array, ref.index));
     set.origins.push_back(PatchOrigin::Gregory);
   }
-  const std::size_t pointCount = bezier.size() * kBezierPoints + gregory.size() * kGregoryPoints;
-  if (rows.rowCount() != pointCount)
-    throw Error(where + ": composed " + std::to_string(rows.rowCount()) + " rows for " +
-                std::to_string(pointCount) + " control points");
-  out.matrix = rows.finish();
   set.points.resize(pointCount);
-  out.matrix.update(positions, set.points);
+  if (options.pointMatrix) {
+    MatrixComposer rows(adaptive, cageVertices);
+    for (std::size_t p = 0; p < bezier.size(); ++p)
+      rows.addBezierPatch(table.GetPatchVertices(bezier[p].array, bezier[p].index),
+                          bsplineToBezierWeights(set.params[p].GetBoundary()));
+    for (const PatchRef& ref : gregory)
+      rows.addPoints(table.GetPatchVertices(ref.array, ref.index));
+    if (rows.rowCount() != pointCount)
+      throw Error(where + ": composed " + std::to_string(rows.rowCount()) + " rows for " +
+                  std::to_string(pointCount) + " control points");
+    out.matrix = rows.finish();
+    out.matrix.update(positions, set.points);
+  } else {
+    // The same points without the matrix: each Bézier point is its conversion row applied to
+    // the 16 B-spline points (bspline_bezier.h), each Gregory point a patch point.
+    const std::vector<Position> at = patchPointPositions(refiner, adaptive, positions);
+    glm::dvec3* point = set.points.data();
+    for (std::size_t p = 0; p < bezier.size(); ++p) {
+      const Far::ConstIndexArray cvs = table.GetPatchVertices(bezier[p].array, bezier[p].index);
+      const PatchConversion& conversion = bsplineToBezierWeights(set.params[p].GetBoundary());
+      for (std::size_t r = 0; r < kBezierPoints; ++r, ++point) {
+        glm::dvec3 sum(0.0);
+        for (int k = 0; k < 16; ++k)
+          if (conversion[r][k] != 0.0) sum += conversion[r][k] * at[cvs[k]].p;
+        *point = sum;
+      }
+    }
+    for (const PatchRef& ref : gregory) {
+      const Far::ConstIndexArray cvs = table.GetPatchVertices(ref.array, ref.index);
+      for (int k = 0; k < cvs.size(); ++k) *point++ = at[cvs[k]].p;
+    }
+  }
 
   for (PatchOrigin origin : set.origins) {
     switch (origin) {

@@ -6,7 +6,8 @@
 
 layout(push_constant) uniform Push { CullConstants pc; };
 
-layout(std430, set = 0, binding = kCullBindingPoints) readonly buffer Points { float points[]; };
+#define POINTS_BINDING kCullBindingPoints
+#include "../common/control_points.glsl"
 layout(std430, set = 0, binding = kCullBindingCones) readonly buffer Cones { vec4 cones[]; };
 layout(std430, set = 0, binding = kCullBindingResults) writeonly buffer Results { uint results[]; };
 layout(std430, set = 0, binding = kCullBindingDrawList) writeonly buffer DrawList { uint drawList[]; };
@@ -25,11 +26,6 @@ uint pointCount(uint patchIndex) { return isBezier(patchIndex) ? 16u : 20u; }
 uint firstPoint(uint patchIndex) {
   return isBezier(patchIndex) ? patchIndex * 16u
                               : pc.bezierCount * 16u + (patchIndex - pc.bezierCount) * 20u;
-}
-
-vec3 controlPoint(uint index) {
-  uint base = pc.pointOffset + index * pc.pointStride;
-  return vec3(points[base], points[base + 1u], points[base + 2u]);
 }
 
 // c = viewProj * (p, 1) and m = |viewProj| * (|p|, 1): m bounds every product summed in c

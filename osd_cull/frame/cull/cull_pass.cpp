@@ -5,6 +5,7 @@
 #include "osd_cull/frame/draw/draw_chunks.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 #include "osd_cull/vk/shader_compiler.h"
 #include "osd_cull/vk/transfer.h"
@@ -78,13 +79,14 @@ void packCone(const bound::ConeOfNormals& c, const bound::DerivativeBounds& d, f
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
 std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
-                          bool drawnTriangles) {
+                          bool drawnTriangles, bool pointsByAddress) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
   };
   std::string text = "#version 450\n";
   text += "#define CULL_LANES " + std::to_string(lanes) + "\n";
+  text += std::string("#define OSD_CULL_POINTS_BDA ") + (pointsByAddress ? "1" : "0") + "\n";
   text += std::string("#define CULL_FRUSTUM ") + (has(CullStage::Frustum) ? "1" : "0") + "\n";
   text += std::string("#define CULL_BACK_PATCH ") + (has(CullStage::BackPatch) ? "1" : "0") + "\n";
   text += std::string("#define CULL_OCCLUSION ") + (has(CullStage::Occlusion) ? "1" : "0") + "\n";
@@ -141,6 +143,7 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
   if (!settings.occlusion.empty()) add(settings.occlusion, CullStage::Occlusion);
 
   const uint32_t n = host.patchCount();
+  checkLimits(n);
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   constexpr size_t kFloatsPerCone = 4 * sh::kConeVec4s;
@@ -164,7 +167,8 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
     if (m->table) table = m->table();
   table_ = vulkan::Buffer(context, table.size() * sizeof(uint32_t), storage);
   vulkan::upload<uint32_t>(context, table_, table);
-  results_ = vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage, vulkan::MemoryUse::Readback);
+  results_ =
+      vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage, vulkan::MemoryUse::Readback);
   drawList_ = vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage);
   counters_ = vulkan::Buffer(context, sh::kCounterCount * 4, indirect, vulkan::MemoryUse::Readback);
   commands_ = vulkan::Buffer(context, (size_t{n} + 2) * sizeof(VkDrawIndirectCommand), indirect);
@@ -175,6 +179,23 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
 
 CullPass::~CullPass() = default;
 
+void CullPass::checkLimits(uint32_t n) const {
+  // Everything the pass binds, dispatches or draws, named, before any buffer exists
+  // (the points are GpuPatchSet's to check).
+  const std::string of = " of " + std::to_string(n) + " patches";
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4 * sh::kConeVec4s * sizeof(float),
+                                  "CullPass: the cones" + of);
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4, "CullPass: the result codes" + of);
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4, "CullPass: the draw list" + of);
+  vulkan::checkStorageBufferRange(context_, (uint64_t{n} + 2) * sizeof(VkDrawIndirectCommand),
+                                  "CullPass: the draw commands" + of);
+  vulkan::checkedGroups2D(context_, vulkan::groupCount(n, sh::kCullGroupSize / lanes_),
+                          "CullPass: the cull dispatch" + of);
+  vulkan::checkedGroups1D(context_, vulkan::groupCount(n + 2, sh::kDrawsGroupSize),
+                          "CullPass: the draw-command dispatch" + of);
+  vulkan::checkDrawIndirectCount(context_, n, "CullPass: the indirect draws" + of);
+}
+
 void CullPass::buildPipelines(vulkan::Context& context) {
   setLayout_ = vulkan::createDescriptorSetLayout(context, kBindings);
   std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
@@ -184,16 +205,17 @@ void CullPass::buildPipelines(vulkan::Context& context) {
       layouts.push_back(stageSetLayout_.get());
     }
   layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
-                                     VK_SHADER_STAGE_COMPUTE_BIT);
-  const vulkan::Spirv cull = vulkan::compileGlsl(composeKernel(stages_, lanes_, settings_.drawnTriangles),
-                                         "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+                                         VK_SHADER_STAGE_COMPUTE_BIT);
+  const vulkan::Spirv cull = vulkan::compileGlsl(
+      composeKernel(stages_, lanes_, settings_.drawnTriangles, gpu_.pointsByAddress()),
+      "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
   cullPipeline_ = vulkan::createComputePipeline(context, layout_.get(), cull);
-  drawsPipeline_ = vulkan::createComputePipeline(context, layout_.get(),
-                                             vulkan::compileShader({"cull/write_draws.comp", {}}));
+  drawsPipeline_ = vulkan::createComputePipeline(
+      context, layout_.get(), vulkan::compileShader({"cull/write_draws.comp", {}}));
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(setLayout_.get());
   vulkan::DescriptorWriter()
-      .buffer(sh::kCullBindingPoints, gpu_.points())
+      .buffer(sh::kCullBindingPoints, gpu_.pointBinding())
       .buffer(sh::kCullBindingCones, conesBuffer_)
       .buffer(sh::kCullBindingResults, results_)
       .buffer(sh::kCullBindingDrawList, drawList_)
@@ -286,7 +308,10 @@ void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPipeline_.get());
-    vkCmdDispatch(cmd, vulkan::groupCount(n, sh::kCullGroupSize / lanes_), 1, 1);
+    const vulkan::DispatchSize groups =
+        vulkan::checkedGroups2D(context_, vulkan::groupCount(n, sh::kCullGroupSize / lanes_),
+                                "CullPass: the cull dispatch");
+    vkCmdDispatch(cmd, groups.x, groups.y, 1);
   }
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite, vulkan::scope::kComputeReadWrite);
   const uint32_t commandCount =

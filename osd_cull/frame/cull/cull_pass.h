@@ -73,7 +73,8 @@ class CullPass {
  public:
   /// \brief Builds the kernel variant for `settings` and uploads the per-mesh data (cones
   /// of the back-patch method, built on the host in double, rounded toward "visible").
-  /// \throws osd_cull::Error for unknown method names or a method in the wrong stage.
+  /// \throws osd_cull::Error for unknown method names, a method in the wrong stage, or a
+  /// buffer, dispatch or draw count beyond a device limit (named; before anything exists).
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings);
   ~CullPass();
@@ -136,6 +137,7 @@ class CullPass {
 
  private:
   void buildPipelines(vulkan::Context& context);
+  void checkLimits(uint32_t patchCount) const;
   shader::CullConstants constants(const Camera& camera,
                                   const TessellationOptions& tessellation) const;
 

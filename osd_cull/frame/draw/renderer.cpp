@@ -2,6 +2,7 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 
 #include <shared/draw_layout.h>
@@ -57,17 +58,18 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
   meshSetLayout_ = vulkan::createDescriptorSetLayout(context, triangleMeshBindings());
   const VkDescriptorSetLayout p = patchSetLayout_.get();
   const VkDescriptorSetLayout m = meshSetLayout_.get();
-  patchLayout_ =
-      vulkan::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
-  meshLayout_ =
-      vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
+  patchLayout_ = vulkan::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants),
+                                              kGraphicsStages);
+  meshLayout_ = vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants),
+                                             kGraphicsStages);
 }
 
 VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
   auto& slot = patchPipelines_[{type, cullBackFaces}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
-  const std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
+  const std::vector<vulkan::ShaderDefine> defines = {
+      {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
   vulkan::GraphicsPipelineDesc d;
   d.stages.push_back(
       {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"patch/patch.vert", defines}), {}});
@@ -167,10 +169,11 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const Patc
 
 void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
                               PatchType type, const vulkan::Buffer& commands, VkDeviceSize offset,
-                              const vulkan::Buffer& count, VkDeviceSize countOffset, uint32_t maxDraws,
-                              const RenderOptions& options) {
+                              const vulkan::Buffer& count, VkDeviceSize countOffset,
+                              uint32_t maxDraws, const RenderOptions& options) {
   if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
   if (maxDraws == 0) return;
+  vulkan::checkDrawIndirectCount(context_, maxDraws, "Renderer::recordIndirect");
   bindPatches(cmd, camera, draw, type, options);
   vkCmdDrawIndirectCount(cmd, commands.handle(), offset, count.handle(), countOffset, maxDraws,
                          sizeof(VkDrawIndirectCommand));
