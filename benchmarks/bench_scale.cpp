@@ -4,15 +4,19 @@
 //
 //   bench-scale [--grids 100,316,700,1000] [--level 1] [--method tcone] [--views 3]
 //               [--repeats 3] [--tess 4] [--width 256] [--height 256] [--matrix]
-//               [--device X]
+//               [--setup-only] [--device X]
 //
 // Each grid size runs in its own child process (one after the other), so that its peak RSS
 // (VmHWM of /proc/self/status) is its own. Per size:
-// - set-up: the stages of extractPatches (topology, refinement, patch table, stencils, and
+// - set-up (alone with --setup-only, which prints only these columns and the peak RSS in
+//   MB): the stages of extractPatches
+// (topology, refinement, patch table, stencils, and
 //   the points — with --matrix the cage -> point matrix too), the GpuPatchSet upload and the
-//   CullPass construction (kernel, cones), wall clock;
+//   CullPass construction (kernel, cones), wall clock, and the CPU time of extractPatches;
 // - memory: peak RSS, per patch, and per patch above the RSS before extraction (Vulkan
-//   instance, device and driver; on lavapipe device memory is process memory and counts);
+//   instance, device and driver; on lavapipe device memory is process memory and counts),
+//   and what each stage added to the RSS (extraction, GpuPatchSet upload, CullPass, the
+//   cull and draw runs);
 // - cull: one pass (frustum + --method) per submission, wall clock median over views x
 //   repeats, per patch;
 // - draw: all patches at uniform tessellation --tess, median wall ms over the views, and the
@@ -30,6 +34,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -48,6 +53,7 @@ struct Options {
   std::string method = "tcone";
   uint32_t views = 3, repeats = 3, tess = 4, width = 256, height = 256;
   bool matrix = false;
+  bool setupOnly = false;
   std::string device;
 };
 
@@ -67,8 +73,8 @@ Options parse(int argc, char** argv) {
       {"--device", [&](const std::string& v) { o.device = v; }}};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--matrix") {
-      o.matrix = true;
+    if (a == "--matrix" || a == "--setup-only") {
+      (a == "--matrix" ? o.matrix : o.setupOnly) = true;
       continue;
     }
     const auto it = valued.find(a);
@@ -103,19 +109,34 @@ void runGrid(const Options& o, uint32_t grid) {
   PatchOptions po;
   po.isolationLevel = o.level;
   po.pointMatrix = o.matrix;
-  const PatchExtraction ex = extractPatches(scene::torus(int(grid), int(grid), 1.0, 0.4), po);
+  const CageMesh cage = scene::torus(int(grid), int(grid), 1.0, 0.4);
+  const std::clock_t cpuStart = std::clock();
+  const PatchExtraction ex = extractPatches(cage, po);
+  // CPU time of the set-up (all threads): less disturbed than wall time on a shared machine.
+  const double setupCpuMs = 1000.0 * double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
   const PatchSet& set = ex.patches;
   const uint32_t n = set.patchCount();
+  if (o.setupOnly) {
+    const ExtractionStats& st = ex.stats;
+    std::printf("| %u | %u | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** | %.0f | %.0f |\n", grid,
+                n, st.topologyMs, st.refineMs, st.patchTableMs, st.stencilMs, st.matrixMs,
+                st.totalMs, setupCpuMs, statusBytes("VmHWM:") / 1048576.0);
+    std::fflush(stdout);
+    return;
+  }
+  std::vector<double> rss = {statusBytes("VmRSS:")};  // after each stage
 
   auto start = Clock::now();
   frame::GpuPatchSet gpu(context, set);
   const double uploadMs = msSince(start);
+  rss.push_back(statusBytes("VmRSS:"));
   frame::CullSettings settings;
   settings.backPatch = o.method;
   settings.backPatchValidity = {true, "closed torus"};
   start = Clock::now();
   frame::CullPass pass(context, gpu, set, settings);
   const double passMs = msSince(start);
+  rss.push_back(statusBytes("VmRSS:"));
 
   frame::ViewSetOptions vo;
   vo.count = o.views;
@@ -140,15 +161,18 @@ void runGrid(const Options& o, uint32_t grid) {
     if (tes == 0) tes = s.statistics.tessEvaluationInvocations;
   }
 
+  rss.push_back(statusBytes("VmRSS:"));
   const ExtractionStats& st = ex.stats;
   const double setupMs = st.totalMs;  // topology included
   const double peak = statusBytes("VmHWM:");
   std::printf(
-      "| %u | %u | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** | %.0f | %.0f | %.0f | **%.0f** | "
-      "%.0f | **%.0f** | %.0f | %llu |\n",
+      "| %u | %u | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** | %.0f | %.0f | %.0f | %.0f | "
+      "**%.0f** | "
+      "%.0f | **%.0f** | %.0f | %llu | %.0f / %.0f / %.0f / %.0f |\n",
       grid, n, st.topologyMs, st.refineMs, st.patchTableMs, st.stencilMs, st.matrixMs, setupMs,
-      uploadMs, passMs, peak / 1048576.0, peak / n, (peak - baseline) / n, median(cullMs) * 1e6 / n,
-      median(drawMs), static_cast<unsigned long long>(tes));
+      setupCpuMs, uploadMs, passMs, peak / 1048576.0, peak / n, (peak - baseline) / n,
+      median(cullMs) * 1e6 / n, median(drawMs), static_cast<unsigned long long>(tes),
+      (rss[0] - baseline) / n, (rss[1] - rss[0]) / n, (rss[2] - rss[1]) / n, (rss[3] - rss[2]) / n);
   std::fflush(stdout);
 }
 
@@ -164,9 +188,11 @@ int main(int argc, char** argv) {
         o.matrix ? "built" : "not built");
     std::printf(
         "| grid | patches | topology ms | refine ms | patch table ms | stencils ms | points ms | "
-        "set-up ms | upload ms | cull pass ms | peak RSS MB | bytes/patch | above baseline "
-        "B/patch | cull ns/patch | draw ms | TES invocations |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        "set-up ms | set-up CPU ms | upload ms | cull pass ms | peak RSS MB | bytes/patch | above "
+        "baseline "
+        "B/patch | cull ns/patch | draw ms | TES invocations | RSS B/patch added by extraction / "
+        "upload / cull pass / runs |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::fflush(stdout);
     int failures = 0;
     for (uint32_t grid : o.grids) {

@@ -8,8 +8,10 @@
 #include <opensubdiv/far/patchDescriptor.h>
 #include <opensubdiv/far/primvarRefiner.h>
 
+#include <array>
 #include <bit>
 #include <chrono>
+#include <cstdint>
 #include <vector>
 
 namespace osd_cull {
@@ -25,6 +27,21 @@ struct PatchRef {
   int array;
   int index;
 };
+
+// One non-zero weight of a B-spline -> Bézier conversion (a regular patch has 100 of 256).
+struct ConversionTerm {
+  uint8_t row;
+  uint8_t column;
+  double weight;
+};
+
+std::vector<ConversionTerm> nonZeroTerms(const PatchConversion& conversion) {
+  std::vector<ConversionTerm> out;
+  for (uint8_t r = 0; r < 16; ++r)
+    for (uint8_t k = 0; k < 16; ++k)
+      if (conversion[r][k] != 0.0) out.push_back({r, k, conversion[r][k]});
+  return out;
+}
 
 // A position as OpenSubdiv's primvar refiner and stencil tables want it.
 struct Position {
@@ -104,6 +121,7 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
   const auto start = Clock::now();
   // Bézier patches first, then Gregory (patch_set.h), each in patch-table order.
   std::vector<PatchRef> bezier, gregory;
+  bezier.reserve(static_cast<std::size_t>(table.GetNumPatchesTotal()));
   for (int a = 0; a < table.GetNumPatchArrays(); ++a) {
     const Far::PatchDescriptor::Type type = table.GetPatchArrayDescriptor(a).GetType();
     std::vector<PatchRef>* list = type == Far::PatchDescriptor::REGULAR         ? &bezier
@@ -135,7 +153,6 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
     set.params.push_back(table.GetPatchParam(ref.array, ref.index));
     set.origins.push_back(PatchOrigin::Gregory);
   }
-  set.points.resize(pointCount);
   if (options.pointMatrix) {
     MatrixComposer rows(adaptive, cageVertices);
     for (std::size_t p = 0; p < bezier.size(); ++p)
@@ -147,26 +164,33 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
       throw Error(where + ": composed " + std::to_string(rows.rowCount()) + " rows for " +
                   std::to_string(pointCount) + " control points");
     out.matrix = rows.finish();
+    set.points.resize(pointCount);
     out.matrix.update(positions, set.points);
   } else {
     // The same points without the matrix: each Bézier point is its conversion row applied to
     // the 16 B-spline points (bspline_bezier.h), each Gregory point a patch point.
     const std::vector<Position> at = patchPointPositions(refiner, adaptive, positions);
-    glm::dvec3* point = set.points.data();
+    std::array<std::vector<ConversionTerm>, 16> terms;  // per boundary mask, on first use
+    // Appended, not resized and overwritten: at a million patches touching the 384 MB of
+    // points twice costs more than computing them (docs/results/scale.md).
+    set.points.reserve(pointCount);
     for (std::size_t p = 0; p < bezier.size(); ++p) {
       const Far::ConstIndexArray cvs = table.GetPatchVertices(bezier[p].array, bezier[p].index);
-      const PatchConversion& conversion = bsplineToBezierWeights(set.params[p].GetBoundary());
-      for (std::size_t r = 0; r < kBezierPoints; ++r, ++point) {
-        glm::dvec3 sum(0.0);
-        for (int k = 0; k < 16; ++k)
-          if (conversion[r][k] != 0.0) sum += conversion[r][k] * at[cvs[k]].p;
-        *point = sum;
-      }
+      const unsigned mask = static_cast<unsigned>(set.params[p].GetBoundary()) & 15u;
+      if (terms[mask].empty()) terms[mask] = nonZeroTerms(bsplineToBezierWeights(mask));
+      glm::dvec3 cv[16];
+      for (int k = 0; k < 16; ++k) cv[k] = at[static_cast<std::size_t>(cvs[k])].p;
+      glm::dvec3 point[kBezierPoints] = {};
+      for (const ConversionTerm& t : terms[mask]) point[t.row] += t.weight * cv[t.column];
+      set.points.insert(set.points.end(), point, point + kBezierPoints);
     }
     for (const PatchRef& ref : gregory) {
       const Far::ConstIndexArray cvs = table.GetPatchVertices(ref.array, ref.index);
-      for (int k = 0; k < cvs.size(); ++k) *point++ = at[cvs[k]].p;
+      for (int k = 0; k < cvs.size(); ++k) set.points.push_back(at[cvs[k]].p);
     }
+    if (set.points.size() != pointCount)
+      throw Error(where + ": refined " + std::to_string(set.points.size()) + " points for " +
+                  std::to_string(pointCount) + " control points");
   }
 
   for (PatchOrigin origin : set.origins) {

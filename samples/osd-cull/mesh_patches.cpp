@@ -16,13 +16,14 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
     return out;
   }
   const CageMesh& cage = *mesh.cage;
-  out.backPatch =
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
+  // One refiner for both: the summary reads level 0, which refinement leaves as it is.
+  const std::unique_ptr<Far::TopologyRefiner> refiner = makeTopologyRefiner(cage);
+  out.backPatch = bound::backPatchValidity(summarize(*refiner), bound::signedVolume(cage));
   // The commands never move the cage: no cage -> point matrix (a fraction of the time and
   // memory at a million patches).
   PatchOptions pointsOnly = options;
   pointsOnly.pointMatrix = false;
-  out.patches = extractPatches(cage, pointsOnly).patches;
+  out.patches = extractPatches(*refiner, cage.positions, pointsOnly, cage.source).patches;
   return out;
 }
 
