@@ -32,7 +32,9 @@ PatchSet sphere() {
   return frame::convertToGregory(s, [](uint32_t p) { return p % 5 == 2; });
 }
 
-VkDeviceSize pointBytes(const PatchSet& s) { return VkDeviceSize{s.points.size()} * 16; }
+VkDeviceSize pointBytes(const PatchSet& s) {
+  return VkDeviceSize{s.points.size()} * frame::GpuPatchSet::kOwnPointStride * sizeof(float);
+}
 
 // A validated context whose device facts `adjust` edits; fails the test on any validation
 // message when it goes away.

@@ -9,7 +9,6 @@
 #include <shared/point_source.h>
 
 #include <algorithm>
-#include <cstring>
 #include <numeric>
 
 namespace osd_cull::frame {
@@ -66,7 +65,8 @@ GpuPatchSet::GpuPatchSet(vulkan::Context& context, const PatchSet& patches)
                 std::to_string(patches.gregoryCount) + " Gregory patches (expected " +
                 std::to_string(expectedPoints) + " points)");
   // Buffers are never empty (Vulkan forbids size 0); an empty set draws nothing.
-  const size_t pointBytes = std::max<size_t>(16, patches.points.size() * 16);
+  const size_t pointBytes =
+      std::max<size_t>(16, patches.points.size() * kOwnPointStride * sizeof(float));
   const std::string name = "GpuPatchSet '" + patches.source + "': ";
   if (!pointsByAddress_)
     checkPointRange(context, pointBytes,
@@ -153,14 +153,16 @@ void GpuPatchSet::updatePoints(vulkan::Context& context, std::span<const glm::dv
   if (points.size() != pointCount_)
     throw Error("GpuPatchSet::updatePoints: got " + std::to_string(points.size()) +
                 " points, the set has " + std::to_string(pointCount_));
-  // Packed straight into staging memory, piece by piece (no full-size float copy).
-  vulkan::uploadGenerated(context, points_, points.size() * 4 * sizeof(float),
-                          [&](std::span<std::byte> chunk, VkDeviceSize offset) {
-                            const size_t first = static_cast<size_t>(offset / (4 * sizeof(float)));
-                            const std::vector<float> packed = packPoints(
-                                points.subspan(first, chunk.size() / (4 * sizeof(float))));
-                            std::memcpy(chunk.data(), packed.data(), chunk.size());
-                          });
+  // Converted straight into staging memory, piece by piece (no full-size float copy); a
+  // piece may end inside a point.
+  vulkan::uploadGenerated(
+      context, points_, points.size() * kOwnPointStride * sizeof(float),
+      [&](std::span<std::byte> chunk, VkDeviceSize offset) {
+        auto* out = reinterpret_cast<float*>(chunk.data());
+        size_t f = static_cast<size_t>(offset / sizeof(float));
+        for (size_t i = 0; i < chunk.size() / sizeof(float); ++i, ++f)
+          out[i] = static_cast<float>(points[f / kOwnPointStride][int(f % kOwnPointStride)]);
+      });
 }
 
 }  // namespace osd_cull::frame

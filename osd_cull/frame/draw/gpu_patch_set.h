@@ -21,7 +21,8 @@ namespace osd_cull::frame {
 /// \brief Device copy of a PatchSet, in the layout the draw and cull shaders read
 /// (shaders/shared/draw_layout.h):
 /// - points(): float array, control point i at floats [pointOffset() + i*pointStride(), +3)
-///   (stride 4 for the set's own buffer: x, y, z, 1); PatchSet point order. An evaluator
+///   (stride kOwnPointStride = 3 for the set's own buffer: x, y, z, 12 bytes a point, 192 a
+///   Bézier patch); PatchSet point order. An evaluator
 ///   may write this buffer directly, or readPointsFrom() makes the set read another buffer
 ///   (e.g. osd::GpuPointUpdate::points(), stride 3 or 4).
 /// - params(): two uints per patch, Far::PatchParam field0 and field1.
@@ -85,6 +86,8 @@ class GpuPatchSet {
   VkDescriptorSet descriptorSetWithDrawList(vulkan::Context& context,
                                             const vulkan::Buffer& drawList);
   static constexpr uint32_t kMaxDrawListSets = 15;
+  /// \brief Floats per point in the set's own buffer (x, y, z).
+  static constexpr uint32_t kOwnPointStride = 3;
   /// \brief Writes points (the current source, see readPointsFrom()), params and `drawList`
   /// into `set`, a set the caller allocated with a layout of patchSetBindings() (for
   /// callers that own their sets and pools).
@@ -102,7 +105,7 @@ class GpuPatchSet {
   const vulkan::Buffer* pointSource_ = &points_;
   bool pointsByAddress_ = false;
   vulkan::Buffer pointRecord_;  // shader::PointSource, host-written
-  uint32_t pointStride_ = 4;
+  uint32_t pointStride_ = kOwnPointStride;
   uint32_t pointOffset_ = 0;
   vulkan::Buffer params_;
   vulkan::Buffer drawList_;
@@ -120,7 +123,7 @@ std::span<const vulkan::DescriptorBinding> patchSetBindings();
 /// context ("1" with bufferDeviceAddress, else "0"); matches GpuPatchSet::pointsByAddress().
 const char* pointsByAddressDefine(const vulkan::Context& context);
 
-/// \brief Packs points as float x, y, z, 1 (the points() layout).
+/// \brief Packs points as float x, y, z, 1 (a vec4 vertex layout, e.g. triangle meshes).
 std::vector<float> packPoints(std::span<const glm::dvec3> points);
 
 }  // namespace osd_cull::frame
