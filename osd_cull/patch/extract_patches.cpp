@@ -2,6 +2,7 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/patch/bspline_bezier.h"
+#include "osd_cull/patch/face_varying_uv.h"
 #include "osd_cull/patch/matrix_composer.h"
 #include "osd_cull/patch/refiner.h"
 
@@ -12,6 +13,7 @@
 #include <bit>
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace osd_cull {
@@ -96,14 +98,15 @@ PatchExtraction extractPatches(const CageMesh& cage, const PatchOptions& options
   const auto start = Clock::now();
   std::unique_ptr<Far::TopologyRefiner> refiner = makeTopologyRefiner(cage);
   const double topologyMs = msSince(start);
-  PatchExtraction out = extractPatches(*refiner, cage.positions, options, cage.source);
+  PatchExtraction out = extractPatches(*refiner, cage.positions, options, cage.source, cage.uvs);
   out.stats.topologyMs = topologyMs;
   out.stats.totalMs += topologyMs;
   return out;
 }
 
 PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const glm::dvec3> positions,
-                               const PatchOptions& options, const std::string& source) {
+                               const PatchOptions& options, const std::string& source,
+                               std::span<const glm::dvec2> uvs) {
   const std::string where = source.empty() ? std::string("mesh") : source;
   const int cageVertices = refiner.GetLevel(0).GetNumVertices();
   if (positions.size() != static_cast<std::size_t>(cageVertices))
@@ -144,14 +147,18 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
   set.origins.reserve(set.patchCount());
 
   const std::size_t pointCount = bezier.size() * kBezierPoints + gregory.size() * kGregoryPoints;
+  std::optional<PatchUVEvaluator> uvEvaluator;
+  if (!uvs.empty()) uvEvaluator.emplace(refiner, table, uvs, where);
   for (const PatchRef& ref : bezier) {
     const Far::PatchParam param = table.GetPatchParam(ref.array, ref.index);
     set.params.push_back(param);
     set.origins.push_back(bsplinePatchOrigin(param));
+    if (uvEvaluator) uvEvaluator->appendCorners(ref.array, ref.index, out.uvCorners);
   }
   for (const PatchRef& ref : gregory) {
     set.params.push_back(table.GetPatchParam(ref.array, ref.index));
     set.origins.push_back(PatchOrigin::Gregory);
+    if (uvEvaluator) uvEvaluator->appendCorners(ref.array, ref.index, out.uvCorners);
   }
   if (options.pointMatrix) {
     MatrixComposer rows(adaptive, cageVertices);

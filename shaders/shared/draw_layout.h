@@ -7,7 +7,7 @@
 OSD_CULL_SHARED_BEGIN
 
 // Descriptor bindings of the patch draw set (set 0).
-OSD_CULL_CONST uint kBindingPoints = 0;  // float points[]: control points, pointStride floats each
+OSD_CULL_CONST uint kBindingPoints = 0;  // control points: common/control_points.glsl
 OSD_CULL_CONST uint kBindingParams = 1;  // uint params[]: Far::PatchParam field0, field1 per patch
 OSD_CULL_CONST uint kBindingDrawList = 2;  // uint drawList[]: patch index per draw slot
 
@@ -19,6 +19,7 @@ OSD_CULL_CONST uint kTessAdaptive = 1u;
 OSD_CULL_CONST uint kFlagDebugColors = 1u;    // color each patch by a hash of its index
 OSD_CULL_CONST uint kFlagStatusColors = 2u;   // color each patch by its draw-list status field
 OSD_CULL_CONST uint kFlagFrontWinsTies = 4u;  // push back-facing fragments back (patch.frag)
+OSD_CULL_CONST uint kFlagPatchTypeColors = 8u;  // regular/boundary/corner/Gregory (patch.tese)
 
 // A draw-list entry: the patch index in the low 28 bits, a status for the debug view in
 // bits 28-30 (kDrawStatus*) and, in bit 31, "culled": the control shader sets every

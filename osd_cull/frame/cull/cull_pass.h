@@ -77,6 +77,13 @@ class CullPass {
   /// buffer, dispatch or draw count beyond a device limit (named; before anything exists).
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings);
+  /// \brief The same, reading the per-patch cull data from `cullData` (kConeVec4s vec4 per
+  /// patch, e.g. BoundsPass::cullData() of the same method, recomputed on the GPU when the
+  /// points move) instead of building cones on the host. `cullData` is borrowed and must
+  /// outlive the pass; cones() is then empty (the reference builds cones from the frame's
+  /// points: bound::buildPatchCones).
+  CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
+           const CullSettings& settings, const vulkan::Buffer& cullData);
   ~CullPass();
   CullPass(const CullPass&) = delete;
   CullPass& operator=(const CullPass&) = delete;
@@ -136,8 +143,11 @@ class CullPass {
   const vulkan::Buffer& counters() const { return counters_; }
 
  private:
+  CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
+           const CullSettings& settings, const vulkan::Buffer* cullData);
   void buildPipelines(vulkan::Context& context);
   void checkLimits(uint32_t patchCount) const;
+  void uploadHostCones(vulkan::Context& context);
   shader::CullConstants constants(const Camera& camera,
                                   const TessellationOptions& tessellation) const;
 
@@ -150,7 +160,8 @@ class CullPass {
   uint32_t lanes_ = 1;
   std::vector<bound::ConeOfNormals> cones_;
 
-  vulkan::Buffer conesBuffer_;
+  vulkan::Buffer conesBuffer_;                      // host-built cull data (unused if external)
+  const vulkan::Buffer* cullData_ = &conesBuffer_;  // what the kernel reads
   vulkan::Buffer table_;
   vulkan::Buffer results_;
   vulkan::Buffer drawList_;

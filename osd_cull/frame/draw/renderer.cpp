@@ -26,7 +26,8 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
       t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
   c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
             (options.statusColors ? shader::kFlagStatusColors : 0u) |
-            (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u);
+            (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
+            (options.patchTypeColors && !options.statusColors ? shader::kFlagPatchTypeColors : 0u);
   return c;
 }
 
@@ -64,8 +65,9 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
                                              kGraphicsStages);
 }
 
-VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
-  auto& slot = patchPipelines_[{type, cullBackFaces}];
+VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
+                                   bool mirrored) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
   const std::vector<vulkan::ShaderDefine> defines = {
@@ -87,9 +89,15 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
   d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   d.patchControlPoints = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
   d.cullMode = cullBackFaces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+  if (wireframe) {
+    if (!context_.info().optional.fillModeNonSolid)
+      throw Error("wireframe drawing needs the device feature fillModeNonSolid");
+    d.polygonMode = VK_POLYGON_MODE_LINE;
+  }
   // With the y-flipping projections of camera.h, triangles of a patch whose dP/du x dP/dv
-  // faces the eye come out clockwise in framebuffer space.
-  d.frontFace = VK_FRONT_FACE_CLOCKWISE;
+  // faces the eye come out clockwise in framebuffer space; a mirroring model matrix
+  // (instanceCamera() with a negative determinant) turns them counter-clockwise.
+  d.frontFace = mirrored ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE;
   slot = vulkan::createGraphicsPipeline(context_, d);
   return slot.get();
 }
@@ -149,11 +157,13 @@ void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
   }
 }
 
-void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const PatchDraw& draw,
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    patchPipeline(type, options.cullBackFaces));
+  const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
+  vkCmdBindPipeline(
+      cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+      patchPipeline(type, options.cullBackFaces, options.wireframe, isMirrored(camera)));
   const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
                           nullptr);
