@@ -1,9 +1,10 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Cost per patch against the patch count, from bench-scale output (Markdown tables). Writes
 an SVG with matplotlib: cull ns/patch, peak RSS bytes/patch and set-up CPU us/patch, each
 relative to its value at the smallest size, on a log patch axis.
 
-  scripts/plots/scale.py docs/results/scale/bench_scale.md docs/results/scale/scale.svg
+  /usr/bin/python3 scripts/plots/scale.py docs/results/scale/bench_scale.md \
+      docs/results/scale/scale.svg   # python3-matplotlib (Debian)
 
 Every table row of the input whose first cell is a number is a measurement; rows of the same
 patch count (several runs) are reduced to their median.
