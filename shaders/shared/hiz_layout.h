@@ -36,6 +36,14 @@ OSD_CULL_CONST float kHiZRelativeError = 3.814697265625e-6f;  // 2^-18
 OSD_CULL_CONST float kHiZDepthBias = 9.5367431640625e-7f;     // 2^-20
 OSD_CULL_CONST float kHiZPixelMargin = 0.015625f;             // 1/64
 OSD_CULL_CONST float kHiZGpuMarginScale = 2.0f;
+// Depth extrapolation of the rasterizer (docs/algorithms/occlusion.md, "Sub-pixel
+// patches"): lavapipe interpolates depth over a plane through the triangle's float vertices
+// but decides coverage on vertices snapped to 1/256 pixel, so a covered pixel centre can lie
+// outside the triangle and get a depth below all three vertices' (measured: 1% of a
+// sub-pixel patch's depth range). The nearest depth is lowered by kHiZExtrapolation times
+// the patch's depth range (farthest - nearest control point): it covers a centre up to one
+// triangle height outside the triangle.
+OSD_CULL_CONST float kHiZExtrapolation = 1.0f;
 
 // HiZParams.lookup: the level a box is looked up at. Paper (§4.1.1): ceil(log2(n)) for an
 // n-pixel box, where 2x2 texels always cover it. Tight: one level finer when the box, as it
