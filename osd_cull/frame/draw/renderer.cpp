@@ -25,7 +25,8 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
       t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
   c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
             (options.statusColors ? shader::kFlagStatusColors : 0u) |
-            (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u);
+            (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
+            (options.patchTypeColors && !options.statusColors ? shader::kFlagPatchTypeColors : 0u);
   return c;
 }
 
@@ -63,8 +64,8 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
       vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
 }
 
-VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
-  auto& slot = patchPipelines_[{type, cullBackFaces}];
+VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
   const std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
@@ -85,6 +86,11 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces) {
   d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   d.patchControlPoints = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
   d.cullMode = cullBackFaces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+  if (wireframe) {
+    if (!context_.info().optional.fillModeNonSolid)
+      throw Error("wireframe drawing needs the device feature fillModeNonSolid");
+    d.polygonMode = VK_POLYGON_MODE_LINE;
+  }
   // With the y-flipping projections of camera.h, triangles of a patch whose dP/du x dP/dv
   // faces the eye come out clockwise in framebuffer space.
   d.frontFace = VK_FRONT_FACE_CLOCKWISE;
@@ -151,7 +157,7 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const Patc
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    patchPipeline(type, options.cullBackFaces));
+                    patchPipeline(type, options.cullBackFaces, options.wireframe));
   const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
                           nullptr);

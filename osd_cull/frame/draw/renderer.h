@@ -32,6 +32,12 @@ struct RenderOptions {
   /// Color each patch by the status field of its draw-list entry (kDrawStatus* in
   /// shaders/shared/draw_layout.h): the debug view of the cull frame.
   bool statusColors = false;
+  /// Color each patch by its type: regular, boundary (one boundary edge), corner (two or
+  /// more), Gregory (the viewer's patch-type view, as OpenSubdiv's glViewer).
+  bool patchTypeColors = false;
+  /// Draw the tessellated triangles' edges only (needs fillModeNonSolid). The item buffer
+  /// then holds the lines: for viewing, not for the oracle.
+  bool wireframe = false;
   /// Cull triangles facing away (surface normal dPdu x dPdv pointing away from the eye).
   bool cullBackFaces = false;
   /// Back-facing fragments lose depth ties with front-facing ones: they are pushed back by
@@ -118,7 +124,7 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces);
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe);
   VkPipeline trianglePipeline();
   void bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw, PatchType type,
                    const RenderOptions& options);
@@ -129,7 +135,7 @@ class Renderer {
   vulkan::UniqueDescriptorSetLayout meshSetLayout_;
   vulkan::UniquePipelineLayout patchLayout_;
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool>, vulkan::UniquePipeline> patchPipelines_;
+  std::map<std::tuple<PatchType, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
   vulkan::UniquePipeline trianglePipeline_;
   vulkan::PipelineStatisticsQuery statistics_;
   std::optional<vulkan::TimestampQuery> timestamps_;  // absent when the queue has no timestamps
