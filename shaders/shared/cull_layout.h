@@ -85,7 +85,9 @@ OSD_CULL_CONST uint kResultInitial = 0x00FFFFF0u;
 //   kCullRelativeMargin times an upper bound of the magnitudes it is computed from (their
 //   fp32 error, including rounding the inputs to float, is below 15 * 2^-24 of that bound);
 // - tangent plane (shaders/cull/tangent_plane_common.glsl): arithmetic error < 35 * 2^-24 ma,
-//   input rounding < 4 * 2^-24 mb, and the reference's own margin < 1.32e-11 mr / |e.w|.
+//   input rounding < 4 * 2^-24 mb, and the reference's own margin < 1.32e-11 mr / |e.w|;
+//   the factored form (tangent_plane_factored.glsl): arithmetic error < 34 * 2^-24 M, input
+//   rounding bounded with 2^-24 (kTpInputMargin uses 16 times that).
 #ifdef __cplusplus
 inline constexpr float kCullRelativeMargin = 1e-5f;
 inline constexpr float kTpArithmeticMargin = 1e-5f;
