@@ -129,7 +129,7 @@ TEST_F(HiZOcclusionTest, PatchesBehindAWallAreCulledExactlyWhereTheyShouldBe) {
 
 // Sub-pixel patches (docs/algorithms/occlusion.md, "Sub-pixel patches"): a 100 x 100 torus
 // at level 1 (10,000 patches) on a 32 x 32 image, a fraction of a pixel each, reproduces
-// the false culls of the 700 x 700 torus at 256 x 256. Without kHiZExtrapolation, view 19 of
+// the false culls of the 700 x 700 torus at 256 x 256. Without kHiZExtrapolationPixels, view 19 of
 // these views has a patch whose rasterized depth lies below all its control points' depths
 // and the reference and the kernel both cull it.
 TEST_F(HiZOcclusionTest, SubPixelPatchesOfAClosedTorusAreNeverFalselyCulled) {

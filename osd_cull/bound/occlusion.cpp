@@ -13,7 +13,7 @@ namespace osd_cull::bound {
 namespace {
 
 using shader::kHiZDepthBias;
-using shader::kHiZExtrapolation;
+using shader::kHiZExtrapolationPixels;
 using shader::kHiZFar;
 using shader::kHiZPixelMargin;
 using shader::kHiZRelativeError;
@@ -119,9 +119,11 @@ HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& 
   box.x1 = pixel(px1, width);
   box.y0 = pixel(py0, height);
   box.y1 = pixel(py1, height);
-  // The rasterizer may extrapolate depth past a triangle (kHiZExtrapolation says why).
-  box.nearestDepth = nearest - double{kHiZExtrapolation} * (highest - lowest) -
-                     double{kHiZDepthBias} * marginScale;
+  // The rasterizer may extrapolate depth past a triangle (kHiZExtrapolationPixels says why).
+  const double n = std::max((hi.x - lo.x) * 0.5 * width, (hi.y - lo.y) * 0.5 * height);
+  const double extrapolation = n > kHiZExtrapolationPixels ? kHiZExtrapolationPixels / n : 1.0;
+  box.nearestDepth =
+      nearest - extrapolation * (highest - lowest) - double{kHiZDepthBias} * marginScale;
   return box;
 }
 

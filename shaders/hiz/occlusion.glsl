@@ -78,9 +78,14 @@ bool hizOccluded(HiZBox b, HiZParams hiz, sampler2D pyramid) {
   if (!hizFootprint(b, hiz, level, t0, t1)) return false;
   float far = max(max(texelFetch(pyramid, t0, level).r, texelFetch(pyramid, ivec2(t1.x, t0.y), level).r),
                   max(texelFetch(pyramid, ivec2(t0.x, t1.y), level).r, texelFetch(pyramid, t1, level).r));
-  // The rasterizer may extrapolate depth past a triangle (hiz_layout.h kHiZExtrapolation).
-  // The range between the widened ends is at least the reference's range of the points.
-  float nearest = b.nearest - kHiZExtrapolation * (b.farthest - b.nearest) -
+  // The rasterizer may extrapolate depth past a triangle (hiz_layout.h
+  // kHiZExtrapolationPixels). The range between the widened ends is at least the reference's
+  // range of the points; the box side is taken smaller than the reference's (its wider
+  // margins add far less than 0.1 (n + 1) pixels), so its factor is at least the reference's.
+  vec2 side = (b.hi - b.lo) * 0.5 * vec2(hiz.width, hiz.height);
+  float n = 0.9 * max(side.x, side.y) - 0.1;
+  float extrapolation = n > kHiZExtrapolationPixels ? kHiZExtrapolationPixels / n : 1.0;
+  float nearest = b.nearest - extrapolation * (b.farthest - b.nearest) -
                   kHiZDepthBias * kHiZGpuMarginScale;
   return nearest >= far;
 }
