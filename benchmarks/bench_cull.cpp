@@ -2,8 +2,8 @@
 // a frame, on BigGuy (or another cage). Prints Markdown tables; see docs/results/backpatch.md.
 //
 //   bench-cull [--mesh FILE] [--levels 1,2,3] [--views 20] [--tess 4,8,16]
-//              [--width 640] [--height 480] [--repeats 3] [--device X]
-//              [--methods empty,tcone/surface,...] [--no-frames]
+//              [--width 640] [--height 480] [--repeats 3] [--parts 12] [--device X]
+//              [--methods empty,tcone/surface,...]
 //
 // Part 1: wall time of one cull submission (counter reset, cull dispatch, draw-command
 // dispatch, wait), median over views x repeats, per patch; "empty" is a pass with no test.
@@ -13,7 +13,8 @@
 // Back-patch methods run twice: respecting the drawn triangles (the default) and with
 // "/surface", the papers' surface-exact tests (CullSettings::drawnTriangles = false).
 // Part 2: frames of sphere views drawn in full and with culling (cull pass + survivors in
-// one submission), medians of wall time and tessellation-evaluation invocations.
+// one submission), medians of wall time and tessellation-evaluation invocations. Like for
+// like: both sides cull back faces in the rasterizer when the mesh is closed and oriented.
 #include "adapters/load_mesh.h"
 #include "bench_support.h"
 #include "osd_cull/bound/back_patch_validity.h"
@@ -52,7 +53,7 @@ struct Options {
                                       "tangent-plane/surface",
                                       "tangent-plane-16",
                                       "tangent-plane-16/surface"};
-  bool frames = true;
+  std::string parts = "12";  ///< which parts run
 };
 
 std::vector<std::string> names(const std::string& text) {
@@ -97,8 +98,8 @@ Options parse(int argc, char** argv) {
       o.device = next();
     else if (a == "--methods")
       o.methods = names(next());
-    else if (a == "--no-frames")
-      o.frames = false;
+    else if (a == "--parts")
+      o.parts = next();
     else
       throw Error("unknown option " + a + " (see the comment at the top of bench_cull.cpp)");
   }
@@ -107,19 +108,8 @@ Options parse(int argc, char** argv) {
 
 using osd_cull::bench::median;
 
-struct Mesh {
-  PatchSet patches;
-  bound::BackPatchValidity validity;
-};
-
-Mesh load(const std::string& path, uint32_t level) {
-  const CageMesh cage = adapters::loadCage(path);
-  PatchOptions options;
-  options.isolationLevel = static_cast<int>(level);
-  return {
-      extractPatches(cage, options).patches,
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage))};
-}
+using Mesh = osd_cull::bench::CullMesh;
+using osd_cull::bench::loadCullMesh;
 
 frame::CullSettings settingsFor(std::string method, const bound::BackPatchValidity& v) {
   frame::CullSettings s;
@@ -140,7 +130,7 @@ void kernelCost(vulkan::Context& context, const Options& o) {
       "\n| level | patches | method | cull rate | ns/patch (median) | ms/pass | compile ms |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (uint32_t level : o.levels) {
-    const Mesh mesh = load(o.mesh, level);
+    const Mesh mesh = loadCullMesh(o.mesh, level);
     frame::GpuPatchSet gpu(context, mesh.patches);
     frame::ViewSetOptions vo;
     vo.count = o.views;
@@ -179,7 +169,7 @@ void kernelCost(vulkan::Context& context, const Options& o) {
 
 void frameSavings(vulkan::Context& context, const Options& o) {
   const uint32_t level = o.levels.size() > 1 ? o.levels[1] : o.levels.at(0);
-  const Mesh mesh = load(o.mesh, level);
+  const Mesh mesh = loadCullMesh(o.mesh, level);
   frame::GpuPatchSet gpu(context, mesh.patches);
   frame::Renderer renderer(context);
   frame::RenderTarget target(context, o.width, o.height);
@@ -188,14 +178,18 @@ void frameSavings(vulkan::Context& context, const Options& o) {
   vo.width = o.width;
   vo.height = o.height;
   const auto cameras = frame::randomViews(frame::boundsOf(mesh.patches.points), vo);
-  std::printf("\nlevel %u, %u patches, %u sphere views, %ux%u, %u repeats\n\n", level,
-              mesh.patches.patchCount(), o.views, o.width, o.height, o.repeats);
+  std::printf(
+      "\nlevel %u, %u patches, %u sphere views, %ux%u, %u repeats; back faces %s in every "
+      "row, with and without culling\n\n",
+      level, mesh.patches.patchCount(), o.views, o.width, o.height, o.repeats,
+      mesh.validity.enabled ? "culled by the rasterizer" : "drawn (mesh not closed/oriented)");
   std::printf(
       "| tess | cull | patches drawn | TES invocations | frame ms (median) | ratio to none |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (uint32_t tess : o.tess) {
     frame::RenderOptions options;
     options.tessellation.uniformLevel = tess;
+    options.cullBackFaces = mesh.validity.enabled;
     double noneMs = 0.0;
     for (const std::string mode :
          {"none", "tcone", "tcone/surface", "tangent-plane", "tangent-plane/surface", "all"}) {
@@ -235,8 +229,8 @@ int main(int argc, char** argv) {
     co.device = o.device;
     vulkan::Context context(co);
     std::printf("bench-cull: %s on %s\n", o.mesh.c_str(), context.info().name.c_str());
-    kernelCost(context, o);
-    if (o.frames) frameSavings(context, o);
+    if (o.parts.find('1') != std::string::npos) kernelCost(context, o);
+    if (o.parts.find('2') != std::string::npos) frameSavings(context, o);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench-cull: %s\n", e.what());

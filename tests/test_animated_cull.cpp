@@ -170,7 +170,9 @@ TEST_F(AnimatedCullTest, TwoPassFramesOfASkinnedMeshEqualTheUnculledImage) {
     o.render.tessellation.uniformLevel = 4;
     o.cull = {true, "tcone", "hiz", validityOf(cage)};
     const frame::CullMesh meshes[] = {
-        {&mesh.gpu(), &mesh.patches(), &mesh.cullData(BackPatchMethod::TCone)}};
+        {.gpu = &mesh.gpu(),
+         .host = &mesh.patches(),
+         .cullData = &mesh.cullData(BackPatchMethod::TCone)}};
     frame::CullFrame cull(context(), renderer, target, meshes, o);
     const frame::Bounds bounds = frame::boundsOf(mesh.patches().points);
     const frame::Camera camera =
