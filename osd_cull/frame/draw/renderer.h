@@ -118,7 +118,7 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces);
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool displaced);
   VkPipeline trianglePipeline();
   void bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw, PatchType type,
                    const RenderOptions& options);
@@ -128,8 +128,10 @@ class Renderer {
   vulkan::UniqueDescriptorSetLayout patchSetLayout_;
   vulkan::UniqueDescriptorSetLayout meshSetLayout_;
   vulkan::UniquePipelineLayout patchLayout_;
+  vulkan::UniqueDescriptorSetLayout displacementSetLayout_;
+  vulkan::UniquePipelineLayout displacedLayout_;  // set 0 patches, set 1 displacement
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool>, vulkan::UniquePipeline> patchPipelines_;
+  std::map<std::tuple<PatchType, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
   vulkan::UniquePipeline trianglePipeline_;
   vulkan::PipelineStatisticsQuery statistics_;
   std::optional<vulkan::TimestampQuery> timestamps_;  // absent when the queue has no timestamps
