@@ -16,14 +16,15 @@
 /// tessellation factors 0. Both give the same image; pipeline statistics tell the cost.
 
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
-#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/hiz/visibility_buffer.h"
 #include "osd_cull/vk/query.h"
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -71,10 +72,20 @@ struct CullFrameStats {
   double totalMs() const { return pass1Ms + pyramidMs + cullMs + pass2Ms; }
 };
 
-/// \brief One patch mesh of the scene. Both must outlive the CullFrame.
+/// \brief One patch mesh (or instance) of the scene. Both must outlive the CullFrame.
+/// Several CullMeshes may share one GpuPatchSet with different models: the instances of a
+/// mesh, each with its own status and culled with view · model composed in double.
 struct CullMesh {
   GpuPatchSet* gpu = nullptr;
   const PatchSet* host = nullptr;
+  glm::dmat4 model{1.0};  ///< object → world (instanceCamera()); setModel() changes it
+  /// Back-patch validity of this mesh, instead of CullFrameOptions::cull's (a scene's meshes
+  /// differ: closed or not, static or deforming).
+  std::optional<bound::BackPatchValidity> backPatchValidity;
+  /// The cone methods' per-patch cull data recomputed on the GPU for a moving mesh
+  /// (DynamicPatchMesh::cullData, bounds_pass.h), of the frame's back-patch method; null:
+  /// built once on the host (static mesh). Must outlive the CullFrame.
+  const vulkan::Buffer* cullData = nullptr;
 };
 
 /// \brief The frame pipeline of one view.
@@ -108,6 +119,9 @@ class CullFrame {
   /// \brief The cull pass of `mesh`, or nullptr when no stage is enabled.
   const CullPass* cullPass(size_t mesh) const { return passes_.at(mesh).get(); }
   size_t meshCount() const { return meshes_.size(); }
+  /// \brief Moves mesh `mesh` (an instance) for the next frames.
+  void setModel(size_t mesh, const glm::dmat4& model) { meshes_.at(mesh).model = model; }
+  const glm::dmat4& model(size_t mesh) const { return meshes_.at(mesh).model; }
   VisibilityBuffer& visibility(size_t mesh) { return *visibility_.at(mesh); }
   uint32_t itemBase(size_t mesh) const { return itemBases_.at(mesh); }
   /// \brief Result codes of the last cull (one per patch of `mesh`), read back.
@@ -135,7 +149,7 @@ class CullFrame {
   std::unique_ptr<VisibilityPrograms> programs_;
   std::vector<std::unique_ptr<VisibilityBuffer>> visibility_;
   std::vector<std::unique_ptr<CullPass>> passes_;  // null when no stage is enabled
-  vulkan::Buffer survivedResults_;                     // all kStageNone, used without a pass
+  vulkan::Buffer survivedResults_;                 // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
   vulkan::PipelineStatisticsQuery queries_;

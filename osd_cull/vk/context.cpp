@@ -158,7 +158,22 @@ void Context::createInstance(const ContextOptions& options) {
   info.pApplicationInfo = &app;
 
   const char* layer = "VK_LAYER_KHRONOS_validation";
-  const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  std::vector<const char*> extensions;
+  for (const std::string& e : options.instanceExtensions) extensions.push_back(e.c_str());
+  if (!extensions.empty()) {
+    uint32_t count = 0;
+    OSD_CULL_VK(vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> present(count);
+    OSD_CULL_VK(vkEnumerateInstanceExtensionProperties(nullptr, &count, present.data()));
+    std::string missing;
+    for (const std::string& e : options.instanceExtensions) {
+      bool found = false;
+      for (const auto& p : present) found |= e == p.extensionName;
+      if (!found) missing += (missing.empty() ? "" : ", ") + e;
+    }
+    if (!missing.empty())
+      throw Error("the Vulkan instance lacks required extensions: " + missing);
+  }
   VkValidationFeatureEnableEXT enables[] = {
       VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
   VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
@@ -187,9 +202,10 @@ void Context::createInstance(const ContextOptions& options) {
     info.pNext = &features;
     info.enabledLayerCount = 1;
     info.ppEnabledLayerNames = &layer;
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = &extension;
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   OSD_CULL_VK(vkCreateInstance(&info, nullptr, &instance_));
   if (options.validation) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -254,6 +270,19 @@ void Context::pickDevice(const ContextOptions& options) {
     }
   }
   if (!found) missing.push_back("a queue family with graphics and compute");
+  if (!options.deviceExtensions.empty()) {
+    uint32_t count = 0;
+    OSD_CULL_VK(vkEnumerateDeviceExtensionProperties(physicalDevice_, nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> present(count);
+    OSD_CULL_VK(
+        vkEnumerateDeviceExtensionProperties(physicalDevice_, nullptr, &count, present.data()));
+    for (const std::string& e : options.deviceExtensions) {
+      bool has = false;
+      for (const auto& p : present) has |= e == p.extensionName;
+      if (!has) missing.push_back("extension " + e);
+    }
+  }
+  deviceExtensions_ = options.deviceExtensions;
 
   if (!missing.empty()) {
     std::string list;
@@ -297,8 +326,12 @@ void Context::createDevice() {
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
 
+  std::vector<const char*> extensions;
+  for (const std::string& e : deviceExtensions_) extensions.push_back(e.c_str());
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &f;
+  info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queueInfo;
   OSD_CULL_VK(vkCreateDevice(physicalDevice_, &info, nullptr, &device_));

@@ -34,6 +34,12 @@ struct ContextOptions {
   bool printValidationMessages = true;
   /// Size of the memory blocks resources are sub-allocated from.
   VkDeviceSize memoryBlockSize = VkDeviceSize{64} << 20;
+  /// Further instance extensions to enable, e.g. a window system's surface extensions
+  /// (glfwGetRequiredInstanceExtensions) for a viewer. Missing ones are an error naming them.
+  std::vector<std::string> instanceExtensions;
+  /// Further device extensions to enable, e.g. VK_KHR_swapchain. The device check names
+  /// any the chosen device lacks.
+  std::vector<std::string> deviceExtensions;
 };
 
 /// \brief Optional device features; enabled when the device has them.
@@ -117,6 +123,7 @@ class Context {
   std::unique_ptr<MemoryAllocator> allocator_;
   UniqueCommandPool commandPool_;
   VkDeviceSize blockSize_ = 0;
+  std::vector<std::string> deviceExtensions_;
 };
 
 }  // namespace osd_cull::vulkan

@@ -25,12 +25,18 @@ const vec3 kStatusColors[6] = vec3[6](vec3(0.80, 0.78, 0.72), vec3(0.35, 0.75, 0
                                       vec3(0.95, 0.85, 0.25), vec3(0.35, 0.55, 0.95),
                                       vec3(0.70, 0.40, 0.90), vec3(0.95, 0.35, 0.30));
 
+// Patch-type colors (kFlagPatchTypeColors): regular, boundary, corner, Gregory.
+const vec3 kTypeColors[4] = vec3[4](vec3(0.80, 0.78, 0.72), vec3(0.40, 0.65, 0.95),
+                                    vec3(0.95, 0.60, 0.25), vec3(0.85, 0.35, 0.65));
+
 void main() {
   uint patchIndex = tePatch & kDrawListPatchMask;
   vec3 base = vec3(0.80, 0.78, 0.72);
   if ((pc.flags & kFlagDebugColors) != 0u) base = debugColor(patchIndex);
   if ((pc.flags & kFlagStatusColors) != 0u)
     base = kStatusColors[min((tePatch >> kDrawListStatusShift) & 7u, 5u)];
+  if ((pc.flags & kFlagPatchTypeColors) != 0u)
+    base = kTypeColors[(tePatch >> kDrawListStatusShift) & 3u];
   outColor = vec4(shade(base, tePosition, teNormal, pc.eye.xyz), 1.0);
   outItem = pc.itemBase + patchIndex + 1u;
   float z = gl_FragCoord.z;

@@ -95,5 +95,13 @@ void main() {
   tePosition = P;
   teNormal = n;
   tePatch = tcPatch;
+  if ((pc.flags & kFlagPatchTypeColors) != 0u) {
+    // The status field carries the patch type to the fragment stage: 0 regular, 1 one
+    // boundary edge, 2 corner, 3 Gregory (OsdGetPatchBoundaryMask: bits 7..10 of field 1).
+    uint patchIndex = tcPatch & kDrawListPatchMask;
+    uint boundary = bitCount((params[2u * patchIndex + 1u] >> 7u) & 0xFu);
+    uint type = PATCH_POINTS == 20 ? 3u : min(uint(boundary), 2u);
+    tePatch = patchIndex | (type << kDrawListStatusShift);
+  }
   gl_Position = pc.viewProjection * vec4(P, 1.0);
 }

@@ -19,3 +19,10 @@ if(TARGET osd-cull-minimal)
   set_tests_properties(Samples.MinimalDrawsEveryPatchOfTheBuiltInMesh PROPERTIES
     PASS_REGULAR_EXPRESSION "504 Bezier \\+ 24 Gregory patches[^\n]*\ndrew 528 patches")
 endif()
+
+# The viewer's key and script logic (samples/viewer/view_state.*) and, under Xvfb, the
+# `osd-cull view` window itself.
+if(TARGET osd_cull_viewer AND TARGET test_viewer)
+  target_link_libraries(test_viewer PRIVATE osd_cull_viewer)
+  target_compile_definitions(test_viewer PRIVATE OSD_CULL_HAVE_VIEWER=1)
+endif()

@@ -26,7 +26,8 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
       t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
   c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
             (options.statusColors ? shader::kFlagStatusColors : 0u) |
-            (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u);
+            (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
+            (options.patchTypeColors && !options.statusColors ? shader::kFlagPatchTypeColors : 0u);
   return c;
 }
 
@@ -58,18 +59,19 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
   meshSetLayout_ = vulkan::createDescriptorSetLayout(context, triangleMeshBindings());
   const VkDescriptorSetLayout p = patchSetLayout_.get();
   const VkDescriptorSetLayout m = meshSetLayout_.get();
-  patchLayout_ =
-      vulkan::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
-  meshLayout_ =
-      vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
+  patchLayout_ = vulkan::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants),
+                                              kGraphicsStages);
+  meshLayout_ = vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants),
+                                             kGraphicsStages);
   displacementSetLayout_ = vulkan::createDescriptorSetLayout(context, displacementSetBindings());
   const VkDescriptorSetLayout displaced[] = {p, displacementSetLayout_.get()};
-  displacedLayout_ =
-      vulkan::createPipelineLayout(context, displaced, sizeof(shader::DrawConstants), kGraphicsStages);
+  displacedLayout_ = vulkan::createPipelineLayout(context, displaced, sizeof(shader::DrawConstants),
+                                                  kGraphicsStages);
 }
 
-VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool displaced) {
-  auto& slot = patchPipelines_[{type, cullBackFaces, displaced}];
+VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
+                                   bool mirrored, bool displaced) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored, displaced}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
   std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
@@ -93,9 +95,15 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool disp
   d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   d.patchControlPoints = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
   d.cullMode = cullBackFaces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
+  if (wireframe) {
+    if (!context_.info().optional.fillModeNonSolid)
+      throw Error("wireframe drawing needs the device feature fillModeNonSolid");
+    d.polygonMode = VK_POLYGON_MODE_LINE;
+  }
   // With the y-flipping projections of camera.h, triangles of a patch whose dP/du x dP/dv
-  // faces the eye come out clockwise in framebuffer space.
-  d.frontFace = VK_FRONT_FACE_CLOCKWISE;
+  // faces the eye come out clockwise in framebuffer space; a mirroring model matrix
+  // (instanceCamera() with a negative determinant) turns them counter-clockwise.
+  d.frontFace = mirrored ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE;
   slot = vulkan::createGraphicsPipeline(context_, d);
   return slot.get();
 }
@@ -155,17 +163,19 @@ void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
   }
 }
 
-void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const PatchDraw& draw,
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
+  const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
   const GpuDisplacement* displacement = gpu.displacement();
   const VkPipelineLayout layout = displacement ? displacedLayout_.get() : patchLayout_.get();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    patchPipeline(type, options.cullBackFaces, displacement != nullptr));
+                    patchPipeline(type, options.cullBackFaces, options.wireframe,
+                                  isMirrored(camera), displacement != nullptr));
   const VkDescriptorSet sets[] = {draw.set ? draw.set : gpu.descriptorSet(),
                                   displacement ? displacement->descriptorSet() : VK_NULL_HANDLE};
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0,
-                          displacement ? 2 : 1, sets, 0, nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, displacement ? 2 : 1,
+                          sets, 0, nullptr);
   RenderOptions effective = options;
   effective.tessellation = effectiveOptions(options.tessellation, gpu.hasTransitionEdges());
   shader::DrawConstants c = drawConstants(camera, effective);
@@ -178,8 +188,8 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const Patc
 
 void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
                               PatchType type, const vulkan::Buffer& commands, VkDeviceSize offset,
-                              const vulkan::Buffer& count, VkDeviceSize countOffset, uint32_t maxDraws,
-                              const RenderOptions& options) {
+                              const vulkan::Buffer& count, VkDeviceSize countOffset,
+                              uint32_t maxDraws, const RenderOptions& options) {
   if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
   if (maxDraws == 0) return;
   bindPatches(cmd, camera, draw, type, options);

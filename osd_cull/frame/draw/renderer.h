@@ -32,6 +32,12 @@ struct RenderOptions {
   /// Color each patch by the status field of its draw-list entry (kDrawStatus* in
   /// shaders/shared/draw_layout.h): the debug view of the cull frame.
   bool statusColors = false;
+  /// Color each patch by its type: regular, boundary (one boundary edge), corner (two or
+  /// more), Gregory (the viewer's patch-type view, as OpenSubdiv's glViewer).
+  bool patchTypeColors = false;
+  /// Draw the tessellated triangles' edges only (needs fillModeNonSolid). The item buffer
+  /// then holds the lines: for viewing, not for the oracle.
+  bool wireframe = false;
   /// Cull triangles facing away (surface normal dPdu x dPdv pointing away from the eye).
   bool cullBackFaces = false;
   /// Back-facing fragments lose depth ties with front-facing ones: they are pushed back by
@@ -55,6 +61,9 @@ struct PatchDraw {
   /// Descriptor set to draw with instead of gpu->descriptorSet(), e.g. one from
   /// GpuPatchSet::descriptorSetWithDrawList() for a culled draw list.
   VkDescriptorSet set = VK_NULL_HANDLE;
+  /// Object → world matrix of this draw (an instance, scene/scene_eval.h); null: identity.
+  /// The draw uses instanceCamera(camera, *model), composed in double.
+  const glm::dmat4* model = nullptr;
 };
 
 /// \brief What one frame did.
@@ -118,7 +127,8 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool displaced);
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored,
+                           bool displaced);
   VkPipeline trianglePipeline();
   void bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw, PatchType type,
                    const RenderOptions& options);
@@ -131,7 +141,7 @@ class Renderer {
   vulkan::UniqueDescriptorSetLayout displacementSetLayout_;
   vulkan::UniquePipelineLayout displacedLayout_;  // set 0 patches, set 1 displacement
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
+  std::map<std::tuple<PatchType, bool, bool, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
   vulkan::UniquePipeline trianglePipeline_;
   vulkan::PipelineStatisticsQuery statistics_;
   std::optional<vulkan::TimestampQuery> timestamps_;  // absent when the queue has no timestamps

@@ -1,0 +1,180 @@
+#include "view_state.h"
+
+#include "osd_cull/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace osd_cull::viewer {
+namespace {
+
+std::string onOff(bool on) { return on ? "on" : "off"; }
+
+double parseNumber(const std::string& text, const std::string& token) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+    throw Error("--script: '" + token + "': '" + text + "' is not a finite number");
+  return v;
+}
+
+}  // namespace
+
+std::string ViewState::cullLabel() const {
+  std::string s;
+  auto add = [&](const std::string& part) { s += (s.empty() ? "" : "+") + part; };
+  if (frustum) add("frustum");
+  if (backPatch) add("backpatch(" + backPatchMethod + ")");
+  if (occlusion) add("hiz");
+  return s.empty() ? "none" : s;
+}
+
+const std::vector<std::string>& backPatchMethods() {
+  static const std::vector<std::string> methods = {"tcone", "ncone", "tangent-plane"};
+  return methods;
+}
+
+std::optional<std::string> pressKey(ViewState& s, std::string_view key) {
+  if (key == "plus" || key == "+" || key == "=") {
+    if (s.adaptive) {
+      s.pixelsPerSegment = std::max(1.0, s.pixelsPerSegment / 1.5);
+      return "adaptive: " + std::to_string(s.pixelsPerSegment) + " pixels per segment";
+    }
+    s.tessLevel = std::min(s.maxTessLevel, s.tessLevel + 1);
+    return "tessellation " + std::to_string(s.tessLevel);
+  }
+  if (key == "minus" || key == "-") {
+    if (s.adaptive) {
+      s.pixelsPerSegment = std::min(256.0, s.pixelsPerSegment * 1.5);
+      return "adaptive: " + std::to_string(s.pixelsPerSegment) + " pixels per segment";
+    }
+    s.tessLevel = std::max(1u, s.tessLevel - 1);
+    return "tessellation " + std::to_string(s.tessLevel);
+  }
+  if (key == "a") return "adaptive tessellation " + onOff(s.adaptive = !s.adaptive);
+  if (key == "1") return "frustum culling " + onOff(s.frustum = !s.frustum);
+  if (key == "2") return "back-patch culling " + onOff(s.backPatch = !s.backPatch);
+  if (key == "3") return "occlusion culling " + onOff(s.occlusion = !s.occlusion);
+  if (key == "c") {
+    const bool on = !s.anyCull();
+    s.frustum = s.backPatch = s.occlusion = on;
+    return "culling " + s.cullLabel();
+  }
+  if (key == "m") {
+    const auto& all = backPatchMethods();
+    auto it = std::find(all.begin(), all.end(), s.backPatchMethod);
+    s.backPatchMethod = (it == all.end() || it + 1 == all.end()) ? all.front() : *(it + 1);
+    return "back-patch method " + s.backPatchMethod;
+  }
+  if (key == "s") return "status colors " + onOff(s.statusColors = !s.statusColors);
+  if (key == "t") return "patch-type colors " + onOff(s.typeColors = !s.typeColors);
+  if (key == "w") return "wireframe " + onOff(s.wireframe = !s.wireframe);
+  if (key == "space")
+    return "animation " + std::string((s.playing = !s.playing) ? "playing" : "paused");
+  if (key == "z")
+    return "cull camera " +
+           std::string((s.freezeCull = !s.freezeCull) ? "frozen" : "follows the view");
+  if (key == "h") return "HUD " + onOff(s.showHud = !s.showHud);
+  if (key == "f") {
+    s.yawDegrees = s.pitchDegrees = 0.0;
+    s.zoom = 1.0;
+    return "camera reset";
+  }
+  if (key == "q" || key == "esc") {
+    s.quit = true;
+    return "quit";
+  }
+  return std::nullopt;
+}
+
+std::string keyHelp() {
+  return "  + / -    tessellation level up / down (adaptive: finer / coarser)\n"
+         "  a        adaptive tessellation on/off\n"
+         "  1 2 3    frustum / back-patch / occlusion culling on/off\n"
+         "  c        all culling on/off\n"
+         "  m        next back-patch method (tcone, ncone, tangent-plane)\n"
+         "  s        status colors (visible, newly visible, culled by frustum / back-patch / "
+         "occlusion)\n"
+         "  t        patch-type colors (regular, boundary, corner, Gregory)\n"
+         "  w        wireframe\n"
+         "  space    animation (turntable) play/pause\n"
+         "  z        freeze the cull camera and fly around what it culled\n"
+         "  f        reset the camera;  h  HUD on/off;  q / Esc  quit\n"
+         "  mouse    left drag: orbit, right drag or wheel: zoom\n";
+}
+
+std::vector<ScriptStep> parseScript(std::string_view text) {
+  std::vector<ScriptStep> steps;
+  std::istringstream in{std::string(text)};
+  std::string token;
+  uint32_t lastFrame = 0;
+  ViewState probe;
+  while (in >> token) {
+    ScriptStep step;
+    if (token[0] == '@') {
+      const double f = parseNumber(token.substr(1), token);
+      if (f < 0 || f > 1e7 || f != std::floor(f))
+        throw Error("--script: '" + token + "': a frame number must be a whole number >= 0");
+      step.kind = ScriptStep::Kind::WaitFrame;
+      step.frame = static_cast<uint32_t>(f);
+      if (step.frame < lastFrame)
+        throw Error("--script: '" + token + "' comes after @" + std::to_string(lastFrame) +
+                    ": frames must not decrease");
+      lastFrame = step.frame;
+    } else if (token.starts_with("orbit:")) {
+      const std::string args = token.substr(6);
+      const size_t comma = args.find(',');
+      if (comma == std::string::npos)
+        throw Error("--script: '" + token + "': expected orbit:YAW,PITCH");
+      step.kind = ScriptStep::Kind::Orbit;
+      step.a = parseNumber(args.substr(0, comma), token);
+      step.b = parseNumber(args.substr(comma + 1), token);
+    } else if (token.starts_with("zoom:")) {
+      step.kind = ScriptStep::Kind::Zoom;
+      step.a = parseNumber(token.substr(5), token);
+      if (!(step.a > 0.0)) throw Error("--script: '" + token + "': the zoom factor must be > 0");
+    } else {
+      ViewState scratch = probe;
+      if (!pressKey(scratch, token))
+        throw Error("--script: '" + token +
+                    "' is not a key, orbit:YAW,PITCH, zoom:F or @FRAME (keys:\n" + keyHelp() + ")");
+      step.key = token;
+    }
+    steps.push_back(std::move(step));
+  }
+  return steps;
+}
+
+std::vector<std::string> ScriptPlayer::beforeFrame(uint32_t frame, ViewState& state) {
+  std::vector<std::string> lines;
+  while (next_ < steps_.size()) {
+    const ScriptStep& step = steps_[next_];
+    if (step.kind == ScriptStep::Kind::WaitFrame) {
+      if (step.frame > frame) break;
+    } else if (step.kind == ScriptStep::Kind::Orbit) {
+      orbitCamera(state, step.a, step.b);
+      lines.push_back("orbit " + std::to_string(step.a) + ", " + std::to_string(step.b));
+    } else if (step.kind == ScriptStep::Kind::Zoom) {
+      zoomCamera(state, step.a);
+      lines.push_back("zoom " + std::to_string(state.zoom));
+    } else if (auto line = pressKey(state, step.key)) {
+      lines.push_back(*line);
+    }
+    ++next_;
+  }
+  return lines;
+}
+
+void orbitCamera(ViewState& state, double yawDegrees, double pitchDegrees) {
+  state.yawDegrees = std::fmod(state.yawDegrees + yawDegrees, 360.0);
+  state.pitchDegrees = std::clamp(state.pitchDegrees + pitchDegrees, -85.0, 85.0);
+}
+
+void zoomCamera(ViewState& state, double factor) {
+  if (!(factor > 0.0) || !std::isfinite(factor)) return;
+  state.zoom = std::clamp(state.zoom * factor, 0.05, 20.0);
+}
+
+}  // namespace osd_cull::viewer

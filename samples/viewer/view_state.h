@@ -1,0 +1,88 @@
+#pragma once
+/// \file view_state.h
+/// \brief What the viewer shows and culls, the keys that change it (in the habit of
+/// OpenSubdiv's glViewer), and the `--script` language that presses them, with no window
+/// or device: the window feeds keys in, the frame loop reads the state out.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace osd_cull::viewer {
+
+/// \brief Everything a key can change.
+struct ViewState {
+  uint32_t tessLevel = 4;  ///< uniform tessellation level
+  bool adaptive = false;   ///< screen-space adaptive tessellation instead
+  double pixelsPerSegment = 8.0;
+  uint32_t maxTessLevel = 64;
+
+  bool frustum = false;  ///< cull stages
+  bool backPatch = false;
+  bool occlusion = false;
+  std::string backPatchMethod = "tcone";
+
+  bool statusColors = false;  ///< color patches by cull status (needs a cull stage)
+  bool typeColors = false;    ///< regular / boundary / corner / Gregory
+  bool wireframe = false;
+  bool playing = false;     ///< turntable rotation
+  bool freezeCull = false;  ///< keep the cull camera; fly around what it culled
+  bool showHud = true;
+  bool quit = false;
+
+  double yawDegrees = 0.0;    ///< camera orbit about the up axis
+  double pitchDegrees = 0.0;  ///< and about the camera's right axis, in [-85, 85]
+  double zoom = 1.0;          ///< eye distance scale, in [0.05, 20]
+
+  bool anyCull() const { return frustum || backPatch || occlusion; }
+  /// \brief "frustum+backpatch(tcone)+hiz", or "none".
+  std::string cullLabel() const;
+};
+
+/// \brief The back-patch methods the `m` key cycles through.
+const std::vector<std::string>& backPatchMethods();
+
+/// \brief Applies one key (a printable character, or "space", "esc", "plus", "minus")
+/// and returns a line saying what changed, or nullopt for a key without a binding.
+/// Changes to the cull stages are reported so the caller rebuilds its cull frame.
+std::optional<std::string> pressKey(ViewState& state, std::string_view key);
+
+/// \brief The key bindings, one line each, for --help and the HUD.
+std::string keyHelp();
+
+/// \brief One step of a --script: press a key, drag the camera, or wait for a frame.
+struct ScriptStep {
+  enum class Kind { Key, Orbit, Zoom, WaitFrame } kind = Kind::Key;
+  std::string key;     ///< Kind::Key
+  double a = 0.0;      ///< Orbit: yaw degrees; Zoom: factor
+  double b = 0.0;      ///< Orbit: pitch degrees
+  uint32_t frame = 0;  ///< WaitFrame: the frame the following steps apply before
+};
+
+/// \brief Parses a script: whitespace-separated tokens, each a key name (as pressKey
+/// takes), `orbit:YAW,PITCH` (degrees), `zoom:FACTOR`, or `@N` (the following steps happen
+/// before frame N, counting from 0; frames must not decrease).
+/// \throws osd_cull::Error naming the token and what is wrong with it.
+std::vector<ScriptStep> parseScript(std::string_view text);
+
+/// \brief Plays a parsed script frame by frame: steps up to the next `@N` with N greater
+/// than the current frame are applied before that frame.
+class ScriptPlayer {
+ public:
+  explicit ScriptPlayer(std::vector<ScriptStep> steps) : steps_(std::move(steps)) {}
+  /// \brief Applies the steps due before `frame`; returns the lines pressKey returned.
+  std::vector<std::string> beforeFrame(uint32_t frame, ViewState& state);
+  bool done() const { return next_ >= steps_.size(); }
+
+ private:
+  std::vector<ScriptStep> steps_;
+  size_t next_ = 0;
+};
+
+/// \brief Applies a camera drag (degrees) and zoom factor within the state's limits.
+void orbitCamera(ViewState& state, double yawDegrees, double pitchDegrees);
+void zoomCamera(ViewState& state, double factor);
+
+}  // namespace osd_cull::viewer

@@ -1,0 +1,390 @@
+#include "viewer.h"
+
+#include "hud.h"
+#include "swapchain.h"
+#include "window.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/frame/cull_frame.h"
+#include "osd_cull/frame/draw/png_io.h"
+#include "osd_cull/frame/draw/renderer.h"
+#include "osd_cull/vk/buffer.h"
+#include "osd_cull/vk/check.h"
+#include "osd_cull/vk/context.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+namespace osd_cull::viewer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// A surface destroyed with the instance it was made for (before the Context).
+struct Surface {
+  VkInstance instance;
+  VkSurfaceKHR handle;
+  ~Surface() { vkDestroySurfaceKHR(instance, handle, nullptr); }
+};
+
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                  VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                  VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.srcAccessMask = srcAccess;
+  b.dstAccessMask = dstAccess;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+/// The orbit camera of the state around the scene's bounds.
+frame::Camera viewCamera(const ViewState& s, const frame::Bounds& bounds, const ViewerScene& scene,
+                         uint32_t width, uint32_t height) {
+  const frame::Camera base =
+      frame::frameBounds(bounds, scene.viewDirection, scene.up, 40.0, width, height);
+  const glm::dvec3 pivot = bounds.center();
+  glm::dvec3 offset = base.eye() - pivot;
+  const glm::dvec3 up = glm::normalize(scene.up);
+  glm::dvec3 right = glm::cross(offset, up);
+  if (glm::length(right) < 1e-12 * glm::length(offset)) right = glm::dvec3(1, 0, 0);
+  const glm::dmat4 yaw = glm::rotate(glm::dmat4(1.0), glm::radians(s.yawDegrees), up);
+  const glm::dmat4 pitch =
+      glm::rotate(glm::dmat4(1.0), glm::radians(s.pitchDegrees), glm::normalize(right));
+  offset = glm::dvec3(yaw * pitch * glm::dvec4(offset, 0.0)) * s.zoom;
+  const double d = glm::length(offset), r = bounds.radius();
+  return frame::Camera::lookAt(pivot + offset, pivot, up, 40.0, width, height,
+                               std::max(d - r, (d + r) * 1e-4), d + r);
+}
+
+frame::RenderOptions renderOptions(const ViewState& s, const vulkan::Context& context,
+                                   bool backFaces) {
+  frame::RenderOptions o;
+  o.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
+  if (s.adaptive) {
+    o.tessellation.mode = frame::TessellationOptions::Mode::Adaptive;
+    o.tessellation.pixelsPerSegment = s.pixelsPerSegment;
+  } else {
+    o.tessellation.uniformLevel = std::min(s.tessLevel, o.tessellation.maxLevel);
+  }
+  o.patchTypeColors = s.typeColors;
+  o.wireframe = s.wireframe;
+  o.cullBackFaces = backFaces;
+  return o;
+}
+
+/// Everything sized to the window: the swapchain's HUD framebuffers and our targets.
+struct Targets {
+  std::unique_ptr<frame::RenderTarget> view, status;
+};
+
+}  // namespace
+
+int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
+  const std::vector<ScriptStep> steps = parseScript(options.script);
+  ScriptPlayer script(steps);
+  if (scene.patches.patchCount() == 0) throw Error(scene.patches.source + ": no patches to view");
+
+  Window window(options.width, options.height, "osd-cull view: " + scene.patches.source);
+  vulkan::ContextOptions contextOptions;
+  contextOptions.device = options.device;
+  contextOptions.validation = options.validate;
+  contextOptions.instanceExtensions = Window::requiredInstanceExtensions();
+  contextOptions.deviceExtensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+  vulkan::Context context(contextOptions);
+  std::cout << "device: " << context.info().name << " (" << context.info().driver << ")\n";
+  Surface surface{context.instance(), window.createSurface(context.instance())};
+  uint32_t fbWidth = 0, fbHeight = 0;
+  window.framebufferSize(fbWidth, fbHeight);
+  Swapchain swapchain(context, surface.handle, fbWidth, fbHeight);
+  Hud hud(context, window, swapchain);
+
+  frame::GpuPatchSet gpu(context, scene.patches);
+  std::vector<frame::GpuTriangleMesh> occluderMeshes;
+  for (const auto& m : scene.occluders) occluderMeshes.emplace_back(context, m);
+  std::vector<const frame::GpuTriangleMesh*> occluders;
+  for (const auto& m : occluderMeshes) occluders.push_back(&m);
+  frame::Bounds bounds = frame::boundsOf(scene.patches.points);
+  for (const auto& m : scene.occluders) {
+    const frame::Bounds b = frame::boundsOf(m.positions);
+    bounds.lo = glm::min(bounds.lo, b.lo);
+    bounds.hi = glm::max(bounds.hi, b.hi);
+  }
+  frame::Renderer renderer(context);
+  const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
+  const frame::PatchDraw draw{&gpu, &scene.patches, 0};
+
+  ViewState state = options.initial;
+  state.maxTessLevel = context.info().limits.maxTessellationGenerationLevel;
+  Targets targets;
+  std::unique_ptr<frame::CullFrame> cullFrame;
+  std::string builtCull;  // the configuration cullFrame was made for
+  auto makeTargets = [&] {
+    const VkExtent2D e = swapchain.extent();
+    cullFrame.reset();
+    builtCull.clear();
+    targets.view = std::make_unique<frame::RenderTarget>(context, e.width, e.height);
+    targets.status = std::make_unique<frame::RenderTarget>(context, e.width, e.height);
+  };
+  makeTargets();
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = context.queueFamily();
+  VkCommandPool rawPool = VK_NULL_HANDLE;
+  OSD_CULL_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &rawPool));
+  vulkan::UniqueCommandPool pool(context.device(), rawPool);
+  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  alloc.commandPool = pool.get();
+  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  alloc.commandBufferCount = 1;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  OSD_CULL_VK(vkAllocateCommandBuffers(context.device(), &alloc, &cmd));
+  VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  VkSemaphore rawAcquired = VK_NULL_HANDLE, rawRendered = VK_NULL_HANDLE;
+  OSD_CULL_VK(vkCreateSemaphore(context.device(), &semInfo, nullptr, &rawAcquired));
+  vulkan::UniqueSemaphore acquired(context.device(), rawAcquired);
+  OSD_CULL_VK(vkCreateSemaphore(context.device(), &semInfo, nullptr, &rawRendered));
+  vulkan::UniqueSemaphore rendered(context.device(), rawRendered);
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence rawFence = VK_NULL_HANDLE;
+  OSD_CULL_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &rawFence));
+  vulkan::UniqueFence fence(context.device(), rawFence);
+
+  HudFigures figures;
+  figures.device = context.info().name;
+  figures.scene = scene.patches.source + ": " + std::to_string(scene.patches.bezierCount) +
+                  " Bezier + " + std::to_string(scene.patches.gregoryCount) + " Gregory patches";
+  const std::string keys = keyHelp();
+  std::cout << "keys:\n" << keys;
+  if (!scene.backPatch.enabled)
+    std::cout << "note: back-patch culling off: " << scene.backPatch.reason << "\n";
+
+  for (uint32_t f = 0; options.frames == 0 || f < options.frames; ++f) {
+    if (!window.poll()) break;
+    const auto start = Clock::now();
+    for (const std::string& line : script.beforeFrame(f, state))
+      std::cout << "key: " << line << "\n";
+    const WindowInput input = window.takeInput();
+    for (const std::string& k : input.keys)
+      if (auto line = pressKey(state, k)) std::cout << "key: " << *line << "\n";
+    orbitCamera(state, -0.3 * input.orbitX, -0.3 * input.orbitY);
+    zoomCamera(state, std::pow(1.01, input.zoomY) * std::pow(0.9, input.wheel));
+    if (state.quit) break;
+    if (state.playing) orbitCamera(state, 1.0, 0.0);
+
+    uint32_t w = 0, h = 0;
+    window.framebufferSize(w, h);
+    if (w == 0 || h == 0) continue;  // minimised
+    if (w != swapchain.extent().width || h != swapchain.extent().height) {
+      swapchain.recreate(w, h);
+      hud.attach(swapchain);
+      makeTargets();
+    }
+    const VkExtent2D extent = swapchain.extent();
+    const frame::Camera camera = viewCamera(state, bounds, scene, extent.width, extent.height);
+    const bool backPatch = state.backPatch && scene.backPatch.enabled;
+    const frame::RenderOptions render = renderOptions(state, context, backPatch);
+
+    // The cull stages are fixed when a CullFrame is made: rebuild it when they change.
+    const std::string cullConfig = state.anyCull() ? state.cullLabel() : "";
+    if (cullConfig != builtCull) {
+      cullFrame.reset();
+      if (!cullConfig.empty()) {
+        frame::CullFrameOptions fo;
+        fo.render = render;
+        fo.cull.frustum = state.frustum;
+        fo.cull.backPatch = state.backPatch ? state.backPatchMethod : "";
+        fo.cull.occlusion = state.occlusion ? "hiz" : "";
+        fo.cull.backPatchValidity = scene.backPatch;
+        cullFrame =
+            std::make_unique<frame::CullFrame>(context, renderer, *targets.view, meshes, fo);
+      }
+      builtCull = cullConfig;
+    }
+
+    figures.cull = state.cullLabel() + (state.freezeCull ? " (cull camera frozen)" : "");
+    figures.tessellation =
+        state.adaptive ? "adaptive, " + std::to_string(state.pixelsPerSegment) + " px/segment"
+                       : "uniform " + std::to_string(render.tessellation.uniformLevel);
+    figures.patches = scene.patches.patchCount();
+    figures.notes.clear();
+    frame::RenderTarget* shown = targets.view.get();
+    if (cullFrame) {
+      frame::CullFrameOptions fo = cullFrame->options();
+      fo.render = render;
+      cullFrame->setOptions(fo);
+      if (!state.freezeCull) {
+        const frame::CullFrameStats s = cullFrame->render(camera, occluders);
+        figures.drawnPass1 = s.drawnPass1;
+        figures.drawnPass2 = s.drawnPass2;
+        figures.culledFrustum = s.culledFrustum;
+        figures.culledBackPatch = s.culledBackPatch;
+        figures.culledOcclusion = s.culledOcclusion;
+        figures.tesInvocations =
+            s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations;
+        figures.pass1Ms = s.pass1Ms;
+        figures.pyramidMs = s.pyramidMs;
+        figures.cullMs = s.cullMs;
+        figures.pass2Ms = s.pass2Ms;
+      }
+      if (state.statusColors || state.freezeCull) {
+        // Every patch from the current camera, colored by what the (frozen) cull camera did.
+        cullFrame->renderStatusView(*targets.status, camera, occluders);
+        shown = targets.status.get();
+      }
+      figures.mode = state.freezeCull || state.statusColors ? "status colors" : "culled draw";
+    } else {
+      const frame::FrameStats s =
+          renderer.render(*targets.view, camera, {&draw, 1}, occluders, render);
+      figures.drawnPass1 = s.patchesDrawn;
+      figures.drawnPass2 = 0;
+      figures.culledFrustum = figures.culledBackPatch = figures.culledOcclusion = 0;
+      figures.tesInvocations = s.statistics.tessEvaluationInvocations;
+      figures.pass1Ms = s.wallMs;
+      figures.pyramidMs = figures.cullMs = figures.pass2Ms = 0;
+      figures.mode = "all patches";
+      if (state.statusColors)
+        figures.notes.push_back("status colors need a cull stage (1, 2, 3 or c)");
+    }
+    if (state.backPatch && !scene.backPatch.enabled)
+      figures.notes.push_back("back-patch culling off: " + scene.backPatch.reason);
+
+    uint32_t image = 0;
+    VkResult r = vkAcquireNextImageKHR(context.device(), swapchain.handle(), UINT64_MAX,
+                                       acquired.get(), VK_NULL_HANDLE, &image);
+    if (r == VK_ERROR_OUT_OF_DATE_KHR) {
+      swapchain.recreate(w, h);
+      hud.attach(swapchain);
+      makeTargets();
+      continue;
+    }
+    if (r != VK_SUBOPTIMAL_KHR) OSD_CULL_VK(r);
+    hud.build(figures, keys, state.showHud);
+    window.setUiCapture(hud.wantsMouse(), hud.wantsKeyboard());
+
+    const bool last = options.frames != 0 && f + 1 == options.frames;
+    const bool capture = last && options.screenshot.has_value();
+    vulkan::Buffer readback;
+    if (capture)
+      readback = vulkan::Buffer(context, VkDeviceSize{extent.width} * extent.height * 4,
+                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, vulkan::MemoryUse::Readback);
+    OSD_CULL_VK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    OSD_CULL_VK(vkBeginCommandBuffer(cmd, &begin));
+    const VkImage target = swapchain.image(image);
+    const VkImage source = shown->color().handle();
+    // The view was drawn and waited for; make its writes visible to the blit.
+    imageBarrier(cmd, source, frame::RenderTarget::kColorLayout, frame::RenderTarget::kColorLayout,
+                 VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {int32_t(shown->width()), int32_t(shown->height()), 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[1] = {int32_t(extent.width), int32_t(extent.height), 1};
+    vkCmdBlitImage(cmd, source, frame::RenderTarget::kColorLayout, target,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    hud.record(cmd, image);
+    if (capture) {
+      imageBarrier(cmd, target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                   VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   VK_ACCESS_TRANSFER_READ_BIT);
+      VkBufferImageCopy copy{};
+      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      copy.imageExtent = {extent.width, extent.height, 1};
+      vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.handle(),
+                             1, &copy);
+      VkBufferMemoryBarrier host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+      host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+      host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      host.buffer = readback.handle();
+      host.size = VK_WHOLE_SIZE;
+      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0,
+                           nullptr, 1, &host, 0, nullptr);
+      imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                   VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
+    } else {
+      imageBarrier(cmd, target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                   VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                   VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
+    }
+    OSD_CULL_VK(vkEndCommandBuffer(cmd));
+    const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    VkSemaphore waitSem = acquired.get(), signalSem = rendered.get();
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &waitSem;
+    submit.pWaitDstStageMask = &waitStage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &signalSem;
+    VkFence rawF = fence.get();
+    OSD_CULL_VK(vkQueueSubmit(context.queue(), 1, &submit, rawF));
+    VkSwapchainKHR chain = swapchain.handle();
+    VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+    present.waitSemaphoreCount = 1;
+    present.pWaitSemaphores = &signalSem;
+    present.swapchainCount = 1;
+    present.pSwapchains = &chain;
+    present.pImageIndices = &image;
+    r = vkQueuePresentKHR(context.queue(), &present);
+    OSD_CULL_VK(vkWaitForFences(context.device(), 1, &rawF, VK_TRUE, UINT64_MAX));
+    OSD_CULL_VK(vkResetFences(context.device(), 1, &rawF));
+    if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) {
+      swapchain.recreate(w, h);
+      hud.attach(swapchain);
+      makeTargets();
+    } else {
+      OSD_CULL_VK(r);
+    }
+    figures.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+
+    if (options.printFrames)
+      std::printf(
+          "frame %u: cull %s, drawn %u of %u patches (pass 1 %u, pass 2 %u), culled frustum %u "
+          "back-patch %u occlusion %u, TES invocations %llu, %.1f ms\n",
+          f, figures.cull.c_str(), figures.drawnPass1 + figures.drawnPass2, figures.patches,
+          figures.drawnPass1, figures.drawnPass2, figures.culledFrustum, figures.culledBackPatch,
+          figures.culledOcclusion, static_cast<unsigned long long>(figures.tesInvocations),
+          figures.frameMs);
+    std::fflush(stdout);
+    if (capture) {
+      std::span<const uint8_t> bytes = readback.mappedAs<const uint8_t>();
+      std::vector<uint8_t> rgba(bytes.begin(), bytes.end());
+      if (swapchain.bgr())
+        for (size_t i = 0; i + 3 < rgba.size(); i += 4) std::swap(rgba[i], rgba[i + 2]);
+      for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;
+      frame::writePng(*options.screenshot, frame::colorImage(extent.width, extent.height, rgba));
+      std::cout << "wrote " << *options.screenshot << "\n";
+    }
+  }
+  context.waitIdle();
+  if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
+    std::cerr << "validation reported " << log->count() << " messages\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace osd_cull::viewer
