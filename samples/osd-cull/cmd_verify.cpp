@@ -118,7 +118,10 @@ int run(Args& args) {
     for (const std::string& k : kernelNames(displacementChoice)) methods.push_back(k);
   }
 
-  const MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
+  MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
+  // Displaced: no back-patch culling, and the oracle draws back faces too (the displaced
+  // surface may fold; its holes at UV seams show the inside).
+  if (displacementChoice.map) mesh.backPatch = {false, frame::kDisplacedBackPatchNote};
   const PatchSet& patches = mesh.patches;
   std::optional<bound::DisplacementMap> displacementMap;
   if (displacementChoice.map)
