@@ -76,6 +76,14 @@ TEST_F(DisplacedCullTest, NoFalseCullsOnDisplacedBigGuy) {
   const auto map = procedural(1.5);
   const auto v = verifyDisplaced(context(), ex, map, 4, frame::ViewSet::WholeObject, "bigguy");
   for (const char* k : {"full-oobb", "acon-caf", "con-caf"}) EXPECT_GT(culledBy(v, k), 0u) << k;
+  // Table 1's order on these views: Full <= ACoN <= CoN per box, OOBB <= CAF per extension.
+  for (const char* box : {"oobb", "caf"}) {
+    const std::string b = box;
+    EXPECT_LE(culledBy(v, "full-" + b), culledBy(v, "acon-" + b)) << box;
+    EXPECT_LE(culledBy(v, "acon-" + b), culledBy(v, "con-" + b)) << box;
+  }
+  for (const char* e : {"full", "acon", "con"})
+    EXPECT_LE(culledBy(v, std::string(e) + "-oobb"), culledBy(v, std::string(e) + "-caf")) << e;
 }
 
 TEST_F(DisplacedCullTest, NoFalseCullsWithExtremeMaps) {
