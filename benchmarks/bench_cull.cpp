@@ -2,14 +2,15 @@
 // a frame, on BigGuy (or another cage). Prints Markdown tables; see docs/results/backpatch.md.
 //
 //   bench-cull [--mesh FILE] [--levels 1,2,3] [--views 20] [--tess 4,8,16]
-//              [--width 640] [--height 480] [--repeats 3] [--device X]
+//              [--width 640] [--height 480] [--repeats 3] [--parts 12] [--device X]
 //
 // Part 1: wall time of one cull submission (counter reset, cull dispatch, draw-command
 // dispatch, wait), median over views x repeats, per patch; "empty" is a pass with no test.
 // Back-patch methods run twice: respecting the drawn triangles (the default) and with
 // "/surface", the papers' surface-exact tests (CullSettings::drawnTriangles = false).
 // Part 2: frames of sphere views drawn in full and with culling (cull pass + survivors in
-// one submission), medians of wall time and tessellation-evaluation invocations.
+// one submission), medians of wall time and tessellation-evaluation invocations. Like for
+// like: both sides cull back faces in the rasterizer when the mesh is closed and oriented.
 #include "adapters/load_mesh.h"
 #include "bench_support.h"
 #include "osd_cull/bound/back_patch_validity.h"
@@ -37,6 +38,7 @@ struct Options {
   std::vector<uint32_t> tess = {4, 8, 16};
   uint32_t views = 20, width = 640, height = 480, repeats = 3;
   std::string device;
+  std::string parts = "12";  ///< which parts run
 };
 
 std::vector<uint32_t> numbers(const std::string& text) {
@@ -71,6 +73,8 @@ Options parse(int argc, char** argv) {
       o.repeats = std::max(1u, numbers(next()).at(0));
     else if (a == "--device")
       o.device = next();
+    else if (a == "--parts")
+      o.parts = next();
     else
       throw Error("unknown option " + a + " (see the comment at the top of bench_cull.cpp)");
   }
@@ -79,19 +83,8 @@ Options parse(int argc, char** argv) {
 
 using osd_cull::bench::median;
 
-struct Mesh {
-  PatchSet patches;
-  bound::BackPatchValidity validity;
-};
-
-Mesh load(const std::string& path, uint32_t level) {
-  const CageMesh cage = adapters::loadCage(path);
-  PatchOptions options;
-  options.isolationLevel = static_cast<int>(level);
-  return {
-      extractPatches(cage, options).patches,
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage))};
-}
+using Mesh = osd_cull::bench::CullMesh;
+using osd_cull::bench::loadCullMesh;
 
 frame::CullSettings settingsFor(std::string method, const bound::BackPatchValidity& v) {
   frame::CullSettings s;
@@ -111,7 +104,7 @@ void kernelCost(vulkan::Context& context, const Options& o) {
   std::printf("\n| level | patches | method | cull rate | ns/patch (median) | ms/pass |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (uint32_t level : o.levels) {
-    const Mesh mesh = load(o.mesh, level);
+    const Mesh mesh = loadCullMesh(o.mesh, level);
     frame::GpuPatchSet gpu(context, mesh.patches);
     frame::ViewSetOptions vo;
     vo.count = o.views;
@@ -141,7 +134,7 @@ void kernelCost(vulkan::Context& context, const Options& o) {
 
 void frameSavings(vulkan::Context& context, const Options& o) {
   const uint32_t level = o.levels.size() > 1 ? o.levels[1] : o.levels.at(0);
-  const Mesh mesh = load(o.mesh, level);
+  const Mesh mesh = loadCullMesh(o.mesh, level);
   frame::GpuPatchSet gpu(context, mesh.patches);
   frame::Renderer renderer(context);
   frame::RenderTarget target(context, o.width, o.height);
@@ -150,14 +143,18 @@ void frameSavings(vulkan::Context& context, const Options& o) {
   vo.width = o.width;
   vo.height = o.height;
   const auto cameras = frame::randomViews(frame::boundsOf(mesh.patches.points), vo);
-  std::printf("\nlevel %u, %u patches, %u sphere views, %ux%u, %u repeats\n\n", level,
-              mesh.patches.patchCount(), o.views, o.width, o.height, o.repeats);
+  std::printf(
+      "\nlevel %u, %u patches, %u sphere views, %ux%u, %u repeats; back faces %s in every "
+      "row, with and without culling\n\n",
+      level, mesh.patches.patchCount(), o.views, o.width, o.height, o.repeats,
+      mesh.validity.enabled ? "culled by the rasterizer" : "drawn (mesh not closed/oriented)");
   std::printf(
       "| tess | cull | patches drawn | TES invocations | frame ms (median) | ratio to none |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (uint32_t tess : o.tess) {
     frame::RenderOptions options;
     options.tessellation.uniformLevel = tess;
+    options.cullBackFaces = mesh.validity.enabled;
     double noneMs = 0.0;
     for (const std::string mode :
          {"none", "tcone", "tcone/surface", "tangent-plane", "tangent-plane/surface", "all"}) {
@@ -197,8 +194,8 @@ int main(int argc, char** argv) {
     co.device = o.device;
     vulkan::Context context(co);
     std::printf("bench-cull: %s on %s\n", o.mesh.c_str(), context.info().name.c_str());
-    kernelCost(context, o);
-    frameSavings(context, o);
+    if (o.parts.find('1') != std::string::npos) kernelCost(context, o);
+    if (o.parts.find('2') != std::string::npos) frameSavings(context, o);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench-cull: %s\n", e.what());

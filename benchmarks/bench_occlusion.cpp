@@ -4,20 +4,23 @@
 //     level 42.9%) next to the oracle rate (patches with no pixel), per scene;
 //  2. cull rate against rotation speed 0-10 degrees per frame (paper Fig. 9 right);
 //  3. frame time and TES invocations with and without culling on the default scene at tess
-//     factors 4, 16, 32 (ratios from the same run) and the cull overhead (pyramid + cull) as
-//     a share of the culled frame;
+//     factors 4, 16, 32 (ratios from the same run; the culled frame is one submission) and
+//     the cull overhead (pyramid + cull) as a share of the culled frame, from the same
+//     frames in the diagnostic mode (one submission per pass);
 //  4. a long sequence with fast rotation: pixels that differ from the unculled image;
 //  5. the first frame under each first-frame policy (all, half, none visible before).
 //
 //   bench-occlusion [--width 1024] [--height 768] [--views 1000] [--orbit-degrees 360]
 //                   [--sequence 300] [--repeats 3] [--only 12345]
 //                   [--scenes default,bigguy0,bigguy1,bigguy2] [--device X] [--csv FILE]
-//                   [--cull-back-faces]
+//                   [--draw-back-faces]
 //
 // --csv FILE writes the rotation sweep (2) as CSV (scripts/plots/occlusion_rotation.py
-// draws it). --cull-back-faces turns on the rasterizer's back-face culling in the culled and
-// unculled draws (the paper's setting; the oracle keeps drawing both sides). Progress goes
-// to stderr.
+// draws it). Like for like: wherever a scene is closed and oriented (the back-patch
+// validity), the rasterizer culls back faces in the culled and in the unculled draws (the
+// paper's setting, Niessner & Loop §6: "backface culling is always turned on"; the oracle
+// keeps drawing both sides); --draw-back-faces draws them on both sides instead. Progress
+// goes to stderr.
 #include "adapters/load_mesh.h"
 #include "bench_support.h"
 #include "osd_cull/bound/back_patch_validity.h"
@@ -56,7 +59,7 @@ struct Options {
   std::string scenes = "default,bigguy0,bigguy1,bigguy2";
   std::string device;
   std::string csv;             ///< rotation sweep as CSV, if set
-  bool cullBackFaces = false;  ///< rasterizer back-face culling in every draw
+  bool drawBackFaces = false;  ///< no rasterizer back-face culling, even on closed meshes
 };
 
 // Progress on stderr: what runs, and seconds since the start.
@@ -95,8 +98,8 @@ Options parse(int argc, char** argv) {
       o.device = next();
     else if (a == "--csv")
       o.csv = next();
-    else if (a == "--cull-back-faces")
-      o.cullBackFaces = true;
+    else if (a == "--draw-back-faces")
+      o.drawBackFaces = true;
     else
       throw Error("unknown option " + a + " (see the comment at the top of bench_occlusion.cpp)");
   }
@@ -141,13 +144,15 @@ glm::dvec3 upFor(const glm::dvec3& direction, const glm::dvec3& up) {
 }
 
 // The frame's default stages (frustum and Hi-Z occlusion) or, with `all`, frustum,
-// tangent-plane back-patch (where valid) and Hi-Z occlusion in the same kernel.
-frame::CullFrameOptions cullOptions(const Options& options, uint32_t tess,
-                                    const Scene* all = nullptr) {
+// tangent-plane back-patch (where valid) and Hi-Z occlusion in the same kernel. Back faces
+// are culled by the rasterizer where the scene allows it; the unculled frames of the
+// benchmark draw with the same RenderOptions.
+frame::CullFrameOptions cullOptions(const Options& options, const Scene& scene, uint32_t tess,
+                                    bool all = false) {
   frame::CullFrameOptions o;
   o.render.tessellation.uniformLevel = tess;
-  o.render.cullBackFaces = options.cullBackFaces;
-  if (all) o.cull = {true, "tangent-plane", "hiz", all->validity};
+  o.render.cullBackFaces = scene.validity.enabled && !options.drawBackFaces;
+  if (all) o.cull = {true, "tangent-plane", "hiz", scene.validity};
   return o;
 }
 
@@ -160,11 +165,11 @@ void cullRates(vulkan::Context& context, const Scene& scene, const Options& o) {
   frame::Renderer renderer(context);
   frame::VisibilityOracle oracle(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(o, 4));
-  frame::CullFrameOptions tightOptions = cullOptions(o, 4);
+  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(o, scene, 4));
+  frame::CullFrameOptions tightOptions = cullOptions(o, scene, 4);
   tightOptions.hiz.lookup = bound::HiZLookup::Tight;
   frame::CullFrame tight(context, renderer, target, meshes, tightOptions);
-  frame::CullFrame all(context, renderer, target, meshes, cullOptions(o, 4, &scene));
+  frame::CullFrame all(context, renderer, target, meshes, cullOptions(o, scene, 4, true));
   std::mt19937_64 rng(2012);
   uint64_t culled = 0, culledTight = 0, culledAll = 0, invisible = 0, total = 0;
   for (uint32_t v = 0; v < o.views; ++v) {
@@ -202,7 +207,7 @@ void rotationRates(vulkan::Context& context, const Scene& scene, const Options& 
   frame::RenderTarget target(context, o.width, o.height);
   frame::Renderer renderer(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(o, 4));
+  frame::CullFrame cull(context, renderer, target, meshes, cullOptions(o, scene, 4));
   const frame::Camera start =
       frame::frameBounds(g.bounds, scene.viewDirection, scene.up, 40.0, o.width, o.height);
   for (double speed = 0.0; speed <= 10.0; speed += 1.0) {
@@ -259,14 +264,20 @@ void frameCosts(vulkan::Context& context, const Scene& scene, const Options& o) 
            {frame::CullDrawMode::Filtered, frame::CullDrawMode::TessFactorZero}) {
         progress("3. " + scene.name + ": tess " + std::to_string(tess) +
                  (allStages ? ", all stages, " : ", frustum + occlusion, ") + toString(mode));
-        frame::CullFrameOptions co = cullOptions(o, tess, allStages ? &scene : nullptr);
+        frame::CullFrameOptions co = cullOptions(o, scene, tess, allStages);
         co.drawMode = mode;
         frame::CullFrame cull(context, renderer, target, meshes, co);
+        // The same frames in the diagnostic mode (a submission per pass) for the split.
+        frame::CullFrameOptions diagnostic = co;
+        diagnostic.timePasses = true;
+        frame::RenderTarget diagnosticTarget(context, o.width, o.height);
+        frame::CullFrame split(context, renderer, diagnosticTarget, meshes, diagnostic);
         std::vector<double> ratio, overhead, culledMs, plainMs;
         uint64_t tesCulled = 0, tesPlain = 0, fragCulled = 0, fragPlain = 0, culled = 0, total = 0;
         uint64_t tcsCulled = 0, tcsPlain = 0;
         renderer.render(plain, start, {&draw, 1}, g.occluders, co.render);  // JIT warm-up
         cull.render(start, g.occluders);
+        split.render(start, g.occluders);
         const uint32_t frames = 12 * o.repeats;
         for (uint32_t f = 0; f < frames; ++f) {
           const auto cam = frame::orbit(start, g.bounds.center(), scene.up, 5.0 * f);
@@ -275,7 +286,8 @@ void frameCosts(vulkan::Context& context, const Scene& scene, const Options& o) 
           plainMs.push_back(p.wallMs);
           culledMs.push_back(c.totalMs());
           ratio.push_back(c.totalMs() / p.wallMs);
-          overhead.push_back((c.pyramidMs + c.cullMs) / c.totalMs());
+          const auto d = split.render(cam, g.occluders);
+          overhead.push_back((d.pyramidMs + d.cullMs) / d.totalMs());
           tesPlain += p.statistics.tessEvaluationInvocations;
           tesCulled += c.pass1.tessEvaluationInvocations + c.pass2.tessEvaluationInvocations;
           fragPlain += p.statistics.fragmentShaderInvocations;
@@ -303,7 +315,7 @@ void sequence(vulkan::Context& context, const Scene& scene, const Options& o, bo
   frame::RenderTarget target(context, o.width, o.height), plain(context, o.width, o.height);
   frame::Renderer renderer(context);
   const frame::CullMesh meshes[] = {g.mesh()};
-  frame::CullFrameOptions co = cullOptions(o, 4, allStages ? &scene : nullptr);
+  frame::CullFrameOptions co = cullOptions(o, scene, 4, allStages);
   co.aggressive = aggressive;
   frame::CullFrame cull(context, renderer, target, meshes, co);
   frame::Camera cam =
@@ -347,11 +359,7 @@ void sequence(vulkan::Context& context, const Scene& scene, const Options& o, bo
   std::fflush(stdout);
 }
 
-// The data folder beside the project (as the tests find it), or $OSD_CULL_DATA_DIR.
-std::filesystem::path dataDir() {
-  if (const char* d = std::getenv("OSD_CULL_DATA_DIR")) return d;
-  return std::filesystem::path(OSD_CULL_SOURCE_DIR) / ".." / "shared" / "data";
-}
+using osd_cull::bench::dataDir;
 
 // 5. The first frame under each first-frame policy (averaged over whole-object views): what
 // each pass draws and the tessellation work, against drawing everything once.
@@ -365,7 +373,7 @@ void firstFrames(vulkan::Context& context, const Scene& scene, const Options& o)
   for (frame::FirstFrame policy : {frame::FirstFrame::AllVisible, frame::FirstFrame::HalfVisible,
                                    frame::FirstFrame::NoneVisible}) {
     progress("5. " + scene.name + ": first frame " + toString(policy));
-    frame::CullFrameOptions co = cullOptions(o, 4);
+    frame::CullFrameOptions co = cullOptions(o, scene, 4);
     co.firstFrame = policy;
     frame::CullFrame cull(context, renderer, target, meshes, co);
     std::mt19937_64 rng(77);
@@ -482,9 +490,18 @@ int main(int argc, char** argv) {
     contextOptions.device = o.device;
     vulkan::Context context(contextOptions);
     const std::vector<Scene> all = scenes(o.scenes);
-    std::printf("device: %s; image %ux%u; Hi-Z top level at half resolution; back faces %s\n\n",
-                context.info().name.c_str(), o.width, o.height,
-                o.cullBackFaces ? "culled" : "drawn");
+    std::printf(
+        "device: %s; image %ux%u; Hi-Z top level at half resolution; back faces %s, the same "
+        "with and without culling\n\n",
+        context.info().name.c_str(), o.width, o.height,
+        o.drawBackFaces ? "drawn" : "culled by the rasterizer on closed, oriented scenes");
+    for (const Scene& s : all) {
+      const bool culled = s.validity.enabled && !o.drawBackFaces;
+      const std::string why = o.drawBackFaces ? "--draw-back-faces" : s.validity.reason;
+      std::printf("- %s: back faces %s\n", s.name.c_str(),
+                  culled ? "culled on both sides" : ("drawn on both sides (" + why + ")").c_str());
+    }
+    std::printf("\n");
     auto want = [&](char c) { return o.only.find(c) != std::string::npos; };
     if (want('1')) {
       std::printf("## Occlusion cull rate, whole-object views\n\n");

@@ -2,7 +2,15 @@
 /// \file bench_support.h
 /// \brief Small helpers shared by the benchmarks.
 
+#include "adapters/load_mesh.h"
+#include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/patch/refiner.h"
+
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 namespace osd_cull::bench {
@@ -12,6 +20,29 @@ inline double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+/// \brief The data folder beside the project (as the tests find it), or $OSD_CULL_DATA_DIR.
+inline std::filesystem::path dataDir() {
+  if (const char* d = std::getenv("OSD_CULL_DATA_DIR")) return d;
+  return std::filesystem::path(OSD_CULL_SOURCE_DIR) / ".." / "shared" / "data";
+}
+
+/// \brief Patches of a cage file at an isolation level, and whether back-patch culling (and
+/// so rasterizer back-face culling) is valid on it: a closed, consistently oriented mesh.
+struct CullMesh {
+  PatchSet patches;
+  bound::BackPatchValidity validity;
+};
+
+/// \brief Loads `path` and extracts its patches at isolation `level`.
+inline CullMesh loadCullMesh(const std::filesystem::path& path, uint32_t level) {
+  const CageMesh cage = adapters::loadCage(path);
+  PatchOptions options;
+  options.isolationLevel = static_cast<int>(level);
+  return {
+      extractPatches(cage, options).patches,
+      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage))};
 }
 
 }  // namespace osd_cull::bench

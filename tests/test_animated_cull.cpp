@@ -169,11 +169,10 @@ TEST_F(AnimatedCullTest, TwoPassFramesOfASkinnedMeshEqualTheUnculledImage) {
     frame::CullFrameOptions o;
     o.render.tessellation.uniformLevel = 4;
     o.cull = {true, "tcone", "hiz", validityOf(cage)};
-    frame::CullMesh moving;
-    moving.gpu = &mesh.gpu();
-    moving.host = &mesh.patches();
-    moving.cullData = &mesh.cullData(BackPatchMethod::TCone);
-    const frame::CullMesh meshes[] = {moving};
+    const frame::CullMesh meshes[] = {
+        {.gpu = &mesh.gpu(),
+         .host = &mesh.patches(),
+         .cullData = &mesh.cullData(BackPatchMethod::TCone)}};
     frame::CullFrame cull(context(), renderer, target, meshes, o);
     const frame::Bounds bounds = frame::boundsOf(mesh.patches().points);
     const frame::Camera camera =

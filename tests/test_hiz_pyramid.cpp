@@ -1,6 +1,6 @@
 // The Hi-Z pyramid built in compute equals the double-precision reference texel for texel,
-// with the min/max sampler reduction and with four texel fetches, at half and full
-// resolution, for power-of-two, odd and tiny sizes.
+// in one dispatch (single pass) and per level with the min/max sampler reduction and with
+// four texel fetches, at half and full resolution, for power-of-two, odd and tiny sizes.
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
 #include "osd_cull/vk/buffer.h"
@@ -24,8 +24,8 @@ class HiZPyramidTest : public test::VkTest {
   // A sampled D32_SFLOAT image holding `depth` (rows top to bottom), left in GENERAL.
   vulkan::Image depthImage(uint32_t w, uint32_t h, const std::vector<float>& depth) {
     vulkan::Image image(context(),
-                    {w, h, VK_FORMAT_D32_SFLOAT,
-                     VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
+                        {w, h, VK_FORMAT_D32_SFLOAT,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT});
     upload(image, depth, VK_IMAGE_LAYOUT_UNDEFINED);
     return image;
   }
@@ -33,18 +33,19 @@ class HiZPyramidTest : public test::VkTest {
   // Replaces the image's contents; it goes from `layout` to GENERAL.
   void upload(const vulkan::Image& image, const std::vector<float>& depth, VkImageLayout layout) {
     vulkan::Buffer staging(context(), depth.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                       vulkan::MemoryUse::Upload);
+                           vulkan::MemoryUse::Upload);
     std::memcpy(staging.mapped(), depth.data(), depth.size() * 4);
     context().submit([&](VkCommandBuffer cmd) {
-      vulkan::imageBarrier(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, vulkan::scope::kAll,
-                       vulkan::scope::kTransferWrite);
+      vulkan::imageBarrier(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           vulkan::scope::kAll, vulkan::scope::kTransferWrite);
       VkBufferImageCopy region{};
       region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
       region.imageExtent = {image.width(), image.height(), 1};
       vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(),
                              VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-      vulkan::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                       vulkan::scope::kTransferWrite, vulkan::scope::kAll);
+      vulkan::imageBarrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           VK_IMAGE_LAYOUT_GENERAL, vulkan::scope::kTransferWrite,
+                           vulkan::scope::kAll);
     });
   }
 
@@ -68,6 +69,9 @@ class HiZPyramidTest : public test::VkTest {
     if (reduction != HiZReduction::Auto) {
       EXPECT_EQ(pyramid.usesSampler(), reduction == HiZReduction::Sampler);
     }
+    EXPECT_EQ(pyramid.singlePass(),
+              reduction == HiZReduction::SinglePass ||
+                  (reduction == HiZReduction::Auto && !frame::supportsMinmaxReduction(context())));
     pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
     const auto levels = pyramid.readLevels(context());
     const bound::HiZPyramid ref = bound::buildHiZPyramid(depth, w, h, full);
@@ -100,6 +104,35 @@ TEST_F(HiZPyramidTest, FourTapReductionEqualsTheReference) {
   for (const Size s : kSizes)
     for (bool full : {false, true})
       buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w * 31 + s.h), full, HiZReduction::FourTap);
+}
+
+TEST_F(HiZPyramidTest, SinglePassBuildEqualsTheReference) {
+  for (const Size s : kSizes)
+    for (bool full : {false, true})
+      buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w * 31 + s.h), full,
+                      HiZReduction::SinglePass);
+}
+
+TEST_F(HiZPyramidTest, SinglePassBuildsLargeAndElongatedImagesInOneDispatch) {
+  // 1280x720: many 64x64 tiles, the last workgroup builds levels 7-11. 4100x9: level 0 is
+  // 8192x16 at full resolution, one row of tiles, the top levels one texel high.
+  for (const Size s : {Size{1280, 720}, Size{4100, 9}, Size{130, 300}})
+    for (bool full : {false, true}) {
+      const vulkan::Image image = depthImage(s.w, s.h, randomDepth(s.w, s.h, s.w + 7 * s.h));
+      EXPECT_EQ(
+          frame::HiZPyramid(context(), image, {full, HiZReduction::SinglePass}).dispatchCount(),
+          1u);
+      buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w + 7 * s.h), full,
+                      HiZReduction::SinglePass);
+    }
+}
+
+TEST_F(HiZPyramidTest, SinglePassAndPerLevelBuildsAgree) {
+  const uint32_t w = 300, h = 200;
+  const std::vector<float> d = randomDepth(w, h, 5);
+  for (bool full : {false, true})
+    EXPECT_EQ(buildAndCompare(w, h, d, full, HiZReduction::SinglePass),
+              buildAndCompare(w, h, d, full, HiZReduction::FourTap));
 }
 
 TEST_F(HiZPyramidTest, MinmaxSamplerReductionEqualsTheReference) {
@@ -137,6 +170,28 @@ TEST_F(HiZPyramidTest, PlaneGivesThePlaneDepthInsideAndFarInThePadding) {
   EXPECT_EQ(levels[3][2], 0.5f);   // pixels 32..47
   EXPECT_EQ(levels[3][3], 1.0f);   // pixels 48..63
   EXPECT_EQ(levels[5][0], 1.0f);
+}
+
+TEST_F(HiZPyramidTest, RebuildsUpdateTheImageAndKeepThePaddingFar) {
+  // Later builds skip the texels that cover only padding: they must still read far.
+  const uint32_t w = 300, h = 70;
+  const std::vector<float> first = randomDepth(w, h, 1), second = randomDepth(w, h, 2);
+  for (HiZReduction r : {HiZReduction::SinglePass, HiZReduction::FourTap, HiZReduction::Sampler})
+    for (bool full : {false, true}) {
+      if (r == HiZReduction::Sampler && !frame::supportsMinmaxReduction(context())) continue;
+      const vulkan::Image image = depthImage(w, h, first);
+      frame::HiZPyramid pyramid(context(), image, {full, r});
+      pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
+      upload(image, second, VK_IMAGE_LAYOUT_GENERAL);
+      pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
+      const auto levels = pyramid.readLevels(context());
+      const bound::HiZPyramid ref = bound::buildHiZPyramid(second, w, h, full);
+      ASSERT_EQ(levels.size(), ref.levels.size());
+      for (size_t l = 0; l < levels.size(); ++l)
+        for (size_t i = 0; i < levels[l].size(); ++i)
+          ASSERT_EQ(double{levels[l][i]}, ref.levels[l][i])
+              << toString(r) << (full ? " full" : " half") << " level " << l << " texel " << i;
+    }
 }
 
 TEST_F(HiZPyramidTest, RebuildAfterTheDepthChangedUsesTheNewDepth) {

@@ -46,6 +46,20 @@ uint32_t drawStatusOf(uint32_t status) {
 
 }  // namespace
 
+// One slot of the statistics ring: the frame it holds, its two pipeline-statistics
+// queries (0: first pass, 1: second pass, or in aggressive mode the statistics copy) and
+// the per-mesh counters copied on the GPU (VisibilityBuffer::recordStatsCopy).
+struct CullFrame::StatsSlot {
+  StatsSlot(vulkan::Context& context, size_t meshes)
+      : queries(context, 2),
+        counters(context, std::max<size_t>(1, meshes) * VisibilityBuffer::kStatsCopyWords * 4,
+                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, vulkan::MemoryUse::Readback) {}
+  std::optional<uint64_t> frame;  // none: never used
+  bool aggressive = false;
+  vulkan::PipelineStatisticsQuery queries;
+  vulkan::Buffer counters;
+};
+
 const char* toString(CullDrawMode mode) {
   return mode == CullDrawMode::Filtered ? "filtered" : "tf0";
 }
@@ -57,8 +71,13 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
       target_(target),
       meshes_(meshes.begin(), meshes.end()),
       options_(options),
-      programs_(std::make_unique<VisibilityPrograms>(context)),
-      queries_(context, 2) {
+      programs_(std::make_unique<VisibilityPrograms>(context)) {
+  if (!context.info().optional.hostQueryReset)
+    throw Error("CullFrame: device '" + context.info().name +
+                "' lacks hostQueryReset (a Vulkan 1.2 feature), needed by the statistics ring");
+  if (options.statsSlots == 0) throw Error("CullFrame: CullFrameOptions::statsSlots must be >= 1");
+  for (uint32_t i = 0; i < options.statsSlots; ++i)
+    slots_.push_back(std::make_unique<StatsSlot>(context, meshes.size()));
   const CullSettings& cull = options.cull;
   if (!cull.occlusion.empty()) {
     pyramid_ = std::make_unique<HiZPyramid>(context, target.depth(), options.hiz);
@@ -106,7 +125,9 @@ void CullFrame::setOptions(const CullFrameOptions& options) {
   const HiZOptions hiz = options_.hiz;
   const FirstFrame first = options_.firstFrame;
   const CullSettings cull = options_.cull;
+  const uint32_t slots = options_.statsSlots;
   options_ = options;
+  options_.statsSlots = slots;
   options_.hiz = hiz;
   options_.firstFrame = first;
   options_.cull = cull;
@@ -146,82 +167,142 @@ void CullFrame::recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool
   }
 }
 
-CullFrameStats CullFrame::render(const Camera& camera,
-                                 std::span<const GpuTriangleMesh* const> occluders) {
+CullFrame::StatsSlot& CullFrame::beginFrame(const Camera& camera) {
   if (camera.width != target_.width() || camera.height != target_.height())
     throw Error("CullFrame: camera viewport " + std::to_string(camera.width) + "x" +
                 std::to_string(camera.height) + " differs from the render target " +
                 std::to_string(target_.width()) + "x" + std::to_string(target_.height()));
-  CullFrameStats s;
-  const bool filtered = options_.drawMode == CullDrawMode::Filtered;
-  RenderOptions pass = options_.render;
+  StatsSlot& slot = *slots_[nextFrame_ % slots_.size()];
+  // The slot's last frame must be over before its queries are reset from the host.
+  if (slot.frame && !slot.queries.tryResult(1))
+    throw Error("CullFrame::record: frame " + std::to_string(*slot.frame) + ", recorded " +
+                std::to_string(slots_.size()) +
+                " frames ago, has not finished on the device; wait for its submission first "
+                "or use more CullFrameOptions::statsSlots");
+  slot.queries.hostReset();
+  slot.frame = nextFrame_++;
+  slot.aggressive = options_.aggressive;
+  return slot;
+}
 
-  // 1. Occluders and the patches visible last frame.
-  s.pass1Ms = timedSubmit(context_, [&](VkCommandBuffer cmd) {
-    queries_.reset(cmd);
-    if (filtered)
-      for (size_t m = 0; m < meshes_.size(); ++m) {
-        const Chunks c = chunks(m);
-        visibility_[m]->recordFirstPassCommands(cmd, c.bezier, c.gregory);
-      }
-    pass.clear = true;
-    renderer_.beginPass(cmd, target_, pass);
-    queries_.begin(cmd, 0);
-    renderer_.recordOccluders(cmd, camera, occluders);
-    recordPatchDraws(cmd, camera, false);
-    queries_.end(cmd, 0);
-    renderer_.endPass(cmd);
-  });
-  for (auto& v : visibility_) {
-    s.patchesTotal += v->patchCount();
-    s.drawnPass1 += v->firstPass().bezier() + v->firstPass().gregory();
-  }
-
-  // 2. The Hi-Z pyramid of that depth.
-  if (pyramid_)
-    s.pyramidMs = timedSubmit(
-        context_, [&](VkCommandBuffer cmd) { pyramid_->record(cmd, RenderTarget::kDepthLayout); });
-
-  // 3. Cull every patch, update the status, build the lists.
-  s.cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {
+void CullFrame::recordFirstPass(VkCommandBuffer cmd, const Camera& camera,
+                                std::span<const GpuTriangleMesh* const> occluders,
+                                StatsSlot& slot) {
+  if (options_.drawMode == CullDrawMode::Filtered)
     for (size_t m = 0; m < meshes_.size(); ++m) {
       const Chunks c = chunks(m);
-      if (!passes_[m]) {
-        visibility_[m]->recordUpdate(cmd, survivedResults_, c.bezier, c.gregory);
-        continue;
-      }
+      visibility_[m]->recordFirstPassCommands(cmd, c.bezier, c.gregory);
+    }
+  RenderOptions pass = options_.render;
+  pass.clear = true;
+  renderer_.beginPass(cmd, target_, pass);
+  slot.queries.begin(cmd, 0);
+  renderer_.recordOccluders(cmd, camera, occluders);
+  recordPatchDraws(cmd, camera, false);
+  slot.queries.end(cmd, 0);
+  renderer_.endPass(cmd);
+}
+
+void CullFrame::recordCull(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot) {
+  for (size_t m = 0; m < meshes_.size(); ++m) {
+    const Chunks c = chunks(m);
+    if (!passes_[m]) {
+      visibility_[m]->recordUpdate(cmd, survivedResults_, c.bezier, c.gregory);
+    } else {
       // One dispatch: frustum → back-patch → Hi-Z occlusion, a result code per patch.
       passes_[m]->record(cmd, instanceCamera(camera, meshes_[m].model),
                          options_.render.tessellation, stage_ ? stage_->set() : VK_NULL_HANDLE);
       vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kComputeRead);
       visibility_[m]->recordUpdate(cmd, passes_[m]->resultsBuffer(), c.bezier, c.gregory);
     }
-  });
-  for (auto& v : visibility_) {
-    const auto st = v->stats();
+    visibility_[m]->recordStatsCopy(cmd, slot.counters,
+                                    VkDeviceSize{m} * VisibilityBuffer::kStatsCopyWords * 4);
+  }
+}
+
+void CullFrame::recordSecondPass(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot) {
+  // Query 1 ends after everything else of the frame: its result marks the frame finished.
+  if (slot.aggressive) {
+    slot.queries.begin(cmd, 1);
+    slot.queries.end(cmd, 1);
+    return;
+  }
+  RenderOptions pass = options_.render;
+  pass.clear = false;
+  renderer_.beginPass(cmd, target_, pass);
+  slot.queries.begin(cmd, 1);
+  recordPatchDraws(cmd, camera, true);
+  slot.queries.end(cmd, 1);
+  renderer_.endPass(cmd);
+}
+
+uint64_t CullFrame::record(VkCommandBuffer cmd, const Camera& camera,
+                           std::span<const GpuTriangleMesh* const> occluders) {
+  StatsSlot& slot = beginFrame(camera);
+  recordFirstPass(cmd, camera, occluders, slot);
+  if (pyramid_) pyramid_->record(cmd, RenderTarget::kDepthLayout);
+  recordCull(cmd, camera, slot);
+  recordSecondPass(cmd, camera, slot);
+  for (auto& v : visibility_) v->advance();
+  return *slot.frame;
+}
+
+std::optional<CullFrameStats> CullFrame::stats(uint64_t frame) const {
+  const StatsSlot& slot = *slots_[frame % slots_.size()];
+  if (slot.frame != frame) return std::nullopt;
+  const std::optional<vulkan::PipelineStatistics> last = slot.queries.tryResult(1);
+  if (!last) return std::nullopt;
+  CullFrameStats s;
+  s.frame = frame;
+  s.pass1 = slot.queries.result(0);  // available: it ended before query 1
+  if (!slot.aggressive) s.pass2 = *last;
+  const auto words = slot.counters.mappedAs<const uint32_t>();
+  for (size_t m = 0; m < meshes_.size(); ++m) {
+    const uint32_t* c = words.data() + m * VisibilityBuffer::kStatsCopyWords;
+    const uint32_t* st = c + shader::kListCounterCount;
+    s.patchesTotal += meshes_[m].gpu->patchCount();
+    s.drawnPass1 += c[shader::kListSurvivorsBezier] + c[shader::kListSurvivorsGregory];
     s.culledFrustum += st[shader::kStatCulledFrustum];
     s.culledBackPatch += st[shader::kStatCulledBackPatch];
     s.culledOcclusion += st[shader::kStatCulledOcclusion];
     s.newlyVisible += st[shader::kStatNewlyVisible];
     s.survivors += st[shader::kStatSurvivors];
   }
-
-  // 4. The patches that became visible.
-  if (!options_.aggressive) {
-    s.pass2Ms = timedSubmit(context_, [&](VkCommandBuffer cmd) {
-      pass.clear = false;
-      renderer_.beginPass(cmd, target_, pass);
-      queries_.begin(cmd, 1);
-      recordPatchDraws(cmd, camera, true);
-      queries_.end(cmd, 1);
-      renderer_.endPass(cmd);
-    });
-    s.drawnPass2 = s.newlyVisible;
-    s.pass2 = queries_.result(1);
-  }
-  s.pass1 = queries_.result(0);
-  for (auto& v : visibility_) v->advance();
+  if (!slot.aggressive) s.drawnPass2 = s.newlyVisible;
   return s;
+}
+
+CullFrameStats CullFrame::render(const Camera& camera,
+                                 std::span<const GpuTriangleMesh* const> occluders) {
+  const auto start = Clock::now();
+  uint64_t frame = 0;
+  double pass1Ms = 0, pyramidMs = 0, cullMs = 0, pass2Ms = 0;
+  if (!options_.timePasses) {
+    context_.submit([&](VkCommandBuffer cmd) { frame = record(cmd, camera, occluders); });
+  } else {
+    // Diagnostic: the same commands, one submission and wait per pass.
+    StatsSlot& slot = beginFrame(camera);
+    frame = *slot.frame;
+    pass1Ms = timedSubmit(
+        context_, [&](VkCommandBuffer cmd) { recordFirstPass(cmd, camera, occluders, slot); });
+    if (pyramid_)
+      pyramidMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {
+        pyramid_->record(cmd, RenderTarget::kDepthLayout);
+      });
+    cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) { recordCull(cmd, camera, slot); });
+    pass2Ms =
+        timedSubmit(context_, [&](VkCommandBuffer cmd) { recordSecondPass(cmd, camera, slot); });
+    for (auto& v : visibility_) v->advance();
+  }
+  const double frameMs = msSince(start);
+  std::optional<CullFrameStats> s = stats(frame);
+  if (!s) throw Error("CullFrame::render: the statistics of the finished frame are unavailable");
+  s->frameMs = frameMs;
+  s->pass1Ms = pass1Ms;
+  s->pyramidMs = pyramidMs;
+  s->cullMs = cullMs;
+  s->pass2Ms = pass2Ms;
+  return *s;
 }
 
 std::vector<uint32_t> CullFrame::readResults(size_t mesh) const {

@@ -3,13 +3,19 @@
 /// \brief The two-pass frame of Niessner & Loop §3 (Fig. 2) for one view over several patch
 /// meshes and triangle occluders:
 ///   1. draw the occluders and the patches visible last frame            → depth
-///   2. build the Hi-Z pyramid from that depth
+///   2. build the Hi-Z pyramid from that depth (one dispatch, hiz_pyramid.h)
 ///   3. cull every patch (one dispatch of the cull kernel, cull_pass.h: frustum, back-patch,
 ///      Hi-Z occlusion), update its status, build the draw lists
 ///   4. draw the patches that became visible                             → final image
 /// The aggressive mode (§3.1) skips 4: patches that become visible appear one frame late.
 /// Each mesh keeps its own VisibilityBuffer for this view, so another CullFrame (a second
 /// camera) can share the meshes.
+///
+/// The whole frame is recorded into one command buffer, with barriers between the passes
+/// and no host wait: record() puts it into the application's command buffer and never
+/// submits; render() records it into one command buffer of the Context, submits once and
+/// waits. The statistics of a frame are copied on the GPU into a ring of readback slots
+/// and read with stats() frames later, without stalling.
 ///
 /// Draws are either compact indirect draws of the listed patches (Filtered) or the paper's
 /// variant (§5, TessFactorZero): every patch drawn, the ones not to be drawn with
@@ -50,6 +56,14 @@ struct CullFrameOptions {
   CullDrawMode drawMode = CullDrawMode::Filtered;
   FirstFrame firstFrame = FirstFrame::AllVisible;
   HiZOptions hiz;
+  /// Diagnostic mode: render() submits each pass on its own, waits for it and times it
+  /// with the wall clock (CullFrameStats::pass1Ms, pyramidMs, cullMs, pass2Ms). Off: the
+  /// normal path, one submission per frame. (Timestamps are not used for the split:
+  /// lavapipe's compute timestamps after graphics work are not trustworthy, PLATFORM.md.)
+  bool timePasses = false;
+  /// Slots of the statistics ring: the statistics of frame N can be read with stats(N)
+  /// until frame N + statsSlots is recorded. At least the application's frames in flight.
+  uint32_t statsSlots = 3;
 };
 
 /// \brief What one frame did.
@@ -65,11 +79,15 @@ struct CullFrameStats {
   uint32_t culled() const { return culledFrustum + culledBackPatch + culledOcclusion; }
   vulkan::PipelineStatistics pass1;  ///< over the first render pass (occluders included)
   vulkan::PipelineStatistics pass2;
-  double pass1Ms = 0.0;  ///< wall clock of each submission (record, submit, wait)
+  uint64_t frame = 0;    ///< the number record() returned
+  double frameMs = 0.0;  ///< render(): wall clock of recording, submission(s) and wait
+  /// Diagnostic mode only (CullFrameOptions::timePasses), else 0: wall clock of each
+  /// pass's own submission (record, submit, wait).
+  double pass1Ms = 0.0;
   double pyramidMs = 0.0;
   double cullMs = 0.0;  ///< cull kernel and visibility update
   double pass2Ms = 0.0;
-  double totalMs() const { return pass1Ms + pyramidMs + cullMs + pass2Ms; }
+  double totalMs() const { return frameMs; }
 };
 
 /// \brief One patch mesh (or instance) of the scene. Both must outlive the CullFrame.
@@ -101,9 +119,42 @@ class CullFrame {
   CullFrame(const CullFrame&) = delete;
   CullFrame& operator=(const CullFrame&) = delete;
 
-  /// \brief Renders one frame into the target; the item buffer holds itemBase(m) + p + 1
-  /// for patch p of mesh m, kItemOccluder for occluders.
+  /// \brief Renders one frame into the target and waits for it: record() into one command
+  /// buffer, one submission (CullFrameOptions::timePasses: one per pass), then stats().
+  /// The item buffer holds itemBase(m) + p + 1 for patch p of mesh m, kItemOccluder for
+  /// occluders.
   CullFrameStats render(const Camera& camera, std::span<const GpuTriangleMesh* const> occluders);
+
+  /// \brief Records one whole frame into `cmd` and returns its number for stats(). Never
+  /// submits and never waits.
+  ///
+  /// `cmd` is a primary command buffer in the recording state, outside any render pass,
+  /// to be submitted to the Context's queue. The recorded commands:
+  /// - start with barriers that wait for every earlier command of the queue that used the
+  ///   frame's buffers (patch points written by a deformer included) and the pyramid;
+  /// - begin the target's clear pass (color, item and depth images: any previous layout,
+  ///   contents discarded) and later its load pass, and leave the images in the layouts of
+  ///   RenderTarget: color TRANSFER_SRC_OPTIMAL, items GENERAL, depth
+  ///   DEPTH_STENCIL_ATTACHMENT_OPTIMAL, with their writes made available (the render
+  ///   passes' external dependencies);
+  /// - move the depth image to DEPTH_STENCIL_READ_ONLY_OPTIMAL for the pyramid build and
+  ///   back; the pyramid image stays in GENERAL;
+  /// - copy the frame's statistics into a readback slot, made available to the host.
+  ///
+  /// Contract: submit every recorded frame exactly once, in the order recorded (the status
+  /// of each patch is carried from frame to frame on the GPU); frame N must have finished
+  /// on the device before frame N + statsSlots is recorded. The meshes, occluders and the
+  /// target must stay alive until the frame has finished.
+  /// \throws osd_cull::Error when the camera's viewport differs from the target's size or
+  /// frame N - statsSlots has not finished.
+  uint64_t record(VkCommandBuffer cmd, const Camera& camera,
+                  std::span<const GpuTriangleMesh* const> occluders);
+
+  /// \brief The statistics of frame `frame` (a number record() returned) without waiting:
+  /// std::nullopt while the device has not finished the frame, or once its slot has been
+  /// reused (frame + statsSlots was recorded). Read them after the application has waited
+  /// for the frame's submission (its fence), typically statsSlots - 1 frames later.
+  std::optional<CullFrameStats> stats(uint64_t frame) const;
 
   /// \brief Starts over as before the first frame (e.g. after a camera cut).
   void reset(FirstFrame firstFrame);
@@ -137,8 +188,14 @@ class CullFrame {
   struct Chunks {
     uint32_t bezier = 1, gregory = 1;
   };
+  struct StatsSlot;
   Chunks chunks(size_t mesh) const;
   void recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool secondPass);
+  StatsSlot& beginFrame(const Camera& camera);
+  void recordFirstPass(VkCommandBuffer cmd, const Camera& camera,
+                       std::span<const GpuTriangleMesh* const> occluders, StatsSlot& slot);
+  void recordCull(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot);
+  void recordSecondPass(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot);
 
   vulkan::Context& context_;
   Renderer& renderer_;
@@ -152,7 +209,8 @@ class CullFrame {
   vulkan::Buffer survivedResults_;                 // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
-  vulkan::PipelineStatisticsQuery queries_;
+  std::vector<std::unique_ptr<StatsSlot>> slots_;  // the statistics ring
+  uint64_t nextFrame_ = 0;
   std::vector<vulkan::Buffer> statusLists_;  // debug view lists, made on first use
   std::vector<VkDescriptorSet> statusSets_;
   vulkan::UniqueDescriptorSetLayout statusSetLayout_;

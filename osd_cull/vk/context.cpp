@@ -375,6 +375,7 @@ void Context::submit(const std::function<void(VkCommandBuffer)>& record) {
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
   OSD_CULL_VK(vkQueueSubmit(queue_, 1, &submit, fence));
+  ++submissions_;
   OSD_CULL_VK(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX));
 }
 

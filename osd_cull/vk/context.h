@@ -103,6 +103,9 @@ class Context {
   void submit(const std::function<void(VkCommandBuffer)>& record);
   /// \brief vkDeviceWaitIdle.
   void waitIdle();
+  /// \brief How many queue submissions submit() has made since the Context was created
+  /// (lets tests check how many round trips a frame costs).
+  uint64_t submissionCount() const { return submissions_; }
 
  private:
   void createInstance(const ContextOptions& options);
@@ -123,6 +126,7 @@ class Context {
   std::unique_ptr<MemoryAllocator> allocator_;
   UniqueCommandPool commandPool_;
   VkDeviceSize blockSize_ = 0;
+  uint64_t submissions_ = 0;
   std::vector<std::string> deviceExtensions_;
 };
 

@@ -73,11 +73,9 @@ void PipelineStatisticsQuery::end(VkCommandBuffer cmd, uint32_t index) {
   vkCmdEndQuery(cmd, pool_.get(), index);
 }
 
-PipelineStatistics PipelineStatisticsQuery::result(uint32_t index) const {
-  checkIndex(index, count_, "PipelineStatisticsQuery::result");
-  std::array<uint64_t, kStatisticCount> v{};
-  OSD_CULL_VK(vkGetQueryPoolResults(device_, pool_.get(), index, 1, sizeof(v), v.data(), sizeof(v),
-                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+namespace {
+
+PipelineStatistics toStatistics(const uint64_t* v) {
   PipelineStatistics s;
   s.inputAssemblyVertices = v[0];
   s.vertexShaderInvocations = v[1];
@@ -89,6 +87,30 @@ PipelineStatistics PipelineStatisticsQuery::result(uint32_t index) const {
   s.computeShaderInvocations = v[7];
   return s;
 }
+
+}  // namespace
+
+PipelineStatistics PipelineStatisticsQuery::result(uint32_t index) const {
+  checkIndex(index, count_, "PipelineStatisticsQuery::result");
+  std::array<uint64_t, kStatisticCount> v{};
+  OSD_CULL_VK(vkGetQueryPoolResults(device_, pool_.get(), index, 1, sizeof(v), v.data(), sizeof(v),
+                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  return toStatistics(v.data());
+}
+
+std::optional<PipelineStatistics> PipelineStatisticsQuery::tryResult(uint32_t index) const {
+  checkIndex(index, count_, "PipelineStatisticsQuery::tryResult");
+  // The counters, then the availability word.
+  std::array<uint64_t, kStatisticCount + 1> v{};
+  const VkResult r =
+      vkGetQueryPoolResults(device_, pool_.get(), index, 1, sizeof(v), v.data(), sizeof(v),
+                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+  if (r == VK_NOT_READY || v[kStatisticCount] == 0) return std::nullopt;
+  check(r, "vkGetQueryPoolResults (pipeline statistics)");
+  return toStatistics(v.data());
+}
+
+void PipelineStatisticsQuery::hostReset() { vkResetQueryPool(device_, pool_.get(), 0, count_); }
 
 TimestampQuery::TimestampQuery(Context& context, uint32_t count)
     : device_(context.device()),

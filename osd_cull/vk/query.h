@@ -10,6 +10,7 @@
 #include "osd_cull/vk/handle.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace osd_cull::vulkan {
@@ -40,6 +41,12 @@ class PipelineStatisticsQuery {
   void end(VkCommandBuffer cmd, uint32_t index = 0);
   /// \brief The counters of query `index`; waits for the result.
   PipelineStatistics result(uint32_t index = 0) const;
+  /// \brief The counters of query `index` if the device has written them, without
+  /// waiting; std::nullopt while they are not available.
+  std::optional<PipelineStatistics> tryResult(uint32_t index = 0) const;
+  /// \brief Resets all queries from the host (hostQueryReset, core in Vulkan 1.2): they
+  /// read as unavailable at once, before any command buffer runs.
+  void hostReset();
 
  private:
   VkDevice device_;

@@ -247,12 +247,18 @@ int run(Args& args) {
   std::unique_ptr<frame::CullPass> pass;
   std::unique_ptr<frame::CullFrame> cullFrame;
   const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
-  // With back-patch culling on a closed mesh, draw as that culling assumes: back-facing
-  // triangles are culled, so a patch culled with the drawn-triangle bound could not have
-  // drawn a pixel (docs/algorithms/drawn-triangles.md).
+  // On a closed, oriented mesh the rasterizer culls back faces in every mode, with and
+  // without culling, so that frames compare like for like (Niessner & Loop §6: "backface
+  // culling is always turned on"); back-patch culling assumes it too: a patch culled with
+  // the drawn-triangle bound could not have drawn a pixel (docs/algorithms/drawn-triangles.md).
   const bool backPatchCulling =
       (cull.mode == "backpatch" || cull.mode == "all") && scene.backPatch.enabled;
-  options.cullBackFaces = backPatchCulling;
+  options.cullBackFaces = scene.backPatch.enabled;
+  std::cout << "back faces: "
+            << (scene.backPatch.enabled
+                    ? "culled by the rasterizer (closed, oriented mesh), with or without culling"
+                    : "drawn (" + scene.backPatch.reason + ")")
+            << "\n";
   frame::CullFrameOptions frameOptions = cull.frame;
   frameOptions.render = options;
   frameOptions.cull = cullSettings(cull, scene.backPatch);
@@ -287,8 +293,10 @@ int run(Args& args) {
               << ", draw mode " << toString(frameOptions.drawMode) << ", first frame "
               << toString(frameOptions.firstFrame) << "; Hi-Z " << layout.levelCount
               << " levels from " << layout.levelWidth(0) << "x" << layout.levelHeight(0) << ", "
-              << (cullFrame->pyramid().usesSampler() ? "min/max sampler" : "4-tap")
-              << " reduction, "
+              << (cullFrame->pyramid().singlePass()
+                      ? "single-pass"
+                      : (cullFrame->pyramid().usesSampler() ? "min/max sampler" : "4-tap"))
+              << " build, "
               << (frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper")
               << " lookup\n";
   }
@@ -360,7 +368,8 @@ int run(Args& args) {
           {"firstFrame", toString(frameOptions.firstFrame)},
           {"hizFullResolution", frameOptions.hiz.fullResolution},
           {"hizLookup", frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper"},
-          {"hizSampler", cullFrame->pyramid().usesSampler()}};
+          {"hizSampler", cullFrame->pyramid().usesSampler()},
+          {"hizSinglePass", cullFrame->pyramid().singlePass()}};
     std::ofstream file(*statsPath);
     if (!(file << doc.dump(2) << "\n")) throw Error(*statsPath + ": cannot write");
     std::cout << "wrote " << *statsPath << "\n";

@@ -18,13 +18,20 @@ std::string cullFrameLine(uint32_t frame, const frame::CullFrameStats& s) {
       line, sizeof(line),
       "frame %u: %u patches, drawn pass 1 %u, pass 2 %u; culled frustum %u, back-patch %u, "
       "occlusion %u; TES invocations %llu (pass 1 %llu, pass 2 %llu), fragment invocations "
-      "%llu; ms: pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f, total %.2f",
+      "%llu; ms: ",
       frame, s.patchesTotal, s.drawnPass1, s.drawnPass2, s.culledFrustum, s.culledBackPatch,
       s.culledOcclusion, u64(s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations),
       u64(s.pass1.tessEvaluationInvocations), u64(s.pass2.tessEvaluationInvocations),
-      u64(s.pass1.fragmentShaderInvocations + s.pass2.fragmentShaderInvocations), s.pass1Ms,
-      s.pyramidMs, s.cullMs, s.pass2Ms, s.totalMs());
-  return line;
+      u64(s.pass1.fragmentShaderInvocations + s.pass2.fragmentShaderInvocations));
+  char times[160];
+  // The per-pass split exists only in the diagnostic mode (CullFrameOptions::timePasses).
+  if (s.pass1Ms + s.pyramidMs + s.cullMs + s.pass2Ms > 0.0)
+    std::snprintf(times, sizeof(times),
+                  "pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f, total %.2f", s.pass1Ms,
+                  s.pyramidMs, s.cullMs, s.pass2Ms, s.totalMs());
+  else
+    std::snprintf(times, sizeof(times), "total %.2f (one submission)", s.totalMs());
+  return std::string(line) + times;
 }
 
 nlohmann::json cullFrameJson(uint32_t frame, const frame::CullFrameStats& s) {

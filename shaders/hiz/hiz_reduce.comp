@@ -9,7 +9,9 @@
 // maximum (the texels with non-zero weight). The depth image is sampled with
 // CLAMP_TO_BORDER and an opaque white border, so texels past its edge read 1 (far);
 // pyramid levels clamp to the edge (only a level one texel wide or high reads past it, and
-// its texel covers the whole axis). Without HIZ_SAMPLER: four texelFetch() and max().
+// its texel covers the whole axis). HIZ_GATHER (the top level from a depth image that has
+// no min/max filtering): one textureGather() at the shared corner with a nearest sampler
+// and the same white border. Otherwise: four texelFetch() and max().
 #include <shared/hiz_layout.h>
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -32,8 +34,11 @@ void main() {
   if (pc.mode == kHiZCopy) {
     depth = fetch(t);
   } else {
-#ifdef HIZ_SAMPLER
+#if defined(HIZ_SAMPLER)
     depth = textureLod(src, vec2(2 * t + 1), 0.0).r;
+#elif defined(HIZ_GATHER)
+    const vec4 g = textureGather(src, vec2(2 * t + 1) / vec2(pc.srcWidth, pc.srcHeight));
+    depth = max(max(g.x, g.y), max(g.z, g.w));
 #else
     ivec2 s = 2 * t;
     depth = max(max(fetch(s), fetch(s + ivec2(1, 0))), max(fetch(s + ivec2(0, 1)), fetch(s + 1)));

@@ -57,6 +57,25 @@ struct HiZReduceConstants {
   uint pad1;
 };
 
+// The single-pass build (shaders/hiz/hiz_single_pass.comp): one workgroup of
+// kHiZSinglePassThreads threads per kHiZTile x kHiZTile texels of level 0, at most
+// kHiZMaxLevels levels (level 0 of 2^15 texels per axis).
+OSD_CULL_CONST uint kHiZMaxLevels = 16u;
+OSD_CULL_CONST uint kHiZTile = 32u;
+OSD_CULL_CONST uint kHiZSinglePassThreads = 256u;
+
+// Push constants of the single-pass build.
+struct HiZSinglePassConstants {
+  uint width;  // depth image size in pixels (pixels past it read kHiZFar)
+  uint height;
+  uint level0Width;  // level 0 in texels; level l is max(1, size >> l)
+  uint level0Height;
+  uint levelCount;
+  uint baseShift;  // 0: level 0 copies the depth, 1: reduces 2x2 pixels
+  float invWidth;  // 1 / width, 1 / height: normalized coordinates of the gathers
+  float invHeight;
+};
+
 // What the occlusion test needs to know about the pyramid (part of the cull constants).
 struct HiZParams {
   uint width;  // depth image size in pixels (the screen the box is clamped to)
@@ -82,5 +101,6 @@ OSD_CULL_SHARED_END
 #ifdef __cplusplus
 static_assert(sizeof(osd_cull::shader::HiZReduceConstants) == 32);
 static_assert(sizeof(osd_cull::shader::HiZParams) == 32);
+static_assert(sizeof(osd_cull::shader::HiZSinglePassConstants) == 32);
 #endif
 #endif

@@ -33,7 +33,7 @@ constexpr vulkan::Scope kPyramidUsers{
     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT};
 
 vulkan::UniqueSampler createSampler(vulkan::Context& context, bool maxReduction,
-                                VkSamplerAddressMode address) {
+                                    VkSamplerAddressMode address) {
   VkSamplerReductionModeCreateInfo reduction{VK_STRUCTURE_TYPE_SAMPLER_REDUCTION_MODE_CREATE_INFO};
   reduction.reductionMode = VK_SAMPLER_REDUCTION_MODE_MAX;
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -61,7 +61,26 @@ bool formatHasMinmax(const vulkan::Context& context, VkFormat format) {
   return (props.optimalTilingFeatures & need) == need;
 }
 
+const vulkan::DescriptorBinding kSinglePassBindings[] = {
+    {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT, shader::kHiZMaxLevels},
+    {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+
 }  // namespace
+
+const char* toString(HiZReduction reduction) {
+  switch (reduction) {
+    case HiZReduction::Auto:
+      return "auto";
+    case HiZReduction::SinglePass:
+      return "single";
+    case HiZReduction::Sampler:
+      return "sampler";
+    case HiZReduction::FourTap:
+      return "fourtap";
+  }
+  return "?";
+}
 
 bool supportsMinmaxReduction(const vulkan::Context& context) {
   return context.info().optional.samplerFilterMinmax && formatHasMinmax(context, kPyramidFormat);
@@ -71,7 +90,8 @@ bool supportsMinmaxDepthReduction(const vulkan::Context& context) {
   return supportsMinmaxReduction(context) && formatHasMinmax(context, VK_FORMAT_D32_SFLOAT);
 }
 
-HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth, const HiZOptions& options)
+HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth,
+                       const HiZOptions& options)
     : depth_(depth),
       layout_(bound::HiZLayout::make(depth.width(), depth.height(), options.fullResolution)) {
   if (depth.format() != VK_FORMAT_D32_SFLOAT)
@@ -82,15 +102,29 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth, con
     throw Error("HiZPyramid: min/max sampler reduction requested, but device '" +
                 context.info().name +
                 "' lacks samplerFilterMinmax or MINMAX and LINEAR filtering of R32_SFLOAT");
+  // Auto: the fastest build measured on lavapipe (docs/results/frame-cost.md), where the
+  // cost is per texel accessed, not per dispatch.
+  singlePass_ = options.reduction == HiZReduction::SinglePass ||
+                (options.reduction == HiZReduction::Auto && !minmax);
   sampler_ = options.reduction == HiZReduction::Sampler ||
              (options.reduction == HiZReduction::Auto && minmax);
   depthSampler_ = sampler_ && supportsMinmaxDepthReduction(context);
   lookup_ = options.lookup;
+  legacy_ = options.legacyBuild;
+  if (singlePass_ && layout_.levelCount > shader::kHiZMaxLevels)
+    throw Error("HiZPyramid: " + std::to_string(layout_.levelCount) +
+                " levels for a depth image of " + std::to_string(depth.width()) + "x" +
+                std::to_string(depth.height()) + " exceed the single-pass build's " +
+                std::to_string(shader::kHiZMaxLevels));
 
-  image_ = vulkan::Image(context,
-                     {layout_.levelWidth(0), layout_.levelHeight(0), kPyramidFormat,
-                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, layout_.levelCount});
+  image_ = vulkan::Image(
+      context, {layout_.levelWidth(0), layout_.levelHeight(0), kPyramidFormat,
+                VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, layout_.levelCount});
   fetchSampler_ = createSampler(context, false, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  if (singlePass_) {
+    createSinglePass(context);
+    return;
+  }
   if (depthSampler_)
     depthMaxSampler_ = createSampler(context, true, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
   if (sampler_)
@@ -98,17 +132,26 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth, con
   const vulkan::ShaderSource fetch{"hiz/hiz_reduce.comp", {}};
   const vulkan::ShaderSource filtered{"hiz/hiz_reduce.comp", {{"HIZ_SAMPLER", ""}}};
   fetchProgram_ = std::make_unique<vulkan::ComputeProgram>(context, fetch, kBindings,
-                                                       sizeof(shader::HiZReduceConstants));
+                                                           sizeof(shader::HiZReduceConstants));
   if (sampler_)
     samplerProgram_ = std::make_unique<vulkan::ComputeProgram>(context, filtered, kBindings,
-                                                           sizeof(shader::HiZReduceConstants));
+                                                               sizeof(shader::HiZReduceConstants));
+  // The sampler build's top level when the depth format has no min/max filtering: one
+  // gather of the 2 x 2 pixels (nearest, white border) instead of four fetches.
+  if (sampler_ && !depthSampler_ && !legacy_) {
+    gatherProgram_ = std::make_unique<vulkan::ComputeProgram>(
+        context, vulkan::ShaderSource{"hiz/hiz_reduce.comp", {{"HIZ_GATHER", ""}}}, kBindings,
+        sizeof(shader::HiZReduceConstants));
+    depthMaxSampler_ = createSampler(context, false, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
+  }
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, layout_.levelCount, kBindings);
   for (uint32_t level = 0; level < layout_.levelCount; ++level) {
     const vulkan::ComputeProgram& program = programOf(level);
     const VkDescriptorSet set = pool_->allocate(program.setLayout());
     vulkan::DescriptorWriter w;
     if (level == 0)
-      w.sampledImage(0, depth.view(), depthSampler_ ? depthMaxSampler_.get() : fetchSampler_.get(),
+      w.sampledImage(0, depth.view(),
+                     depthMaxSampler_ ? depthMaxSampler_.get() : fetchSampler_.get(),
                      kDepthReadLayout);
     else
       w.sampledImage(0, image_.mipView(level - 1),
@@ -121,6 +164,7 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth, con
 HiZPyramid::~HiZPyramid() = default;
 
 const vulkan::ComputeProgram& HiZPyramid::programOf(uint32_t level) const {
+  if (level == 0 && gatherProgram_ && layout_.baseShift == 1) return *gatherProgram_;
   return (level == 0 ? depthSampler_ : sampler_) ? *samplerProgram_ : *fetchProgram_;
 }
 
@@ -137,11 +181,96 @@ shader::HiZParams HiZPyramid::params() const {
   return p;
 }
 
+void HiZPyramid::createSinglePass(vulkan::Context& context) {
+  singlePassProgram_ = std::make_unique<vulkan::ComputeProgram>(
+      context, vulkan::ShaderSource{"hiz/hiz_single_pass.comp", {}}, kSinglePassBindings,
+      sizeof(shader::HiZSinglePassConstants));
+  counter_ = vulkan::Buffer(context, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kSinglePassBindings);
+  singlePassSet_ = pool_->allocate(singlePassProgram_->setLayout());
+  depthMaxSampler_ = createSampler(context, false, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
+  const VkDescriptorImageInfo depthInfo{depthMaxSampler_.get(), depth_.view(), kDepthReadLayout};
+  // Entries past the last level repeat it: the shader never writes them (level < count).
+  std::vector<VkDescriptorImageInfo> levelInfos;
+  for (uint32_t l = 0; l < shader::kHiZMaxLevels; ++l)
+    levelInfos.push_back(
+        {VK_NULL_HANDLE, image_.mipView(std::min(l, layout_.levelCount - 1)), kPyramidLayout});
+  const VkDescriptorBufferInfo counterInfo = counter_.descriptor();
+  VkWriteDescriptorSet w[3]{};
+  for (auto& x : w) {
+    x.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    x.dstSet = singlePassSet_;
+    x.descriptorCount = 1;
+  }
+  w[0].dstBinding = 0;
+  w[0].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w[0].pImageInfo = &depthInfo;
+  w[1].dstBinding = 1;
+  w[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  w[1].descriptorCount = shader::kHiZMaxLevels;
+  w[1].pImageInfo = levelInfos.data();
+  w[2].dstBinding = 2;
+  w[2].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  w[2].pBufferInfo = &counterInfo;
+  vkUpdateDescriptorSets(context.device(), 3, w, 0, nullptr);
+}
+
+void HiZPyramid::recordSinglePass(VkCommandBuffer cmd) {
+  // The finished-workgroup counter starts at 0 (earlier builds' atomics come first).
+  vulkan::bufferBarrier(cmd, counter_, vulkan::scope::kComputeReadWrite,
+                        vulkan::scope::kTransferWrite);
+  vkCmdFillBuffer(cmd, counter_.handle(), 0, VK_WHOLE_SIZE, 0);
+  vulkan::bufferBarrier(cmd, counter_, vulkan::scope::kTransferWrite,
+                        vulkan::scope::kComputeReadWrite);
+  shader::HiZSinglePassConstants c{};
+  c.width = layout_.width;
+  c.height = layout_.height;
+  c.level0Width = layout_.levelWidth(0);
+  c.level0Height = layout_.levelHeight(0);
+  c.levelCount = layout_.levelCount;
+  c.baseShift = layout_.baseShift;
+  c.invWidth = 1.0f / float(layout_.width);
+  c.invHeight = 1.0f / float(layout_.height);
+  const VkExtent2D extent = updatedExtent(0);
+  singlePassProgram_->dispatch(cmd, singlePassSet_, std::as_bytes(std::span(&c, 1)),
+                               vulkan::groupCount(extent.width, shader::kHiZTile),
+                               vulkan::groupCount(extent.height, shader::kHiZTile));
+  vulkan::imageBarrier(cmd, image_, kPyramidLayout, kPyramidLayout, vulkan::scope::kComputeWrite,
+                       {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT});
+}
+
 void HiZPyramid::record(VkCommandBuffer cmd, VkImageLayout depthLayout) {
   vulkan::imageBarrier(cmd, depth_, depthLayout, kDepthReadLayout, kDepthWrite,
-                   vulkan::scope::kComputeRead);
-  vulkan::imageBarrier(cmd, image_, built_ ? kPyramidLayout : VK_IMAGE_LAYOUT_UNDEFINED, kPyramidLayout,
-                   kPyramidUsers, vulkan::scope::kComputeWrite);
+                       vulkan::scope::kComputeRead);
+  vulkan::imageBarrier(
+      cmd, image_, built_ ? kPyramidLayout : VK_IMAGE_LAYOUT_UNDEFINED, kPyramidLayout,
+      kPyramidUsers, singlePass_ ? vulkan::scope::kComputeReadWrite : vulkan::scope::kComputeWrite);
+  if (singlePass_)
+    recordSinglePass(cmd);
+  else
+    recordPerLevel(cmd);
+  vulkan::imageBarrier(cmd, depth_, kDepthReadLayout, depthLayout, vulkan::scope::kComputeRead,
+                       kDepthTests);
+  built_ = true;
+}
+
+VkExtent2D HiZPyramid::updatedExtent(uint32_t level) const {
+  const VkExtent2D all{layout_.levelWidth(level), layout_.levelHeight(level)};
+  if (!built_ || legacy_) return all;
+  // Texels whose footprint lies wholly in the padding are far in every build: the first
+  // build wrote them, later builds skip them.
+  const uint32_t shift = level + layout_.baseShift;
+  auto covered = [&](uint32_t pixels) {
+    return shift >= 32
+               ? 1u
+               : static_cast<uint32_t>((uint64_t{pixels} + (uint64_t{1} << shift) - 1) >> shift);
+  };
+  return {std::min(all.width, covered(layout_.width)),
+          std::min(all.height, covered(layout_.height))};
+}
+
+void HiZPyramid::recordPerLevel(VkCommandBuffer cmd) {
   for (uint32_t level = 0; level < layout_.levelCount; ++level) {
     shader::HiZReduceConstants c{};
     if (level == 0) {
@@ -157,18 +286,16 @@ void HiZPyramid::record(VkCommandBuffer cmd, VkImageLayout depthLayout) {
     }
     c.dstWidth = layout_.levelWidth(level);
     c.dstHeight = layout_.levelHeight(level);
+    const VkExtent2D extent = updatedExtent(level);
     programOf(level).dispatch(cmd, sets_[level], std::as_bytes(std::span(&c, 1)),
-                              vulkan::groupCount(c.dstWidth, shader::kHiZGroupSize),
-                              vulkan::groupCount(c.dstHeight, shader::kHiZGroupSize));
+                              vulkan::groupCount(extent.width, shader::kHiZGroupSize),
+                              vulkan::groupCount(extent.height, shader::kHiZGroupSize));
     // This level is the next one's source (and the cull kernel's input).
     vulkan::imageBarrier(cmd, image_, kPyramidLayout, kPyramidLayout, vulkan::scope::kComputeWrite,
-                     {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT},
-                     level, 1);
+                         {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT},
+                         level, 1);
   }
-  vulkan::imageBarrier(cmd, depth_, kDepthReadLayout, depthLayout, vulkan::scope::kComputeRead,
-                   kDepthTests);
-  built_ = true;
 }
 
 void HiZPyramid::build(vulkan::Context& context, VkImageLayout depthLayout) {

@@ -4,12 +4,16 @@
 /// from a depth image: every texel holds the farthest depth of its footprint.
 ///
 /// Layout: bound::HiZLayout (sizes padded to powers of two, pixels past the image count as
-/// far, level 0 at half resolution as in the paper or at full resolution). The build runs
-/// one dispatch per level, either with a min/max-reduction sampler (one filtered fetch per
-/// texel, VK_SAMPLER_REDUCTION_MODE_MAX) or with four texel fetches; both give the same
+/// far, level 0 at half resolution as in the paper or at full resolution). By default the
+/// build is one dispatch for all levels (shaders/hiz/hiz_single_pass.comp, a single-pass
+/// downsampler as AMD FidelityFX SPD: workgroups reduce 64 x 64 tiles through shared memory,
+/// the last one to finish builds the top levels). The older per-level build (one dispatch
+/// and barrier per level) remains, with a min/max-reduction sampler (one filtered fetch per
+/// texel, VK_SAMPLER_REDUCTION_MODE_MAX) or with four texel fetches. All give the same
 /// values, equal to bound::buildHiZPyramid().
 
 #include "osd_cull/bound/occlusion.h"
+#include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/handle.h"
 #include "osd_cull/vk/image.h"
 #include "osd_cull/vk/pipeline.h"
@@ -28,10 +32,14 @@ namespace osd_cull::frame {
 
 /// \brief How each level is reduced.
 enum class HiZReduction {
-  Auto,     ///< Sampler when the device supports it for both formats, else FourTap
-  Sampler,  ///< min/max sampler reduction (throws when unsupported)
-  FourTap,  ///< four texelFetch() and max()
+  Auto,        ///< Sampler where supported (fastest on lavapipe), else SinglePass
+  SinglePass,  ///< all levels in one dispatch (texel fetches, shared memory)
+  Sampler,     ///< one dispatch per level, min/max sampler reduction (throws when unsupported)
+  FourTap,     ///< one dispatch per level, four texelFetch() and max()
 };
+
+/// \brief "auto", "single", "sampler", "fourtap".
+const char* toString(HiZReduction reduction);
 
 /// \brief Options of a HiZPyramid.
 struct HiZOptions {
@@ -39,6 +47,9 @@ struct HiZOptions {
   HiZReduction reduction = HiZReduction::Auto;
   /// Level at which the occlusion test looks a box up (params().lookup).
   bound::HiZLookup lookup = bound::HiZLookup::Paper;
+  /// For measurements only: the per-level build as it was before the gathered top level and
+  /// the skipped padding (every texel written in every build). Same values.
+  bool legacyBuild = false;
 };
 
 /// \brief True when the device can reduce pyramid levels with a MAX sampler: the
@@ -63,7 +74,11 @@ class HiZPyramid {
   HiZPyramid& operator=(const HiZPyramid&) = delete;
 
   const bound::HiZLayout& layout() const { return layout_; }
-  /// \brief True when levels 1.. are reduced with the MAX sampler.
+  /// \brief True when all levels are built in one dispatch (HiZReduction::SinglePass).
+  bool singlePass() const { return singlePass_; }
+  /// \brief Dispatches per build: 1 with the single pass, else one per level.
+  uint32_t dispatchCount() const { return singlePass_ ? 1 : layout_.levelCount; }
+  /// \brief True when levels 1.. are reduced with the MAX sampler (per-level build).
   bool usesSampler() const { return sampler_; }
   /// \brief True when level 0 is reduced from the depth image with the MAX sampler.
   bool depthUsesSampler() const { return depthSampler_; }
@@ -89,19 +104,32 @@ class HiZPyramid {
   const vulkan::Image& depth_;
   bound::HiZLayout layout_;
   const vulkan::ComputeProgram& programOf(uint32_t level) const;
+  void createSinglePass(vulkan::Context& context);
+  void recordSinglePass(VkCommandBuffer cmd);
+  void recordPerLevel(VkCommandBuffer cmd);
+  /// Texels of `level` a build must write: all the first time, later only those whose
+  /// footprint overlaps the depth image.
+  VkExtent2D updatedExtent(uint32_t level) const;
 
+  bool singlePass_ = false;
+  bool legacy_ = false;
   bool sampler_ = false;
   bool depthSampler_ = false;
   bound::HiZLookup lookup_ = bound::HiZLookup::Paper;
   bool built_ = false;
   vulkan::Image image_;
-  vulkan::UniqueSampler depthMaxSampler_;  // MAX, clamp to border (opaque white = far)
+  vulkan::UniqueSampler depthMaxSampler_;  // clamp to an opaque white border (far): MAX
+                                           // filter, or nearest for gathers
   vulkan::UniqueSampler levelMaxSampler_;  // MAX, clamp to edge
   vulkan::UniqueSampler fetchSampler_;     // nearest, for texelFetch
   std::unique_ptr<vulkan::ComputeProgram> fetchProgram_;
   std::unique_ptr<vulkan::ComputeProgram> samplerProgram_;
+  std::unique_ptr<vulkan::ComputeProgram> gatherProgram_;  // sampler build, depth level
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   std::vector<VkDescriptorSet> sets_;  // one per level
+  std::unique_ptr<vulkan::ComputeProgram> singlePassProgram_;
+  vulkan::Buffer counter_;  // workgroups finished (single pass)
+  VkDescriptorSet singlePassSet_ = VK_NULL_HANDLE;
 };
 
 }  // namespace osd_cull::frame

@@ -39,8 +39,10 @@ uint32_t ceilDiv(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
 // entries) and the host (counters, statistics).
 constexpr vulkan::Scope kListReaders{
     VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
-        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
-    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT};
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT |
+        VK_PIPELINE_STAGE_TRANSFER_BIT,
+    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT |
+        VK_ACCESS_TRANSFER_READ_BIT};
 
 }  // namespace
 
@@ -60,9 +62,9 @@ VisibilityPrograms::VisibilityPrograms(vulkan::Context& context)
     : update_(std::make_unique<vulkan::ComputeProgram>(
           context, vulkan::ShaderSource{"hiz/visibility_update.comp", {}}, updateBindings(),
           sizeof(VisibilityConstants))),
-      draws_(std::make_unique<vulkan::ComputeProgram>(context,
-                                                  vulkan::ShaderSource{"hiz/visibility_draws.comp", {}},
-                                                  drawsBindings(), sizeof(VisibilityConstants))) {}
+      draws_(std::make_unique<vulkan::ComputeProgram>(
+          context, vulkan::ShaderSource{"hiz/visibility_draws.comp", {}}, drawsBindings(),
+          sizeof(VisibilityConstants))) {}
 
 VisibilityPrograms::~VisibilityPrograms() = default;
 
@@ -96,7 +98,8 @@ VisibilityBuffer::VisibilityBuffer(vulkan::Context& context, const VisibilityPro
   };
   auto makeList = [&](DrawListBuffers& l) {
     l.list = vulkan::Buffer(context, size_t{n} * 4, storage);
-    l.counters = vulkan::Buffer(context, kListCounterCount * 4, indirect, vulkan::MemoryUse::Readback);
+    l.counters =
+        vulkan::Buffer(context, kListCounterCount * 4, indirect, vulkan::MemoryUse::Readback);
     l.commands = vulkan::Buffer(context, maxCommands * 16, indirect);
     l.drawSet = drawSet(l.list);
     l.draws = pool_->allocate(programs.draws().setLayout());
@@ -201,6 +204,16 @@ void VisibilityBuffer::recordUpdate(VkCommandBuffer cmd, const vulkan::Buffer& r
   programs_.draws().dispatch(cmd, secondPass_.draws, std::as_bytes(std::span(&c, 1)),
                              std::max(1u, vulkan::groupCount(commands, kVisGroupSize)));
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, kListReaders);
+}
+
+void VisibilityBuffer::recordStatsCopy(VkCommandBuffer cmd, const vulkan::Buffer& dst,
+                                       VkDeviceSize offset) {
+  vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kTransferRead);
+  const VkBufferCopy counters{0, offset, kListCounterCount * 4};
+  vkCmdCopyBuffer(cmd, firstPass().counters.handle(), dst.handle(), 1, &counters);
+  const VkBufferCopy stats{0, offset + kListCounterCount * 4, kStatCount * 4};
+  vkCmdCopyBuffer(cmd, stats_.handle(), dst.handle(), 1, &stats);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kTransferWrite, vulkan::scope::kHostRead);
 }
 
 std::span<const uint32_t> VisibilityBuffer::stats() const {

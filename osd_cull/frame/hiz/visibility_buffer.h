@@ -94,6 +94,13 @@ class VisibilityBuffer {
   /// indirect draws, draw shaders and the host.
   void recordUpdate(VkCommandBuffer cmd, const vulkan::Buffer& results, uint32_t chunkBezier,
                     uint32_t chunkGregory);
+  /// \brief uints per mesh that recordStatsCopy() writes: the first-pass list counters
+  /// (kList*), then the statistics of the update (kStat*).
+  static constexpr uint32_t kStatsCopyWords = shader::kListCounterCount + shader::kStatCount;
+  /// \brief Records copies of the current first-pass counters and of the statistics of the
+  /// last recordUpdate() into `dst` at byte `offset` (kStatsCopyWords uints), after the
+  /// update in the same command buffer; the copy is made available to the host.
+  void recordStatsCopy(VkCommandBuffer cmd, const vulkan::Buffer& dst, VkDeviceSize offset);
   /// \brief After the frame: the list built by recordUpdate() becomes the first-pass list.
   void advance() { parity_ ^= 1u; }
 
