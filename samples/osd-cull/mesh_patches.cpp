@@ -18,7 +18,9 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
   const CageMesh& cage = *mesh.cage;
   out.backPatch =
       bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
-  out.patches = extractPatches(cage, options).patches;
+  PatchExtraction ex = extractPatches(cage, options);
+  out.patches = std::move(ex.patches);
+  out.uvCorners = std::move(ex.uvCorners);
   return out;
 }
 
