@@ -23,7 +23,9 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
   // memory at a million patches).
   PatchOptions pointsOnly = options;
   pointsOnly.pointMatrix = false;
-  out.patches = extractPatches(*refiner, cage.positions, pointsOnly, cage.source).patches;
+  PatchExtraction ex = extractPatches(*refiner, cage.positions, pointsOnly, cage.source, cage.uvs);
+  out.patches = std::move(ex.patches);
+  out.uvCorners = std::move(ex.uvCorners);
   return out;
 }
 

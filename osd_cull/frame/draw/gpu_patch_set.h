@@ -18,6 +18,8 @@ class Context;
 
 namespace osd_cull::frame {
 
+class GpuDisplacement;
+
 /// \brief Device copy of a PatchSet, in the layout the draw and cull shaders read
 /// (shaders/shared/draw_layout.h):
 /// - points(): float array, control point i at floats [pointOffset() + i*pointStride(), +3)
@@ -61,6 +63,10 @@ class GpuPatchSet {
                       uint32_t offset = 0);
   uint32_t pointStride() const { return pointStride_; }
   uint32_t pointOffset() const { return pointOffset_; }
+  /// \brief Draws of this set displace the surface with `displacement` (borrowed: it must
+  /// outlive the set's use; nullptr: undisplaced, the default). Call between frames.
+  void setDisplacement(const GpuDisplacement* displacement) { displacement_ = displacement; }
+  const GpuDisplacement* displacement() const { return displacement_; }
   /// \brief Draw-list slot of the first Gregory patch (== bezierCount()).
   uint32_t firstGregorySlot() const { return bezierCount_; }
 
@@ -113,6 +119,7 @@ class GpuPatchSet {
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   uint32_t extraSets_ = 0;
+  const GpuDisplacement* displacement_ = nullptr;
 };
 
 /// \brief The descriptor bindings of a patch set (points, params, draw list), visible

@@ -1,6 +1,7 @@
 #include "osd_cull/frame/draw/renderer.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
@@ -63,15 +64,22 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
                                               kGraphicsStages);
   meshLayout_ = vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants),
                                              kGraphicsStages);
+  displacementSetLayout_ = vulkan::createDescriptorSetLayout(context, displacementSetBindings());
+  const VkDescriptorSetLayout displaced[] = {p, displacementSetLayout_.get()};
+  displacedLayout_ = vulkan::createPipelineLayout(context, displaced, sizeof(shader::DrawConstants),
+                                                  kGraphicsStages);
 }
 
 VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
-                                   bool mirrored) {
-  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored}];
+                                   bool mirrored, bool displaced) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored, displaced}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
-  const std::vector<vulkan::ShaderDefine> defines = {
+  std::vector<vulkan::ShaderDefine> defines = {
       {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
+  std::vector<vulkan::ShaderDefine> evalDefines = defines;
+  // Only the displaced variant's evaluation stage has displacement code (displace.glsl).
+  if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
   vulkan::GraphicsPipelineDesc d;
   d.stages.push_back(
       {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"patch/patch.vert", defines}), {}});
@@ -79,11 +87,11 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
                       vulkan::compileShader({"patch/patch.tesc", defines}),
                       {}});
   d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
-                      vulkan::compileShader({"patch/patch.tese", defines}),
+                      vulkan::compileShader({"patch/patch.tese", evalDefines}),
                       {}});
   d.stages.push_back(
       {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"patch/patch.frag", {}}), {}});
-  d.layout = patchLayout_.get();
+  d.layout = displaced ? displacedLayout_.get() : patchLayout_.get();
   d.renderPass = referencePass_.get();
   d.colorAttachments = 2;
   d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
@@ -161,12 +169,15 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
   const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
-  vkCmdBindPipeline(
-      cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-      patchPipeline(type, options.cullBackFaces, options.wireframe, isMirrored(camera)));
-  const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
-                          nullptr);
+  const GpuDisplacement* displacement = gpu.displacement();
+  const VkPipelineLayout layout = displacement ? displacedLayout_.get() : patchLayout_.get();
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                    patchPipeline(type, options.cullBackFaces, options.wireframe,
+                                  isMirrored(camera), displacement != nullptr));
+  const VkDescriptorSet sets[] = {draw.set ? draw.set : gpu.descriptorSet(),
+                                  displacement ? displacement->descriptorSet() : VK_NULL_HANDLE};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, displacement ? 2 : 1,
+                          sets, 0, nullptr);
   RenderOptions effective = options;
   effective.tessellation = effectiveOptions(options.tessellation, gpu.hasTransitionEdges());
   shader::DrawConstants c = drawConstants(camera, effective);
@@ -174,7 +185,7 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
   c.pointStride = gpu.pointStride();
   c.pointOffset = gpu.pointOffset();
   c.itemBase = draw.itemBase;
-  vkCmdPushConstants(cmd, patchLayout_.get(), kGraphicsStages, 0, sizeof(c), &c);
+  vkCmdPushConstants(cmd, layout, kGraphicsStages, 0, sizeof(c), &c);
 }
 
 void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,

@@ -127,7 +127,8 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored);
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored,
+                           bool displaced);
   VkPipeline trianglePipeline();
   void bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw, PatchType type,
                    const RenderOptions& options);
@@ -137,8 +138,10 @@ class Renderer {
   vulkan::UniqueDescriptorSetLayout patchSetLayout_;
   vulkan::UniqueDescriptorSetLayout meshSetLayout_;
   vulkan::UniquePipelineLayout patchLayout_;
+  vulkan::UniqueDescriptorSetLayout displacementSetLayout_;
+  vulkan::UniquePipelineLayout displacedLayout_;  // set 0 patches, set 1 displacement
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
+  std::map<std::tuple<PatchType, bool, bool, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
   vulkan::UniquePipeline trianglePipeline_;
   vulkan::PipelineStatisticsQuery statistics_;
   std::optional<vulkan::TimestampQuery> timestamps_;  // absent when the queue has no timestamps
