@@ -33,9 +33,10 @@ size_t countOp(const vulkan::Spirv& spirv, uint32_t op) {
 
 TEST(DisplacedDrawShaders, OnlyTheDisplacedVariantSamplesAMap) {
   for (const char* points : {"16", "20"}) {
-    const auto plain = vulkan::compileShader({"patch/patch.tese", {{"PATCH_POINTS", points}}});
+    const vulkan::ShaderDefine bda{"OSD_CULL_POINTS_BDA", "0"};  // control_points.glsl
+    const auto plain = vulkan::compileShader({"patch/patch.tese", {{"PATCH_POINTS", points}, bda}});
     const auto displaced = vulkan::compileShader(
-        {"patch/patch.tese", {{"PATCH_POINTS", points}, {"PATCH_DISPLACED", "1"}}});
+        {"patch/patch.tese", {{"PATCH_POINTS", points}, {"PATCH_DISPLACED", "1"}, bda}});
     EXPECT_EQ(countOp(plain, 27), 0u) << points;
     EXPECT_EQ(countOp(plain, 88), 0u) << points;
     EXPECT_GT(countOp(displaced, 27), 0u) << points;
