@@ -315,6 +315,7 @@ void printPath(const PathResult& r, const Options& o, FILE* csv) {
                      median(row.pass2), median(row.splitTotal));
     }
   std::fflush(stdout);
+  if (csv) std::fflush(csv);
 }
 
 // The lowest level from which on every measured level has a median ratio below 1.
