@@ -39,7 +39,7 @@ class ObjParser {
       if (key == "v")
         vertex(tokens);
       else if (key == "vt")
-        numbers(tokens, 1, "texture coordinate");
+        textureCoordinate(tokens);
       else if (key == "vn")
         numbers(tokens, 3, "normal");
       else if (key == "f" || key == "fo")
@@ -84,9 +84,33 @@ class ObjParser {
         lines_.fail(std::string(what) + " component " + quote(tokens[i]) + " is not a number");
   }
 
+  // "vt u [v [w]]": u and v are the face-varying channel (v = 0 when absent).
+  void textureCoordinate(const std::vector<std::string_view>& tokens) {
+    numbers(tokens, 1, "texture coordinate");
+    const double u = *parseDouble(tokens[1]);
+    const double v = tokens.size() > 2 ? *parseDouble(tokens[2]) : 0.0;
+    if (!std::isfinite(u) || !std::isfinite(v))
+      lines_.fail("texture coordinate " + std::to_string(mesh_.uvs.size() + 1) +
+                  " has a NaN or Inf component");
+    mesh_.uvs.emplace_back(u, v);
+  }
+
+  // The texture-coordinate index of a face corner (0-based; negative indices count back
+  // from the last `vt` so far), -1 when the corner has none.
+  int uvReference(std::string_view vt, std::string_view token) {
+    if (vt.empty()) return -1;
+    const int64_t index = *parseInt(vt);
+    const auto defined = static_cast<int64_t>(mesh_.uvs.size());
+    if (index == 0 || index > INT_MAX || -index > defined)
+      lines_.fail("texture-coordinate index in face corner " + quote(token) +
+                  " is out of range (" + std::to_string(defined) + " defined so far)");
+    return static_cast<int>(index < 0 ? defined + index : index - 1);
+  }
+
   // One corner of a face: "v", "v/vt", "v//vn" or "v/vt/vn"; negative indices count back
-  // from the last vertex defined so far.
-  int vertexReference(std::string_view token) {
+  // from the last vertex defined so far. `uv` gets the corner's texture coordinate (-1: none).
+  int vertexReference(std::string_view token, int& uv) {
+    uv = -1;
     const size_t slash = token.find('/');
     const std::string_view v = token.substr(0, slash);
     if (slash != std::string_view::npos) {
@@ -99,6 +123,7 @@ class ObjParser {
           (slash2 != std::string_view::npos && vn.empty()))
         lines_.fail("face corner " + quote(token) +
                     " is not of the form v, v/vt, v//vn or v/vt/vn");
+      uv = uvReference(vt, token);
     }
     const auto index = parseInt(v);
     if (!index) lines_.fail("face corner " + quote(token) + " does not start with a vertex index");
@@ -123,8 +148,12 @@ class ObjParser {
     if (mesh_.scheme == Scheme::Loop && n != 3)
       lines_.fail("face with " + std::to_string(n) +
                   " vertices, but the Loop scheme needs triangles");
-    for (size_t i = 1; i < tokens.size(); ++i)
-      mesh_.faceVertices.push_back(vertexReference(tokens[i]));
+    for (size_t i = 1; i < tokens.size(); ++i) {
+      int uv = -1;
+      mesh_.faceVertices.push_back(vertexReference(tokens[i], uv));
+      mesh_.faceUVs.push_back(uv);
+      cornersWithoutUV_ += uv < 0 ? 1 : 0;
+    }
     mesh_.faceSizes.push_back(static_cast<int>(n));
     faceLines_.push_back(lines_.lineNumber());
   }
@@ -166,10 +195,23 @@ class ObjParser {
                    std::to_string(mesh_.vertexCount()) + " vertices");
       }
       // OpenSubdiv's Shape with isLeftHanded: keep the first vertex, reverse the rest.
-      if (leftHanded)
-        std::reverse(mesh_.faceVertices.begin() + static_cast<std::ptrdiff_t>(offset + 1),
-                     mesh_.faceVertices.begin() + static_cast<std::ptrdiff_t>(offset + n));
+      if (leftHanded) {
+        const auto first = static_cast<std::ptrdiff_t>(offset + 1);
+        const auto last = static_cast<std::ptrdiff_t>(offset + n);
+        std::reverse(mesh_.faceVertices.begin() + first, mesh_.faceVertices.begin() + last);
+        std::reverse(mesh_.faceUVs.begin() + first, mesh_.faceUVs.begin() + last);
+      }
       offset += n;
+    }
+    // Texture coordinates form a face-varying channel only when every corner has one.
+    if (cornersWithoutUV_ > 0) {
+      if (cornersWithoutUV_ < mesh_.faceUVs.size())
+        mesh_.notes.push_back(std::to_string(cornersWithoutUV_) + " of " +
+                              std::to_string(mesh_.faceUVs.size()) +
+                              " face corners have no texture coordinate: the mesh is read "
+                              "without texture coordinates");
+      mesh_.faceUVs.clear();
+      mesh_.uvs.clear();
     }
     tags_.apply(mesh_, file);
   }
@@ -179,6 +221,7 @@ class ObjParser {
   CageMesh mesh_;
   ObjTags tags_;
   std::vector<int> faceLines_;
+  size_t cornersWithoutUV_ = 0;
   std::map<std::string, std::pair<int, int>> ignored_;  // keyword → (count, first line)
 };
 

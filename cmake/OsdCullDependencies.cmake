@@ -10,6 +10,8 @@ find_package(Vulkan REQUIRED)
 find_package(glslang CONFIG REQUIRED)
 find_package(glm CONFIG REQUIRED)
 find_package(PNG REQUIRED)
+# OpenEXR: float displacement maps (adapters/image_exr.cpp).
+find_package(OpenEXR CONFIG REQUIRED)
 
 # OpenSubdiv: Debian's exported config names static libraries that are not shipped,
 # so build our own imported target from the header and the shared library.

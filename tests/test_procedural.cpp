@@ -172,7 +172,22 @@ TEST(Procedural, BuiltInMeshByName) {
   for (const char* bad :
        {"", "sphere", "pole-sphere-2", "pole-sphere-", "pole-sphere-5x", "built-in:"})
     EXPECT_FALSE(scene::builtInMesh(bad).has_value()) << bad;
-  EXPECT_EQ(scene::builtInMeshNames().size(), 6u);
+  EXPECT_EQ(scene::builtInMeshNames().size(), 7u);
+}
+
+TEST(Procedural, CharacterIsAClosedOutwardFigureStandingOnItsFeet) {
+  const CageMesh m = scene::character();
+  EXPECT_EQ(m.source, "built-in:character");
+  const TopologySummary s = expectClosedManifold(m);
+  EXPECT_GT(s.extraordinaryVertices, 0);
+  // 21 voxels of 0.3 x 0.45 x 0.3.
+  EXPECT_NEAR(signedVolume(m), 21 * 0.3 * 0.45 * 0.3, 1e-9);
+  glm::dvec3 lo(1e9), hi(-1e9);
+  for (const glm::dvec3& p : m.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  EXPECT_NEAR(lo.z, 0.0, 1e-12);
+  EXPECT_NEAR(hi.z, 2.4, 1e-12);
+  EXPECT_NEAR(hi.x - lo.x, 2.1, 1e-12);  // arms out: the second-longest axis
+  EXPECT_NEAR(hi.y - lo.y, 0.45, 1e-12);
 }
 
 TEST(Procedural, TranslateAndScaleKeepFacesOutward) {

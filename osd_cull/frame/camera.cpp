@@ -87,6 +87,14 @@ Camera frameBounds(const Bounds& bounds, const glm::dvec3& fromDirection, const 
                         std::max(distance - r * 1.5, distance * 1e-3), distance + r * 1.5);
 }
 
+Camera instanceCamera(const Camera& camera, const glm::dmat4& model) {
+  Camera c = camera;
+  c.view = camera.view * model;
+  return c;
+}
+
+bool isMirrored(const Camera& camera) { return glm::determinant(glm::dmat3(camera.view)) < 0.0; }
+
 Camera orbit(const Camera& camera, const glm::dvec3& pivot, const glm::dvec3& axis,
              double degrees) {
   glm::dmat4 m = glm::translate(glm::dmat4(1.0), pivot);

@@ -59,6 +59,17 @@ Bounds boundsOf(std::span<const glm::dvec3> points);
 Camera frameBounds(const Bounds& bounds, const glm::dvec3& fromDirection, const glm::dvec3& up,
                    double fovyDegrees, uint32_t width, uint32_t height);
 
+/// \brief The camera of an object placed by `model` (object → world): view · model, composed
+/// in double. Culling and drawing with it work in the object's own coordinates, so the GPU
+/// never rounds world coordinates to float: a mesh 1e5 from the origin, seen from nearby,
+/// culls and draws as the same mesh at the origin (docs/algorithms/instances.md). A mirroring
+/// model (negative determinant) makes isMirrored() true; the draws flip their front face.
+Camera instanceCamera(const Camera& camera, const glm::dmat4& model);
+
+/// \brief Whether the camera's view (possibly composed with a model) mirrors space
+/// (negative determinant of its 3x3 part): projected triangles change winding.
+bool isMirrored(const Camera& camera);
+
 /// \brief Rotates the camera about the world axis `axis` through `pivot` by `degrees`.
 Camera orbit(const Camera& camera, const glm::dvec3& pivot, const glm::dvec3& axis, double degrees);
 

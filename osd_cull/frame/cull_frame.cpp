@@ -95,8 +95,12 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
     base += m.gpu->patchCount();
     visibility_.push_back(
         std::make_unique<VisibilityBuffer>(context, *programs_, *m.gpu, options.firstFrame));
-    passes_.push_back(anyStage ? std::make_unique<CullPass>(context, *m.gpu, *m.host, cull)
-                               : nullptr);
+    CullSettings settings = cull;
+    if (m.backPatchValidity) settings.backPatchValidity = *m.backPatchValidity;
+    passes_.push_back(!anyStage ? nullptr
+                      : m.cullData
+                          ? std::make_unique<CullPass>(context, *m.gpu, *m.host, settings, *m.cullData)
+                          : std::make_unique<CullPass>(context, *m.gpu, *m.host, settings));
   }
   if (!anyStage) {
     survivedResults_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
@@ -141,6 +145,7 @@ void CullFrame::recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool
     VisibilityBuffer& v = *visibility_[m];
     const GpuPatchSet& g = *meshes_[m].gpu;
     PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
+    draw.model = &meshes_[m].model;
     if (options_.drawMode == CullDrawMode::TessFactorZero) {
       draw.set = secondPass ? v.secondPassAll() : v.firstPassAll();
       renderer_.recordSlots(cmd, camera, draw, PatchType::Bezier, 0, g.bezierCount(), {},
@@ -205,8 +210,8 @@ void CullFrame::recordCull(VkCommandBuffer cmd, const Camera& camera, StatsSlot&
       visibility_[m]->recordUpdate(cmd, survivedResults_, c.bezier, c.gregory);
     } else {
       // One dispatch: frustum → back-patch → Hi-Z occlusion, a result code per patch.
-      passes_[m]->record(cmd, camera, options_.render.tessellation,
-                         stage_ ? stage_->set() : VK_NULL_HANDLE);
+      passes_[m]->record(cmd, instanceCamera(camera, meshes_[m].model),
+                         options_.render.tessellation, stage_ ? stage_->set() : VK_NULL_HANDLE);
       vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kComputeRead);
       visibility_[m]->recordUpdate(cmd, passes_[m]->resultsBuffer(), c.bezier, c.gregory);
     }
@@ -327,7 +332,8 @@ FrameStats CullFrame::renderStatusView(RenderTarget& target, const Camera& camer
     for (uint32_t p = 0; p < status.size(); ++p)
       list[p] = p | (drawStatusOf(status[p]) << shader::kDrawListStatusShift);
     vulkan::upload<uint32_t>(context_, statusLists_[m], list);
-    draws.push_back({meshes_[m].gpu, meshes_[m].host, itemBases_[m], statusSets_[m]});
+    draws.push_back(
+        {meshes_[m].gpu, meshes_[m].host, itemBases_[m], statusSets_[m], &meshes_[m].model});
   }
   RenderOptions o = options_.render;
   o.clear = true;

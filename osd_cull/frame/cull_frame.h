@@ -90,10 +90,20 @@ struct CullFrameStats {
   double totalMs() const { return frameMs; }
 };
 
-/// \brief One patch mesh of the scene. Both must outlive the CullFrame.
+/// \brief One patch mesh (or instance) of the scene. Both must outlive the CullFrame.
+/// Several CullMeshes may share one GpuPatchSet with different models: the instances of a
+/// mesh, each with its own status and culled with view · model composed in double.
 struct CullMesh {
   GpuPatchSet* gpu = nullptr;
   const PatchSet* host = nullptr;
+  glm::dmat4 model{1.0};  ///< object → world (instanceCamera()); setModel() changes it
+  /// Back-patch validity of this mesh, instead of CullFrameOptions::cull's (a scene's meshes
+  /// differ: closed or not, static or deforming).
+  std::optional<bound::BackPatchValidity> backPatchValidity;
+  /// The cone methods' per-patch cull data recomputed on the GPU for a moving mesh
+  /// (DynamicPatchMesh::cullData, bounds_pass.h), of the frame's back-patch method; null:
+  /// built once on the host (static mesh). Must outlive the CullFrame.
+  const vulkan::Buffer* cullData = nullptr;
 };
 
 /// \brief The frame pipeline of one view.
@@ -160,6 +170,9 @@ class CullFrame {
   /// \brief The cull pass of `mesh`, or nullptr when no stage is enabled.
   const CullPass* cullPass(size_t mesh) const { return passes_.at(mesh).get(); }
   size_t meshCount() const { return meshes_.size(); }
+  /// \brief Moves mesh `mesh` (an instance) for the next frames.
+  void setModel(size_t mesh, const glm::dmat4& model) { meshes_.at(mesh).model = model; }
+  const glm::dmat4& model(size_t mesh) const { return meshes_.at(mesh).model; }
   VisibilityBuffer& visibility(size_t mesh) { return *visibility_.at(mesh); }
   uint32_t itemBase(size_t mesh) const { return itemBases_.at(mesh); }
   /// \brief Result codes of the last cull (one per patch of `mesh`), read back.

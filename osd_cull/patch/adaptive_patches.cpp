@@ -72,6 +72,10 @@ AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchO
   patchOptions.shareEndCapPatchPoints = true;
   patchOptions.generateVaryingTables = false;
   patchOptions.generateVaryingLocalPoints = false;
+  // Texture coordinates (face_varying_uv.h): OpenSubdiv's linear face-varying patches,
+  // which leave the vertex refinement unchanged (considerFVarChannels stays false).
+  patchOptions.generateFVarTables = refiner.GetNumFVarChannels() > 0;
+  patchOptions.generateFVarLegacyLinearPatches = true;
   patchOptions.SetPatchPrecision<double>();
 
   AdaptivePatches out;

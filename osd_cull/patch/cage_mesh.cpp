@@ -80,6 +80,18 @@ void validate(const CageMesh& mesh) {
   for (int h : mesh.holes)
     if (h < 0 || h >= mesh.faceCount())
       throw Error(where + ": hole face " + std::to_string(h) + " is out of range");
+  if (mesh.faceUVs.empty()) return;
+  if (mesh.faceUVs.size() != mesh.faceVertices.size())
+    throw Error(where + ": " + std::to_string(mesh.faceUVs.size()) +
+                " texture-coordinate indices for " + std::to_string(mesh.faceVertices.size()) +
+                " face corners");
+  for (size_t i = 0; i < mesh.uvs.size(); ++i)
+    if (!std::isfinite(mesh.uvs[i].x) || !std::isfinite(mesh.uvs[i].y))
+      throw Error(where + ": texture coordinate " + std::to_string(i) + " is NaN or Inf");
+  for (int t : mesh.faceUVs)
+    if (t < 0 || static_cast<size_t>(t) >= mesh.uvs.size())
+      throw Error(where + ": texture-coordinate index " + std::to_string(t) +
+                  " is out of range (" + std::to_string(mesh.uvs.size()) + " defined)");
 }
 
 }  // namespace osd_cull

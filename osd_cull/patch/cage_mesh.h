@@ -5,6 +5,7 @@
 /// Adapters (adapters/) fill a CageMesh from files; makeTopologyRefiner() turns it into an
 /// OpenSubdiv Far::TopologyRefiner with every sharpness, hole and boundary rule applied.
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <optional>
@@ -63,17 +64,23 @@ struct CageMesh {
   std::vector<CreaseEdge> creases;
   std::vector<CornerVertex> corners;
   std::vector<int> holes;  ///< face indices tagged as holes
+  /// Texture coordinates (OBJ `vt`), the face-varying channel of the cage; empty when the
+  /// mesh has none. faceUVs has one index into uvs per entry of faceVertices.
+  std::vector<glm::dvec2> uvs;
+  std::vector<int> faceUVs;
 
   /// Notes the loader made while reading (e.g. "face 12 repeats vertex 5"); not errors.
   std::vector<std::string> notes;
 
   int vertexCount() const { return static_cast<int>(positions.size()); }
   int faceCount() const { return static_cast<int>(faceSizes.size()); }
+  bool hasUVs() const { return !faceUVs.empty(); }
 };
 
 /// \brief Checks the cage and throws osd_cull::Error naming the first problem: no faces,
 /// a face with fewer than three vertices, an index out of range, a NaN or Inf coordinate,
-/// a negative or NaN sharpness, a hole index out of range.
+/// a negative or NaN sharpness, a hole index out of range, texture coordinates that are
+/// non-finite, out of range or not one per face corner.
 void validate(const CageMesh& mesh);
 
 }  // namespace osd_cull

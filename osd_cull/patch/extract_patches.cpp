@@ -2,6 +2,7 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/patch/bspline_bezier.h"
+#include "osd_cull/patch/face_varying_uv.h"
 #include "osd_cull/patch/matrix_composer.h"
 #include "osd_cull/patch/refiner.h"
 
@@ -9,6 +10,7 @@
 
 #include <bit>
 #include <chrono>
+#include <optional>
 #include <vector>
 
 namespace osd_cull {
@@ -50,14 +52,15 @@ PatchExtraction extractPatches(const CageMesh& cage, const PatchOptions& options
   const auto start = Clock::now();
   std::unique_ptr<Far::TopologyRefiner> refiner = makeTopologyRefiner(cage);
   const double topologyMs = msSince(start);
-  PatchExtraction out = extractPatches(*refiner, cage.positions, options, cage.source);
+  PatchExtraction out = extractPatches(*refiner, cage.positions, options, cage.source, cage.uvs);
   out.stats.topologyMs = topologyMs;
   out.stats.totalMs += topologyMs;
   return out;
 }
 
 PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const glm::dvec3> positions,
-                               const PatchOptions& options, const std::string& source) {
+                               const PatchOptions& options, const std::string& source,
+                               std::span<const glm::dvec2> uvs) {
   const std::string where = source.empty() ? std::string("mesh") : source;
   const int cageVertices = refiner.GetLevel(0).GetNumVertices();
   if (positions.size() != static_cast<std::size_t>(cageVertices))
@@ -96,6 +99,8 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
   set.params.reserve(set.patchCount());
   set.origins.reserve(set.patchCount());
 
+  std::optional<PatchUVEvaluator> uvEvaluator;
+  if (!uvs.empty()) uvEvaluator.emplace(refiner, table, uvs, where);
   MatrixComposer rows(adaptive, cageVertices);
   for (const PatchRef& ref : bezier) {
     const Far::PatchParam param = table.GetPatchParam(ref.array, ref.index);
@@ -103,11 +108,13 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
                         bsplineToBezierWeights(param.GetBoundary()));
     set.params.push_back(param);
     set.origins.push_back(bsplinePatchOrigin(param));
+    if (uvEvaluator) uvEvaluator->appendCorners(ref.array, ref.index, out.uvCorners);
   }
   for (const PatchRef& ref : gregory) {
     rows.addPoints(table.GetPatchVertices(ref.array, ref.index));
     set.params.push_back(table.GetPatchParam(ref.array, ref.index));
     set.origins.push_back(PatchOrigin::Gregory);
+    if (uvEvaluator) uvEvaluator->appendCorners(ref.array, ref.index, out.uvCorners);
   }
   const std::size_t pointCount = bezier.size() * kBezierPoints + gregory.size() * kGregoryPoints;
   if (rows.rowCount() != pointCount)

@@ -13,12 +13,14 @@
 #include "osd_cull/patch/patch_set.h"
 #include "osd_cull/patch/point_matrix.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace osd_cull {
 
@@ -48,6 +50,10 @@ struct ExtractionStats {
 struct PatchExtraction {
   PatchSet patches;
   PatchPointMatrix matrix;  ///< rows = patches.points, columns = cage vertices
+  /// Texture coordinates of the patch corners (0,0), (1,0), (1,1), (0,1), four per patch in
+  /// PatchSet order, bilinear over the patch (face_varying_uv.h); empty when the cage has no
+  /// texture coordinates.
+  std::vector<glm::dvec2> uvCorners;
   ExtractionStats stats;
 };
 
@@ -57,9 +63,11 @@ struct PatchExtraction {
 PatchExtraction extractPatches(const CageMesh& cage, const PatchOptions& options = {});
 
 /// \brief The same for a base-level refiner the caller built; `positions` are its level-0
-/// vertices. The refiner is refined adaptively in place.
+/// vertices. The refiner is refined adaptively in place. With `uvs`, the values of the
+/// refiner's face-varying channel 0, PatchExtraction::uvCorners is filled.
 PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const glm::dvec3> positions,
-                               const PatchOptions& options = {}, const std::string& source = {});
+                               const PatchOptions& options = {}, const std::string& source = {},
+                               std::span<const glm::dvec2> uvs = {});
 
 /// \brief The origin of a regular B-spline patch from its PatchParam: BSplineEndCap if
 /// OpenSubdiv marks it irregular, else by its boundary edges: none → Regular, one →

@@ -92,6 +92,14 @@ std::unique_ptr<Far::TopologyRefiner> makeTopologyRefiner(const CageMesh& mesh) 
   desc.cornerWeights = cornerWeights.data();
   desc.numHoles = static_cast<int>(mesh.holes.size());
   desc.holeIndices = mesh.holes.data();
+  // Texture coordinates become face-varying channel 0 (face_varying_uv.h).
+  Far::TopologyDescriptor::FVarChannel uvChannel;
+  if (mesh.hasUVs()) {
+    uvChannel.numValues = static_cast<int>(mesh.uvs.size());
+    uvChannel.valueIndices = mesh.faceUVs.data();
+    desc.numFVarChannels = 1;
+    desc.fvarChannels = &uvChannel;
+  }
 
   using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
   Factory::Options options(sdcScheme(mesh.scheme), sdcOptions(mesh));

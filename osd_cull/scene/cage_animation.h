@@ -44,13 +44,27 @@ struct DeformerParams {
   double frequency = 0.5;  ///< oscillations per second
 };
 
-/// \brief Parameters of the linear-blend skinning rig: `joints` bones laid out along the
-/// mesh's principal axis (or as limbs, see the implementation), weights from distance
-/// to the bones, each bone swinging by up to `swingDegrees` at `frequency` Hz.
+/// \brief The bone layouts of makeSkinning().
+enum class SkinningRig {
+  /// `joints` bones in a chain along the cage's longest axis, each bending the rest of the
+  /// chain about the third axis (forward kinematics), phases a quarter cycle apart: a
+  /// tail, a snake, a bending tube.
+  Chain,
+  /// A limb-like rig for a character standing along its longest axis with arms along the
+  /// second-longest: a static torso, two legs swinging about the lateral axis from the hips
+  /// in antiphase, two arms swinging about the up axis from the shoulders, each against
+  /// its leg (a walk). `joints` is ignored (5 bones).
+  Limbs,
+};
+
+/// \brief Parameters of the linear-blend skinning rig: bones laid out by `rig`, weights
+/// from distance to the bones (1 / (d² + ε²)², normalized, ε = 5% of the largest extent),
+/// each bone swinging by up to `swingDegrees` at `frequency` Hz.
 struct SkinningParams {
   int joints = 4;
   double swingDegrees = 30.0;
   double frequency = 0.5;
+  SkinningRig rig = SkinningRig::Chain;
 };
 
 /// \brief The procedural deformers of the rest cage `rest` (positions copied).

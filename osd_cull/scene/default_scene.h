@@ -8,6 +8,7 @@
 #include "osd_cull/frame/draw/triangle_mesh.h"
 #include "osd_cull/patch/adaptive_patches.h"
 #include "osd_cull/patch/patch_set.h"
+#include "osd_cull/scene/loaded_scene.h"
 
 #include <glm/vec3.hpp>
 
@@ -25,5 +26,14 @@ struct Scene {
 
 /// \brief The built-in scene, its cages extracted with `options`.
 Scene defaultScene(const PatchOptions& options = {});
+
+/// \brief The same objects as a scene description (docs/scene-format.md), each mesh an
+/// instance placed by its transform, plus a standing character (scene::character()) in
+/// front of the wall, with `frames` frames of a camera path at 24 fps: a
+/// main view that swings around the objects and closes in.
+SceneDescription defaultSceneDescription(uint32_t frames = 48);
+
+/// \brief defaultSceneDescription() loaded (built-in cages only, no files).
+LoadedScene builtInScene(uint32_t frames = 48);
 
 }  // namespace osd_cull::scene

@@ -158,7 +158,8 @@ CageMesh defaultMesh() {
 }
 
 std::vector<std::string> builtInMeshNames() {
-  return {"cube", "torus", "pole-sphere-<n>", "creased-cube", "collapsed-face", "default"};
+  return {"cube",           "torus",   "pole-sphere-<n>", "creased-cube",
+          "collapsed-face", "default", "character"};
 }
 
 std::optional<CageMesh> builtInMesh(std::string_view name) {
@@ -168,6 +169,7 @@ std::optional<CageMesh> builtInMesh(std::string_view name) {
   if (name == "creased-cube") return creasedCube();
   if (name == "collapsed-face") return collapsedFaceCube();
   if (name == "default") return defaultMesh();
+  if (name == "character") return character();
   if (name.starts_with("pole-sphere-")) {
     const std::string_view digits = name.substr(12);
     int n = 0;

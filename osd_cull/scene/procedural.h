@@ -50,8 +50,15 @@ CageMesh collapsedFaceCube();
 /// sharpness-2 crease loop of 16 edges around its middle. Closed, genus 0.
 CageMesh defaultMesh();
 
+/// \brief A standing figure for the skinning demo (built-in:character): legs, a torso, arms
+/// held out at shoulder height and a head, made of 0.3 x 0.45 x 0.3 voxels (feet on z = 0,
+/// 2.4 tall, 2.1 across the arms), whose boundary quads form a closed, outward-oriented,
+/// genus-0 cage. Its longest axis is up and its arms lie along the second longest, as the
+/// limb rig of the skinning deformer expects.
+CageMesh character();
+
 /// \brief Names builtInMesh() accepts: cube, torus, pole-sphere-<n> (n >= 3), creased-cube,
-/// collapsed-face, default.
+/// collapsed-face, default, character.
 std::vector<std::string> builtInMeshNames();
 
 /// \brief The generated mesh with this name (with or without the "built-in:" prefix), or

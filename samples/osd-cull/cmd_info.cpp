@@ -46,7 +46,8 @@ int runInfo(Args& args) {
 
   const auto t0 = std::chrono::steady_clock::now();
   LoadedMesh mesh = loadMeshSource(source);
-  const double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const double loadMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
   nlohmann::ordered_json out;
   out["mesh"] = mesh.name;
@@ -57,7 +58,8 @@ int runInfo(Args& args) {
     out["vertices"] = p.points.size();
     out["faces"] = p.patchCount();
     out["closed"] = false;
-    out["patches"] = {{"total", p.patchCount()}, {"bezier", p.bezierCount}, {"gregory", p.gregoryCount}};
+    out["patches"] = {
+        {"total", p.patchCount()}, {"bezier", p.bezierCount}, {"gregory", p.gregoryCount}};
     out["control_points"] = p.points.size();
     out["timing_ms"] = {{"load", loadMs}};
   } else {
@@ -95,9 +97,12 @@ int runInfo(Args& args) {
                         {"bspline_end_caps", st.bsplineEndCaps}};
       out["control_points"] = st.controlPoints;
       out["matrix_non_zeros"] = st.matrixNonZeros;
-      out["timing_ms"] = {{"load", loadMs},         {"topology", st.topologyMs},
-                          {"refine", st.refineMs},  {"patch_table", st.patchTableMs},
-                          {"stencils", st.stencilMs}, {"matrix", st.matrixMs},
+      out["timing_ms"] = {{"load", loadMs},
+                          {"topology", st.topologyMs},
+                          {"refine", st.refineMs},
+                          {"patch_table", st.patchTableMs},
+                          {"stencils", st.stencilMs},
+                          {"matrix", st.matrixMs},
                           {"extract_total", st.totalMs}};
       if (!json) out["_origins"] = originCounts(st);
     } catch (const Error& e) {
@@ -128,9 +133,10 @@ int runInfo(Args& args) {
                       std::to_string(out["face_sizes"]["other"].get<int>()) + " other; " +
                       std::to_string(out["degenerate_faces"].get<int>()) + " repeat a vertex; " +
                       std::to_string(out["holes"].get<int>()) + " holes)");
-    line("surface", out["closed"].get<bool>() ? std::string("closed")
-                                              : "open (" + std::to_string(out["boundary_edges"].get<int>()) +
-                                                    " boundary edges)");
+    line("surface",
+         out["closed"].get<bool>()
+             ? std::string("closed")
+             : "open (" + std::to_string(out["boundary_edges"].get<int>()) + " boundary edges)");
     line("non-manifold", std::to_string(out["non_manifold_edges"].get<int>()) + " edges, " +
                              std::to_string(out["non_manifold_vertices"].get<int>()) + " vertices");
     line("features", std::to_string(out["creased_edges"].get<int>()) + " creased edges, " +
@@ -153,7 +159,8 @@ int runInfo(Args& args) {
   std::string timing;
   for (const auto& [k, v] : out["timing_ms"].items()) {
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%s%s %.2f", timing.empty() ? "" : ", ", k.c_str(), v.get<double>());
+    std::snprintf(buf, sizeof buf, "%s%s %.2f", timing.empty() ? "" : ", ", k.c_str(),
+                  v.get<double>());
     timing += buf;
   }
   line("time (ms)", timing);
@@ -162,8 +169,11 @@ int runInfo(Args& args) {
   return 0;
 }
 
-const Registration kInfo({"info", "describe a mesh and the patches osd_cull extracts from it", kUsage,
-                          {"json"}, runInfo});
+const Registration kInfo({"info",
+                          "describe a mesh and the patches osd_cull extracts from it",
+                          kUsage,
+                          {"json"},
+                          runInfo});
 
 }  // namespace
 }  // namespace osd_cull::cli

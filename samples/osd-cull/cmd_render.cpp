@@ -5,6 +5,8 @@
 #include "cull_report.h"
 #include "mesh_patches.h"
 #include "mesh_source.h"
+#include "scene_render.h"
+#include "scene_source.h"
 
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/default_scene.h"
@@ -71,7 +73,7 @@ Options:
                          DIR/hiz_level_NN.png
 )";
 
-std::string usage() { return std::string(kUsageHead) + kCullOptionsUsage; }
+std::string usage() { return std::string(kUsageHead) + kCullOptionsUsage + kSceneRenderUsage; }
 
 struct Scene {
   PatchSet patches;
@@ -128,6 +130,8 @@ fs::path sibling(const fs::path& out, const std::string& suffix) {
 }
 
 int run(Args& args) {
+  if (!args.positional().empty() && isSceneArgument(args.positional().front()))
+    return renderScene(args);
   const auto out = args.value("out");
   const uint32_t width = static_cast<uint32_t>(args.integer("width", 1, 16384).value_or(640));
   const uint32_t height = static_cast<uint32_t>(args.integer("height", 1, 16384).value_or(480));
@@ -362,7 +366,7 @@ const Registration kRegistration(
      "draw a mesh or the built-in scene to PNG (optionally culled), print frame statistics",
      usage(),
      {"ids", "debug-colors", "validate", "status-view", "aggressive", "hiz-full", "hiz-tight",
-      "surface-exact"},
+      "surface-exact", "compare"},
      run});
 
 }  // namespace

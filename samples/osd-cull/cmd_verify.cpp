@@ -3,6 +3,9 @@
 // sampling and the image; prints a table and writes JSON.
 #include "command.h"
 #include "mesh_patches.h"
+#include "scene_source.h"
+#include "scene_verify.h"
+#include "verify_report.h"
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/verify/cull_verification.h"
@@ -66,46 +69,9 @@ Options:
   --validate            enable the Vulkan validation layers
 )";
 
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
-double percent(uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; }
-
-nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCount, bool oracle) {
-  nlohmann::ordered_json m;
-  m["name"] = t.name;
-  m["stage"] = frame::toString(t.stage);
-  m["cull_rate"] = t.cullRate();
-  m["cull_rate_bezier"] = t.bezierViews ? double(t.culledBezier) / double(t.bezierViews) : 0.0;
-  m["cull_rate_gregory"] = t.gregoryViews ? double(t.culledGregory) / double(t.gregoryViews) : 0.0;
-  m["culled_per_view"] = t.views ? double(t.culled) / double(t.views) : 0.0;
-  m["kept_for_drawn_triangles_rate"] =
-      t.patchViews ? double(t.keptForDrawnTriangles) / double(t.patchViews) : 0.0;
-  m["false_culls"] = oracle ? nlohmann::ordered_json(t.falseCulls) : nlohmann::ordered_json();
-  m["false_cull_pixels"] =
-      oracle ? nlohmann::ordered_json(t.falseCullPixels) : nlohmann::ordered_json();
-  m["oracle_invisible_rate"] =
-      oracle ? nlohmann::ordered_json(t.oracleInvisibleRate()) : nlohmann::ordered_json();
-  m["ns_per_patch"] = t.nsPerPatch(patchCount);
-  m["reference_views"] = t.referenceViews;
-  m["reference_cull_rate"] = t.referenceCullRate();
-  m["cpu_reference_agreement"] = t.referenceAgreement();
-  m["culled_not_in_reference"] = t.notInReference;
-  m["sampled_culls"] = t.sampledCulls;
-  m["sampling_violations"] = t.samplingViolations;
-  m["image_views"] = t.imageViews;
-  m["pixels_lost"] = t.pixelsLost;
-  m["pixels_changed"] = t.pixelsChanged;
-  return m;
-}
-
 int run(Args& args) {
+  if (!args.positional().empty() && isSceneArgument(args.positional().front()))
+    return verifyScene(args);
   const uint32_t views = static_cast<uint32_t>(args.integer("views", 1, 10'000'000).value_or(100));
   const uint64_t seed = static_cast<uint64_t>(args.integer("seed", 0, 1L << 62).value_or(1));
   const frame::ViewSet viewSet = frame::parseViewSet(args.value("view-set").value_or("sphere"));
@@ -196,56 +162,10 @@ int run(Args& args) {
     }
   }
 
-  std::printf("\n%-17s %7s %7s %7s %8s %7s %7s %9s %7s %8s %8s\n", "method", "cull%", "bezier%",
-              "greg%", "ref-cull%", "agree%", "!in-ref", "oracle-inv%", "false", "ns/patch",
-              "drawn%");
-  // ok: no violation at all. With --surface-exact, silhouette chords (a back-patch-culled
-  // patch, back-facing on every sample, whose drawn triangles still cover single oracle
-  // pixels that a neighbour covers in the culled image) are reported but do not fail the run.
-  bool ok = true, okButSilhouettes = true;
-  uint64_t silhouetteViews = 0, silhouettePixels = 0;
-  for (const auto& t : verifier.totals()) {
-    std::printf("%-17s %7.2f %7.2f %7.2f %8.2f %7.3f %7llu %9.2f %7s %8.0f %8.2f\n", t.name.c_str(),
-                100.0 * t.cullRate(), percent(t.culledBezier, t.bezierViews),
-                percent(t.culledGregory, t.gregoryViews), 100.0 * t.referenceCullRate(),
-                100.0 * t.referenceAgreement(), static_cast<unsigned long long>(t.notInReference),
-                100.0 * t.oracleInvisibleRate(),
-                options.oracle ? std::to_string(t.falseCulls).c_str() : "-",
-                t.nsPerPatch(patches.patchCount()), percent(t.keptForDrawnTriangles, t.patchViews));
-    const bool hard = t.notInReference == 0 && t.samplingViolations == 0 && t.pixelsLost == 0;
-    ok = ok && hard && t.falseCulls == 0;
-    okButSilhouettes =
-        okButSilhouettes && hard &&
-        (t.falseCulls == 0 || (surfaceExact && t.stage == frame::CullStage::BackPatch &&
-                               t.falseCullPixels == t.falseCulls));
-    if (t.stage == frame::CullStage::BackPatch) {
-      silhouetteViews += t.falseCulls;
-      silhouettePixels += t.falseCullPixels;
-    }
-  }
-  if (silhouetteViews > 0)
-    std::printf(
-        "\nnote: %llu back-patch-culled patch-views have %llu oracle pixels (single "
-        "silhouette pixels of drawn chord triangles%s; see "
-        "docs/algorithms/drawn-triangles.md)\n",
-        static_cast<unsigned long long>(silhouetteViews),
-        static_cast<unsigned long long>(silhouettePixels),
-        surfaceExact ? ", expected with --surface-exact" : "");
-  for (const auto& t : verifier.totals())
-    for (const auto& f : t.falseCullList)
-      std::printf("false cull: %s view %llu patch %u, %u pixels\n", t.name.c_str(),
-                  static_cast<unsigned long long>(f.view), f.patch, f.pixels);
-  if (sample > 0 || imageCheck) {
-    std::printf("\n%-17s %12s %12s %12s %12s %14s\n", "method", "false-pixels", "sampled",
-                "sample-viol", "pixels-lost", "pixels-changed");
-    for (const auto& t : verifier.totals())
-      std::printf("%-17s %12llu %12llu %12llu %12llu %14llu\n", t.name.c_str(),
-                  static_cast<unsigned long long>(t.falseCullPixels),
-                  static_cast<unsigned long long>(t.sampledCulls),
-                  static_cast<unsigned long long>(t.samplingViolations),
-                  static_cast<unsigned long long>(t.pixelsLost),
-                  static_cast<unsigned long long>(t.pixelsChanged));
-  }
+  const VerifyVerdict verdict =
+      printVerifyTables(verifier.totals(), patches.patchCount(), options.oracle, surfaceExact,
+                        sample > 0 || imageCheck);
+  const bool ok = verdict.ok, okButSilhouettes = verdict.okButSilhouettes;
 
   if (jsonPath) {
     nlohmann::ordered_json out;
@@ -292,7 +212,7 @@ int run(Args& args) {
 const Registration kRegistration(
     {"verify",
      "check every cull method against the CPU reference and the oracle on random views",
-     kUsage,
+     std::string(kUsage) + kSceneVerifyUsage,
      {"no-oracle", "image-check", "validate", "hiz-full", "hiz-tight", "surface-exact"},
      run});
 

@@ -42,8 +42,8 @@ class Args {
 struct Command {
   std::string name;
   std::string summary;
-  std::string usage;                      ///< full help text, shown by `osd-cull NAME --help`
-  std::vector<std::string> flags;         ///< options that take no value
+  std::string usage;               ///< full help text, shown by `osd-cull NAME --help`
+  std::vector<std::string> flags;  ///< options that take no value
   std::function<int(Args&)> run;
 };
 

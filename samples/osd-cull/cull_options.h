@@ -6,8 +6,8 @@
 #include "command.h"
 
 #include "osd_cull/bound/back_patch_validity.h"
-#include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/cull_frame.h"
 
 #include <optional>
 #include <string>

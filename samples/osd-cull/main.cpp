@@ -65,8 +65,8 @@ std::optional<long> Args::integer(const std::string& name, long lo, long hi) {
   if (v->empty() || *end != '\0' || errno == ERANGE)
     throw Error("option --" + name + ": '" + *v + "' is not an integer");
   if (x < lo || x > hi)
-    throw Error("option --" + name + ": " + *v + " is out of range [" + std::to_string(lo) +
-                ", " + std::to_string(hi) + "]");
+    throw Error("option --" + name + ": " + *v + " is out of range [" + std::to_string(lo) + ", " +
+                std::to_string(hi) + "]");
   return x;
 }
 
@@ -78,8 +78,8 @@ std::optional<double> Args::number(const std::string& name, double lo, double hi
   if (v->empty() || *end != '\0' || !std::isfinite(x))
     throw Error("option --" + name + ": '" + *v + "' is not a finite number");
   if (x < lo || x > hi)
-    throw Error("option --" + name + ": " + *v + " is out of range [" + std::to_string(lo) +
-                ", " + std::to_string(hi) + "]");
+    throw Error("option --" + name + ": " + *v + " is out of range [" + std::to_string(lo) + ", " +
+                std::to_string(hi) + "]");
   return x;
 }
 
@@ -100,9 +100,11 @@ void Args::finish() const {
 namespace {
 
 void printHelp() {
-  std::cout << "osd-cull: GPU culling of OpenSubdiv patches\n\nUsage: osd-cull COMMAND [options]\n\nCommands:\n";
+  std::cout << "osd-cull: GPU culling of OpenSubdiv patches\n\nUsage: osd-cull COMMAND "
+               "[options]\n\nCommands:\n";
   for (const auto& [name, cmd] : osd_cull::cli::commands())
-    std::cout << "  " << name << std::string(name.size() < 10 ? 10 - name.size() : 1, ' ') << cmd.summary << "\n";
+    std::cout << "  " << name << std::string(name.size() < 10 ? 10 - name.size() : 1, ' ')
+              << cmd.summary << "\n";
   std::cout << "\n`osd-cull COMMAND --help` shows a command's options.\n";
 }
 

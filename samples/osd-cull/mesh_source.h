@@ -15,8 +15,8 @@ namespace osd_cull::cli {
 
 /// \brief What the user asked to load.
 struct MeshSource {
-  std::optional<std::string> path;    ///< empty: the built-in default mesh
-  std::optional<Scheme> scheme;       ///< --scheme
+  std::optional<std::string> path;  ///< empty: the built-in default mesh
+  std::optional<Scheme> scheme;     ///< --scheme
 };
 
 /// \brief A loaded mesh: a cage to refine, or Bézier patches used as they are.

@@ -13,24 +13,7 @@ layout(std430, set = 0, binding = kCullBindingDrawList) writeonly buffer DrawLis
 layout(std430, set = 0, binding = kCullBindingCounters) buffer Counters { uint counters[]; };
 layout(std430, set = 0, binding = kCullBindingTable) readonly buffer Table { uvec2 table[]; };
 
-// Finite test on the bits, so that no fast-math assumption can fold it away.
-bool isFiniteF(float x) { return (floatBitsToUint(x) & 0x7F800000u) != 0x7F800000u; }
-bool isFiniteF(vec3 v) { return isFiniteF(v.x) && isFiniteF(v.y) && isFiniteF(v.z); }
-bool isFiniteF(vec4 v) { return isFiniteF(v.xyz) && isFiniteF(v.w); }
-
-bool isBezier(uint patchIndex) { return patchIndex < pc.bezierCount; }
-uint pointCount(uint patchIndex) { return isBezier(patchIndex) ? 16u : 20u; }
-
-// Index of the first control point of a patch (PatchSet layout: Bezier first, then Gregory).
-uint firstPoint(uint patchIndex) {
-  return isBezier(patchIndex) ? patchIndex * 16u
-                              : pc.bezierCount * 16u + (patchIndex - pc.bezierCount) * 20u;
-}
-
-vec3 controlPoint(uint index) {
-  uint base = pc.pointOffset + index * pc.pointStride;
-  return vec3(points[base], points[base + 1u], points[base + 2u]);
-}
+#include "../common/patch_points.glsl"
 
 // c = viewProj * (p, 1) and m = |viewProj| * (|p|, 1): m bounds every product summed in c
 // (bound::clipPoint, bound::absClipPoint).

@@ -113,8 +113,25 @@ uint32_t indirectDrawChunk(const TessellationOptions& tessellation, uint32_t con
 }
 
 CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
+                   const CullSettings& settings, const vulkan::Buffer& cullData)
+    : CullPass(context, gpu, host, settings, &cullData) {}
+
+CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
                    const CullSettings& settings)
+    : CullPass(context, gpu, host, settings, nullptr) {}
+
+CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
+                   const CullSettings& settings, const vulkan::Buffer* cullData)
     : context_(context), gpu_(gpu), host_(host), settings_(settings) {
+  if (cullData != nullptr) {
+    const VkDeviceSize needed =
+        VkDeviceSize{std::max<uint32_t>(1, host.patchCount())} * sh::kConeVec4s * 16;
+    if (cullData->size() < needed)
+      throw Error("CullPass: the cull data buffer has " + std::to_string(cullData->size()) +
+                  " bytes, " + std::to_string(needed) + " needed for " +
+                  std::to_string(host.patchCount()) + " patches");
+    cullData_ = cullData;
+  }
   if (host.patchCount() != gpu.patchCount() || host.bezierCount != gpu.bezierCount())
     throw Error("CullPass: host PatchSet '" + host.source + "' has " +
                 std::to_string(host.bezierCount) + " + " + std::to_string(host.gregoryCount) +
@@ -143,28 +160,14 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
   const uint32_t n = host.patchCount();
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-  constexpr size_t kFloatsPerCone = 4 * sh::kConeVec4s;
-  std::vector<float> packed(kFloatsPerCone, 0.0f);
-  if (backPatchEnabled()) {
-    const CullMethod* backPatch = stages_[settings.frustum ? 1 : 0];
-    cones_ = bound::buildPatchCones(host, backPatch->reference);
-    packed.assign(std::max<size_t>(1, cones_.size()) * kFloatsPerCone, 0.0f);
-    for (size_t p = 0; p < cones_.size(); ++p) {
-      const bound::DerivativeBounds d =
-          host.type(uint32_t(p)) == PatchType::Bezier
-              ? bound::bezierDerivativeBounds(host.controlPoints(uint32_t(p)))
-              : bound::DerivativeBounds{};
-      packCone(cones_[p], d, &packed[kFloatsPerCone * p]);
-    }
-  }
-  conesBuffer_ = vulkan::Buffer(context, packed.size() * sizeof(float), storage);
-  vulkan::upload<float>(context, conesBuffer_, packed);
+  if (cullData_ == &conesBuffer_) uploadHostCones(context);
   std::vector<uint32_t> table(2, 0u);
   for (const CullMethod* m : stages_)
     if (m->table) table = m->table();
   table_ = vulkan::Buffer(context, table.size() * sizeof(uint32_t), storage);
   vulkan::upload<uint32_t>(context, table_, table);
-  results_ = vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage, vulkan::MemoryUse::Readback);
+  results_ =
+      vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage, vulkan::MemoryUse::Readback);
   drawList_ = vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage);
   counters_ = vulkan::Buffer(context, sh::kCounterCount * 4, indirect, vulkan::MemoryUse::Readback);
   commands_ = vulkan::Buffer(context, (size_t{n} + 2) * sizeof(VkDrawIndirectCommand), indirect);
@@ -175,6 +178,26 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
 
 CullPass::~CullPass() = default;
 
+void CullPass::uploadHostCones(vulkan::Context& context) {
+  constexpr size_t kFloatsPerCone = 4 * sh::kConeVec4s;
+  std::vector<float> packed(kFloatsPerCone, 0.0f);
+  if (backPatchEnabled()) {
+    const CullMethod* backPatch = stages_[settings_.frustum ? 1 : 0];
+    cones_ = bound::buildPatchCones(host_, backPatch->reference);
+    packed.assign(std::max<size_t>(1, cones_.size()) * kFloatsPerCone, 0.0f);
+    for (size_t p = 0; p < cones_.size(); ++p) {
+      const bound::DerivativeBounds d =
+          host_.type(uint32_t(p)) == PatchType::Bezier
+              ? bound::bezierDerivativeBounds(host_.controlPoints(uint32_t(p)))
+              : bound::DerivativeBounds{};
+      packCone(cones_[p], d, &packed[kFloatsPerCone * p]);
+    }
+  }
+  conesBuffer_ =
+      vulkan::Buffer(context, packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<float>(context, conesBuffer_, packed);
+}
+
 void CullPass::buildPipelines(vulkan::Context& context) {
   setLayout_ = vulkan::createDescriptorSetLayout(context, kBindings);
   std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
@@ -184,17 +207,18 @@ void CullPass::buildPipelines(vulkan::Context& context) {
       layouts.push_back(stageSetLayout_.get());
     }
   layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
-                                     VK_SHADER_STAGE_COMPUTE_BIT);
-  const vulkan::Spirv cull = vulkan::compileGlsl(composeKernel(stages_, lanes_, settings_.drawnTriangles),
-                                         "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+                                         VK_SHADER_STAGE_COMPUTE_BIT);
+  const vulkan::Spirv cull =
+      vulkan::compileGlsl(composeKernel(stages_, lanes_, settings_.drawnTriangles),
+                          "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
   cullPipeline_ = vulkan::createComputePipeline(context, layout_.get(), cull);
-  drawsPipeline_ = vulkan::createComputePipeline(context, layout_.get(),
-                                             vulkan::compileShader({"cull/write_draws.comp", {}}));
+  drawsPipeline_ = vulkan::createComputePipeline(
+      context, layout_.get(), vulkan::compileShader({"cull/write_draws.comp", {}}));
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(setLayout_.get());
   vulkan::DescriptorWriter()
       .buffer(sh::kCullBindingPoints, gpu_.points())
-      .buffer(sh::kCullBindingCones, conesBuffer_)
+      .buffer(sh::kCullBindingCones, *cullData_)
       .buffer(sh::kCullBindingResults, results_)
       .buffer(sh::kCullBindingDrawList, drawList_)
       .buffer(sh::kCullBindingCounters, counters_)

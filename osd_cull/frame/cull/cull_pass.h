@@ -76,6 +76,13 @@ class CullPass {
   /// \throws osd_cull::Error for unknown method names or a method in the wrong stage.
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings);
+  /// \brief The same, reading the per-patch cull data from `cullData` (kConeVec4s vec4 per
+  /// patch, e.g. BoundsPass::cullData() of the same method, recomputed on the GPU when the
+  /// points move) instead of building cones on the host. `cullData` is borrowed and must
+  /// outlive the pass; cones() is then empty (the reference builds cones from the frame's
+  /// points: bound::buildPatchCones).
+  CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
+           const CullSettings& settings, const vulkan::Buffer& cullData);
   ~CullPass();
   CullPass(const CullPass&) = delete;
   CullPass& operator=(const CullPass&) = delete;
@@ -135,7 +142,10 @@ class CullPass {
   const vulkan::Buffer& counters() const { return counters_; }
 
  private:
+  CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
+           const CullSettings& settings, const vulkan::Buffer* cullData);
   void buildPipelines(vulkan::Context& context);
+  void uploadHostCones(vulkan::Context& context);
   shader::CullConstants constants(const Camera& camera,
                                   const TessellationOptions& tessellation) const;
 
@@ -148,7 +158,8 @@ class CullPass {
   uint32_t lanes_ = 1;
   std::vector<bound::ConeOfNormals> cones_;
 
-  vulkan::Buffer conesBuffer_;
+  vulkan::Buffer conesBuffer_;                      // host-built cull data (unused if external)
+  const vulkan::Buffer* cullData_ = &conesBuffer_;  // what the kernel reads
   vulkan::Buffer table_;
   vulkan::Buffer results_;
   vulkan::Buffer drawList_;

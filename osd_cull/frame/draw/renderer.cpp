@@ -58,14 +58,15 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
   meshSetLayout_ = vulkan::createDescriptorSetLayout(context, triangleMeshBindings());
   const VkDescriptorSetLayout p = patchSetLayout_.get();
   const VkDescriptorSetLayout m = meshSetLayout_.get();
-  patchLayout_ =
-      vulkan::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
-  meshLayout_ =
-      vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants), kGraphicsStages);
+  patchLayout_ = vulkan::createPipelineLayout(context, {&p, 1}, sizeof(shader::DrawConstants),
+                                              kGraphicsStages);
+  meshLayout_ = vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants),
+                                             kGraphicsStages);
 }
 
-VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe) {
-  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe}];
+VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
+                                   bool mirrored) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
   const std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
@@ -92,8 +93,9 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
     d.polygonMode = VK_POLYGON_MODE_LINE;
   }
   // With the y-flipping projections of camera.h, triangles of a patch whose dP/du x dP/dv
-  // faces the eye come out clockwise in framebuffer space.
-  d.frontFace = VK_FRONT_FACE_CLOCKWISE;
+  // faces the eye come out clockwise in framebuffer space; a mirroring model matrix
+  // (instanceCamera() with a negative determinant) turns them counter-clockwise.
+  d.frontFace = mirrored ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE;
   slot = vulkan::createGraphicsPipeline(context_, d);
   return slot.get();
 }
@@ -153,11 +155,13 @@ void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
   }
 }
 
-void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const PatchDraw& draw,
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    patchPipeline(type, options.cullBackFaces, options.wireframe));
+  const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
+  vkCmdBindPipeline(
+      cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+      patchPipeline(type, options.cullBackFaces, options.wireframe, isMirrored(camera)));
   const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
                           nullptr);
@@ -173,8 +177,8 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& camera, const Patc
 
 void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
                               PatchType type, const vulkan::Buffer& commands, VkDeviceSize offset,
-                              const vulkan::Buffer& count, VkDeviceSize countOffset, uint32_t maxDraws,
-                              const RenderOptions& options) {
+                              const vulkan::Buffer& count, VkDeviceSize countOffset,
+                              uint32_t maxDraws, const RenderOptions& options) {
   if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
   if (maxDraws == 0) return;
   bindPatches(cmd, camera, draw, type, options);

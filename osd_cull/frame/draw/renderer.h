@@ -61,6 +61,9 @@ struct PatchDraw {
   /// Descriptor set to draw with instead of gpu->descriptorSet(), e.g. one from
   /// GpuPatchSet::descriptorSetWithDrawList() for a culled draw list.
   VkDescriptorSet set = VK_NULL_HANDLE;
+  /// Object → world matrix of this draw (an instance, scene/scene_eval.h); null: identity.
+  /// The draw uses instanceCamera(camera, *model), composed in double.
+  const glm::dmat4* model = nullptr;
 };
 
 /// \brief What one frame did.
@@ -124,7 +127,7 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe);
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored);
   VkPipeline trianglePipeline();
   void bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw, PatchType type,
                    const RenderOptions& options);
@@ -135,7 +138,7 @@ class Renderer {
   vulkan::UniqueDescriptorSetLayout meshSetLayout_;
   vulkan::UniquePipelineLayout patchLayout_;
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
+  std::map<std::tuple<PatchType, bool, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
   vulkan::UniquePipeline trianglePipeline_;
   vulkan::PipelineStatisticsQuery statistics_;
   std::optional<vulkan::TimestampQuery> timestamps_;  // absent when the queue has no timestamps

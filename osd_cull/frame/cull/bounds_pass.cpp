@@ -1,0 +1,191 @@
+#include "osd_cull/frame/cull/bounds_pass.h"
+
+#include "osd_cull/bound/patch_eval.h"
+#include "osd_cull/error.h"
+#include "osd_cull/frame/draw/gpu_patch_set.h"
+#include "osd_cull/vk/commands.h"
+#include "osd_cull/vk/context.h"
+#include "osd_cull/vk/pipeline.h"
+#include "osd_cull/vk/shader_compiler.h"
+#include "osd_cull/vk/transfer.h"
+
+#include <shared/bounds_layout.h>
+#include <shared/cull_layout.h>
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+namespace osd_cull::frame {
+namespace {
+
+namespace sh = osd_cull::shader;
+
+const vulkan::DescriptorBinding kBindings[] = {
+    {sh::kBoundsBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kBoundsBindingCones, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kBoundsBindingScratch, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+
+// The Gregory index tables of shaders/bounds/gregory_bounds.glsl, from the tables the
+// reference uses (bound::buildGregoryConeFromTangentCones enumerates the same vectors).
+std::string gregoryTables() {
+  using bound::kGregoryBoundary;
+  using bound::kGregoryInterior;
+  auto candidates = [](int i, int j) {
+    std::vector<int> out;
+    const int k = 4 * j + i;
+    if (kGregoryBoundary[static_cast<size_t>(k)] >= 0) {
+      out.push_back(kGregoryBoundary[static_cast<size_t>(k)]);
+    } else {
+      for (const bound::GregoryInterior& g : kGregoryInterior)
+        if (g.i == i && g.j == j) out = {g.a, g.b};
+    }
+    return out;
+  };
+  std::vector<std::pair<int, int>> du, dv;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i) {
+      for (int hi : candidates(i + 1, j))
+        for (int lo : candidates(i, j)) du.emplace_back(hi, lo);
+      for (int hi : candidates(j, i + 1))
+        for (int lo : candidates(j, i)) dv.emplace_back(hi, lo);
+    }
+  // Signs of a_u b - a b_u (linear, so the corners decide), as the reference.
+  std::vector<std::array<int, 3>> ru, rv;
+  for (const bound::GregoryInterior& g : kGregoryInterior)
+    for (int along = 0; along < 2; ++along) {
+      bool positive = false, negative = false;
+      for (int corner = 0; corner < 4; ++corner) {
+        const double s = corner & 1, t = corner >> 1;
+        const double a = g.a0 + g.as * s + g.at * t, b = g.b0 + g.bs * s + g.bt * t;
+        const double value = along == 0 ? g.as * b - a * g.bs : g.at * b - a * g.bt;
+        positive |= value > 0.0;
+        negative |= value < 0.0;
+      }
+      auto& out = along == 0 ? ru : rv;
+      if (positive) out.push_back({g.a, g.b, 1});
+      if (negative) out.push_back({g.a, g.b, -1});
+    }
+  auto pairs = [](const std::string& name, const std::vector<std::pair<int, int>>& v) {
+    std::string s = "const uint " + name + "Count = " + std::to_string(v.size()) + "u;\n";
+    s += "const ivec2 " + name + "[" + std::to_string(v.size()) + "] = ivec2[](";
+    for (size_t k = 0; k < v.size(); ++k)
+      s += (k ? ", " : "") + std::string("ivec2(") + std::to_string(v[k].first) + ", " +
+           std::to_string(v[k].second) + ")";
+    return s + ");\n";
+  };
+  auto triples = [](const std::string& name, const std::vector<std::array<int, 3>>& v) {
+    std::string s = "const uint " + name + "Count = " + std::to_string(v.size()) + "u;\n";
+    s += "const ivec3 " + name + "[" + std::to_string(v.size()) + "] = ivec3[](";
+    for (size_t k = 0; k < v.size(); ++k)
+      s += (k ? ", " : "") + std::string("ivec3(") + std::to_string(v[k][0]) + ", " +
+           std::to_string(v[k][1]) + ", " + std::to_string(v[k][2]) + ")";
+    return s + ");\n";
+  };
+  if (du.size() + ru.size() > sh::kMaxVectors || dv.size() + rv.size() > sh::kMaxVectors)
+    throw Error("BoundsPass: the Gregory tables exceed the shader's 64 vectors");
+  return pairs("kGregoryDu", du) + pairs("kGregoryDv", dv) + triples("kGregoryRu", ru) +
+         triples("kGregoryRv", rv);
+}
+
+double widen(float v) { return static_cast<double>(v); }
+
+}  // namespace
+
+BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu,
+                       bound::BackPatchMethod method)
+    : context_(context), gpu_(gpu), method_(method) {
+  if (method != bound::BackPatchMethod::TCone && method != bound::BackPatchMethod::NCone)
+    throw Error(std::string("BoundsPass: cull data exists for the cone methods (tcone, ncone), "
+                            "not for '") +
+                bound::toString(method) + "'");
+  const size_t n = std::max<uint32_t>(1, gpu.patchCount());
+  cones_ = vulkan::Buffer(context, n * sh::kConeVec4s * 4 * sizeof(float),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  scratch_ = vulkan::Buffer(context, n * sh::kMaxVectors * 4 * sizeof(float),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  setLayout_ = vulkan::createDescriptorSetLayout(context, kBindings);
+  const std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
+  layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::BoundsConstants),
+                                         VK_SHADER_STAGE_COMPUTE_BIT);
+  const std::string text = "#version 450\n#extension GL_EXT_control_flow_attributes : require\n" +
+                           gregoryTables() + "#include \"bounds/patch_bounds_main.glsl\"\n";
+  pipeline_ = vulkan::createComputePipeline(
+      context, layout_.get(),
+      vulkan::compileGlsl(text, "bounds/patch_bounds.comp", VK_SHADER_STAGE_COMPUTE_BIT));
+  pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
+  set_ = pool_->allocate(setLayout_.get());
+}
+
+BoundsPass::~BoundsPass() = default;
+
+void BoundsPass::record(VkCommandBuffer cmd, double pointError, float shrink) {
+  if (!(std::isfinite(pointError) && pointError >= 0.0))
+    throw Error("BoundsPass::record: pointError must be finite and >= 0, got " +
+                std::to_string(pointError));
+  if (boundPoints_ != gpu_.points().handle()) {  // first use, or readPointsFrom() since
+    vulkan::DescriptorWriter()
+        .buffer(sh::kBoundsBindingPoints, gpu_.points())
+        .buffer(sh::kBoundsBindingCones, cones_)
+        .buffer(sh::kBoundsBindingScratch, scratch_)
+        .update(context_.device(), set_);
+    boundPoints_ = gpu_.points().handle();
+  }
+  sh::BoundsConstants c{};
+  c.patchCount = gpu_.patchCount();
+  c.bezierCount = gpu_.bezierCount();
+  c.pointStride = gpu_.pointStride();
+  c.pointOffset = gpu_.pointOffset();
+  c.method = method_ == bound::BackPatchMethod::NCone ? sh::kBoundsNCone : sh::kBoundsTCone;
+  // Rounded up: the shader's margins assume at least this error.
+  c.pointError = static_cast<float>(pointError) * (1.0f + 1e-6f);
+  c.shrink = shrink;
+  // Writers of the points (an upload, the point update) and readers of the old cull data
+  // (a cull) come first.
+  vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kComputeReadWrite);
+  if (c.patchCount > 0) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
+                            nullptr);
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
+    vkCmdDispatch(cmd, vulkan::groupCount(c.patchCount, sh::kBoundsGroupSize), 1, 1);
+    ++dispatches_;
+  }
+  vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kComputeRead);
+}
+
+double BoundsPass::run(double pointError, float shrink) {
+  const auto start = std::chrono::steady_clock::now();
+  context_.submit([&](VkCommandBuffer cmd) { record(cmd, pointError, shrink); });
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+std::vector<PatchBounds> BoundsPass::readBounds(vulkan::Context& context) const {
+  return unpackCullData(vulkan::readback<float>(context, cones_), gpu_.patchCount());
+}
+
+std::vector<PatchBounds> unpackCullData(std::span<const float> data, uint32_t patchCount) {
+  constexpr size_t kFloats = 4 * sh::kConeVec4s;
+  if (data.size() < size_t{patchCount} * kFloats)
+    throw Error("unpackCullData: " + std::to_string(data.size()) + " floats for " +
+                std::to_string(patchCount) + " patches");
+  std::vector<PatchBounds> out(patchCount);
+  for (uint32_t p = 0; p < patchCount; ++p) {
+    const float* f = &data[kFloats * p];
+    bound::ConeOfNormals& c = out[p].cone;
+    c.apex = {widen(f[0]), widen(f[1]), widen(f[2])};
+    c.sinAngle = widen(f[3]);
+    c.axis = {widen(f[4]), widen(f[5]), widen(f[6])};
+    c.valid = f[7] < 0.0f;
+    c.reason = c.valid ? bound::BackPatchVerdict::BackFacing
+                       : static_cast<bound::BackPatchVerdict>(static_cast<uint32_t>(f[7]));
+    out[p].derivatives = {widen(f[8]), widen(f[9]), widen(f[10])};
+    c.minNormal = widen(f[11]);
+    c.maxRadius = widen(f[12]);
+    c.angle = widen(f[13]);
+  }
+  return out;
+}
+
+}  // namespace osd_cull::frame

@@ -1,0 +1,32 @@
+#include "osd_cull/scene/loaded_scene.h"
+
+#include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/scene_eval.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace osd_cull::scene {
+
+SceneMesh makeSceneMesh(std::string name, CageMesh cage, const PatchOptions& options, bool recentre,
+                        std::unique_ptr<CageAnimation> animation) {
+  SceneMesh m;
+  m.name = std::move(name);
+  if (recentre) {
+    m.recentreOffset = frame::boundsOf(cage.positions).center();
+    for (glm::dvec3& p : cage.positions) p -= m.recentreOffset;
+  }
+  m.validity =
+      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
+  m.extraction = extractPatches(cage, options);
+  m.restBounds = frame::boundsOf(m.extraction.patches.points);
+  m.animation = std::move(animation);
+  return m;
+}
+
+glm::dmat4 patchModel(const LoadedScene& scene, size_t index, double seconds) {
+  const InstanceDescription& inst = scene.description.instances.at(index);
+  return glm::translate(instanceMatrix(scene.description, index, seconds),
+                        scene.meshes.at(inst.mesh).recentreOffset);
+}
+
+}  // namespace osd_cull::scene

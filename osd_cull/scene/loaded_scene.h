@@ -1,0 +1,48 @@
+#pragma once
+/// \file loaded_scene.h
+/// \brief A scene with its meshes refined into patches, ready to play: what
+/// adapters::loadScene() makes of a scene file and scene::builtInScene() of the built-in one.
+
+#include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/frame/camera.h"
+#include "osd_cull/frame/draw/triangle_mesh.h"
+#include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/cage_animation.h"
+#include "osd_cull/scene/scene_description.h"
+
+#include <memory>
+#include <vector>
+
+namespace osd_cull::scene {
+
+/// \brief One mesh: its patches in object space (recentred), the cage → control-point
+/// matrix, and its animation.
+struct SceneMesh {
+  std::string name;
+  PatchExtraction extraction;  ///< rest-pose patches (recentred) and the matrix
+  /// Subtracted from every cage position (the animation's too) at load; the instances'
+  /// transforms add it back, so world positions are unchanged (SceneMeshDescription::recentre).
+  glm::dvec3 recentreOffset{0.0};
+  bound::BackPatchValidity validity;         ///< whether back-patch culling is valid on the cage
+  std::unique_ptr<CageAnimation> animation;  ///< null: static
+  frame::Bounds restBounds;                  ///< of the rest-pose control points
+};
+
+/// \brief A description whose meshes and occluders are loaded.
+struct LoadedScene {
+  SceneDescription description;
+  std::vector<SceneMesh> meshes;
+  std::vector<frame::TriangleMesh> occluders;  ///< world coordinates
+};
+
+/// \brief Fills a SceneMesh from a cage: recentres it (when `recentre`), refines it with
+/// `options`, and records its validity and rest bounds. `animation` (may be null) must
+/// produce the original, not recentred, positions.
+SceneMesh makeSceneMesh(std::string name, CageMesh cage, const PatchOptions& options, bool recentre,
+                        std::unique_ptr<CageAnimation> animation);
+
+/// \brief The model matrix of instance `index`'s patches at `seconds`: the instance's world
+/// matrix (scene_eval.h) times the translation by its mesh's recentreOffset.
+glm::dmat4 patchModel(const LoadedScene& scene, size_t index, double seconds);
+
+}  // namespace osd_cull::scene

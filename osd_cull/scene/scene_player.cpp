@@ -1,0 +1,159 @@
+#include "osd_cull/scene/scene_player.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/scene/scene_eval.h"
+
+#include <map>
+
+namespace osd_cull::scene {
+
+// The control points one or more instances draw: a mesh's rest pose, or its pose at one
+// time offset when it deforms.
+struct ScenePlayer::Points {
+  size_t mesh = 0;
+  double timeOffset = 0.0;
+  PatchSet host;  // object space, current pose
+  std::unique_ptr<frame::GpuPatchSet> gpu;
+  std::vector<glm::dvec3> cage;  // scratch for the animation
+  frame::Bounds bounds;
+};
+
+ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
+                         const frame::CullFrameOptions& options)
+    : context_(context), scene_(scene), options_(options) {
+  const SceneDescription& d = scene.description;
+  if (d.instances.empty()) throw Error("scene " + d.source + ": no instances to draw");
+  if (d.views.empty()) throw Error("scene " + d.source + ": no views");
+  renderer_ = std::make_unique<frame::Renderer>(context);
+  std::map<std::pair<size_t, double>, size_t> groups;
+  for (const InstanceDescription& inst : d.instances) {
+    const SceneMesh& mesh = scene.meshes.at(inst.mesh);
+    const double offset = mesh.animation ? inst.timeOffsetSeconds : 0.0;
+    auto [it, added] = groups.emplace(std::pair{inst.mesh, offset}, points_.size());
+    if (added) {
+      auto p = std::make_unique<Points>();
+      p->mesh = inst.mesh;
+      p->timeOffset = offset;
+      p->host = mesh.extraction.patches;
+      p->gpu = std::make_unique<frame::GpuPatchSet>(context, p->host);
+      p->bounds = mesh.restBounds;
+      points_.push_back(std::move(p));
+    }
+    instances_.push_back({it->second, glm::dmat4(1.0)});
+  }
+  for (const frame::TriangleMesh& m : scene.occluders) occluderMeshes_.emplace_back(context, m);
+  for (const auto& m : occluderMeshes_) occluderPtrs_.push_back(&m);
+
+  std::vector<frame::CullMesh> meshes;
+  for (const Instance& inst : instances_) {
+    Points& p = *points_[inst.points];
+    const SceneMesh& mesh = scene.meshes[p.mesh];
+    frame::CullMesh m{p.gpu.get(), &p.host, inst.model, mesh.validity};
+    // Until the per-frame bounds pass recomputes the cones, a deforming mesh is culled by
+    // the tests that read its control points only (frustum, occlusion).
+    if (mesh.animation)
+      m.backPatchValidity = bound::BackPatchValidity{
+          false, "mesh '" + mesh.name + "' deforms; its cones are built once"};
+    meshes.push_back(std::move(m));
+  }
+  for (const ViewDescription& v : d.views) {
+    View view;
+    const uint32_t w = v.width ? v.width : d.settings.width;
+    const uint32_t h = v.height ? v.height : d.settings.height;
+    view.target = std::make_unique<frame::RenderTarget>(context, w, h);
+    view.frame =
+        std::make_unique<frame::CullFrame>(context, *renderer_, *view.target, meshes, options);
+    views_.push_back(std::move(view));
+  }
+}
+
+ScenePlayer::~ScenePlayer() = default;
+
+uint32_t ScenePlayer::patchCount() const {
+  uint32_t n = 0;
+  for (const Instance& i : instances_) n += points_[i.points]->host.patchCount();
+  return n;
+}
+
+const PatchSet& ScenePlayer::patches(size_t i) const {
+  return points_.at(instances_.at(i).points)->host;
+}
+
+void ScenePlayer::seek(uint32_t frameIndex) {
+  const SceneDescription& d = scene_.description;
+  const double t = d.settings.seconds(frameIndex);
+  for (auto& p : points_) {
+    const SceneMesh& mesh = scene_.meshes[p->mesh];
+    if (!mesh.animation) continue;
+    p->cage.resize(mesh.animation->vertexCount());
+    mesh.animation->positions(t + p->timeOffset, p->cage);
+    for (glm::dvec3& v : p->cage) v -= mesh.recentreOffset;
+    mesh.extraction.matrix.update(p->cage, p->host.points);
+    p->gpu->updatePoints(context_, p->host.points);
+    p->bounds = frame::boundsOf(p->host.points);
+  }
+  std::vector<frame::Bounds> objectBounds;
+  std::vector<glm::dmat4> models;
+  for (size_t i = 0; i < instances_.size(); ++i) {
+    instances_[i].model = patchModel(scene_, i, t);
+    objectBounds.push_back(points_[instances_[i].points]->bounds);
+    models.push_back(instances_[i].model);
+  }
+  for (const frame::TriangleMesh& m : scene_.occluders) {
+    objectBounds.push_back(frame::boundsOf(m.positions));
+    models.emplace_back(1.0);
+  }
+  bounds_ = worldBounds(objectBounds, models);
+  for (size_t v = 0; v < views_.size(); ++v) {
+    views_[v].camera = viewCamera(d.views[v], d.settings, bounds_, t);
+    for (size_t i = 0; i < instances_.size(); ++i)
+      views_[v].frame->setModel(i, instances_[i].model);
+  }
+}
+
+std::vector<ViewFrame> ScenePlayer::render(uint32_t frameIndex) {
+  seek(frameIndex);
+  std::vector<ViewFrame> out;
+  for (size_t v = 0; v < views_.size(); ++v)
+    out.push_back({scene_.description.views[v].name, views_[v].camera,
+                   views_[v].frame->render(views_[v].camera, occluderPtrs_)});
+  return out;
+}
+
+frame::FrameStats ScenePlayer::renderUnculled(size_t view, frame::RenderTarget& target) {
+  const View& v = views_.at(view);
+  std::vector<frame::PatchDraw> draws;
+  uint32_t base = 0;
+  for (const Instance& i : instances_) {
+    const Points& p = *points_[i.points];
+    frame::PatchDraw draw{p.gpu.get(), &p.host, base};
+    draw.model = &i.model;
+    draws.push_back(draw);
+    base += p.host.patchCount();
+  }
+  frame::RenderOptions o = v.frame->options().render;
+  o.clear = true;
+  return renderer_->render(target, v.camera, draws, occluderPtrs_, o);
+}
+
+std::vector<std::string> ScenePlayer::describe() const {
+  std::vector<std::string> lines;
+  for (const auto& p : points_) {
+    const SceneMesh& mesh = scene_.meshes[p->mesh];
+    size_t users = 0;
+    for (const Instance& i : instances_) users += points_[i.points].get() == p.get();
+    std::string line = "mesh '" + mesh.name + "': " + std::to_string(p->host.bezierCount) +
+                       " Bezier + " + std::to_string(p->host.gregoryCount) + " Gregory patches, " +
+                       std::to_string(users) + " instance(s) share its points";
+    line += mesh.animation ? ", deforms (" + mesh.animation->describe() + ")" : ", static";
+    if (glm::length(mesh.recentreOffset) > 0.0) {
+      const glm::dvec3& o = mesh.recentreOffset;
+      line += ", recentred by (" + std::to_string(o.x) + ", " + std::to_string(o.y) + ", " +
+              std::to_string(o.z) + ")";
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+}  // namespace osd_cull::scene

@@ -1,0 +1,139 @@
+#include "verify_report.h"
+
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+namespace osd_cull::cli {
+
+namespace {
+
+double percent(uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; }
+
+}  // namespace
+
+VerifyVerdict printVerifyTables(std::span<const frame::MethodTotals> totals, uint32_t patchCount,
+                                bool oracle, bool surfaceExact, bool detail) {
+  VerifyVerdict v;
+  std::printf("\n%-17s %7s %7s %7s %8s %7s %7s %9s %7s %8s %8s\n", "method", "cull%", "bezier%",
+              "greg%", "ref-cull%", "agree%", "!in-ref", "oracle-inv%", "false", "ns/patch",
+              "drawn%");
+  // ok: no violation at all. With --surface-exact, silhouette chords (a back-patch-culled
+  // patch, back-facing on every sample, whose drawn triangles still cover single oracle
+  // pixels that a neighbour covers in the culled image) are reported but do not fail the run.
+  bool& ok = v.ok;
+  bool& okButSilhouettes = v.okButSilhouettes;
+  uint64_t silhouetteViews = 0, silhouettePixels = 0;
+  for (const auto& t : totals) {
+    std::printf("%-17s %7.2f %7.2f %7.2f %8.2f %7.3f %7llu %9.2f %7s %8.0f %8.2f\n", t.name.c_str(),
+                100.0 * t.cullRate(), percent(t.culledBezier, t.bezierViews),
+                percent(t.culledGregory, t.gregoryViews), 100.0 * t.referenceCullRate(),
+                100.0 * t.referenceAgreement(), static_cast<unsigned long long>(t.notInReference),
+                100.0 * t.oracleInvisibleRate(),
+                oracle ? std::to_string(t.falseCulls).c_str() : "-", t.nsPerPatch(patchCount),
+                percent(t.keptForDrawnTriangles, t.patchViews));
+    const bool hard = t.notInReference == 0 && t.samplingViolations == 0 && t.pixelsLost == 0;
+    ok = ok && hard && t.falseCulls == 0;
+    okButSilhouettes =
+        okButSilhouettes && hard &&
+        (t.falseCulls == 0 || (surfaceExact && t.stage == frame::CullStage::BackPatch &&
+                               t.falseCullPixels == t.falseCulls));
+    if (t.stage == frame::CullStage::BackPatch) {
+      silhouetteViews += t.falseCulls;
+      silhouettePixels += t.falseCullPixels;
+    }
+  }
+  if (silhouetteViews > 0)
+    std::printf(
+        "\nnote: %llu back-patch-culled patch-views have %llu oracle pixels (single "
+        "silhouette pixels of drawn chord triangles%s; see "
+        "docs/algorithms/drawn-triangles.md)\n",
+        static_cast<unsigned long long>(silhouetteViews),
+        static_cast<unsigned long long>(silhouettePixels),
+        surfaceExact ? ", expected with --surface-exact" : "");
+  for (const auto& t : totals)
+    for (const auto& f : t.falseCullList)
+      std::printf("false cull: %s view %llu patch %u, %u pixels\n", t.name.c_str(),
+                  static_cast<unsigned long long>(f.view), f.patch, f.pixels);
+  if (detail) {
+    std::printf("\n%-17s %12s %12s %12s %12s %14s\n", "method", "false-pixels", "sampled",
+                "sample-viol", "pixels-lost", "pixels-changed");
+    for (const auto& t : totals)
+      std::printf("%-17s %12llu %12llu %12llu %12llu %14llu\n", t.name.c_str(),
+                  static_cast<unsigned long long>(t.falseCullPixels),
+                  static_cast<unsigned long long>(t.sampledCulls),
+                  static_cast<unsigned long long>(t.samplingViolations),
+                  static_cast<unsigned long long>(t.pixelsLost),
+                  static_cast<unsigned long long>(t.pixelsChanged));
+  }
+  return v;
+}
+
+nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCount, bool oracle) {
+  nlohmann::ordered_json m;
+  m["name"] = t.name;
+  m["stage"] = frame::toString(t.stage);
+  m["cull_rate"] = t.cullRate();
+  m["cull_rate_bezier"] = t.bezierViews ? double(t.culledBezier) / double(t.bezierViews) : 0.0;
+  m["cull_rate_gregory"] = t.gregoryViews ? double(t.culledGregory) / double(t.gregoryViews) : 0.0;
+  m["culled_per_view"] = t.views ? double(t.culled) / double(t.views) : 0.0;
+  m["kept_for_drawn_triangles_rate"] =
+      t.patchViews ? double(t.keptForDrawnTriangles) / double(t.patchViews) : 0.0;
+  m["false_culls"] = oracle ? nlohmann::ordered_json(t.falseCulls) : nlohmann::ordered_json();
+  m["false_cull_pixels"] =
+      oracle ? nlohmann::ordered_json(t.falseCullPixels) : nlohmann::ordered_json();
+  m["oracle_invisible_rate"] =
+      oracle ? nlohmann::ordered_json(t.oracleInvisibleRate()) : nlohmann::ordered_json();
+  m["ns_per_patch"] = t.nsPerPatch(patchCount);
+  m["reference_views"] = t.referenceViews;
+  m["reference_cull_rate"] = t.referenceCullRate();
+  m["cpu_reference_agreement"] = t.referenceAgreement();
+  m["culled_not_in_reference"] = t.notInReference;
+  m["sampled_culls"] = t.sampledCulls;
+  m["sampling_violations"] = t.samplingViolations;
+  m["image_views"] = t.imageViews;
+  m["pixels_lost"] = t.pixelsLost;
+  m["pixels_changed"] = t.pixelsChanged;
+  return m;
+}
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+void accumulate(frame::MethodTotals& a, const frame::MethodTotals& b) {
+  a.views += b.views;
+  a.patchViews += b.patchViews;
+  a.culled += b.culled;
+  a.culledBezier += b.culledBezier;
+  a.culledGregory += b.culledGregory;
+  a.keptForDrawnTriangles += b.keptForDrawnTriangles;
+  a.bezierViews += b.bezierViews;
+  a.gregoryViews += b.gregoryViews;
+  a.referenceViews += b.referenceViews;
+  a.referencePatchViews += b.referencePatchViews;
+  a.referenceCulled += b.referenceCulled;
+  a.agreements += b.agreements;
+  a.notInReference += b.notInReference;
+  a.oracleViews += b.oracleViews;
+  a.oraclePatchViews += b.oraclePatchViews;
+  a.oracleInvisible += b.oracleInvisible;
+  a.falseCulls += b.falseCulls;
+  a.falseCullPixels += b.falseCullPixels;
+  for (const auto& f : b.falseCullList)
+    if (a.falseCullList.size() < 64) a.falseCullList.push_back(f);
+  a.culledOnOracleViews += b.culledOnOracleViews;
+  a.sampledCulls += b.sampledCulls;
+  a.samplingViolations += b.samplingViolations;
+  a.imageViews += b.imageViews;
+  a.pixelsLost += b.pixelsLost;
+  a.pixelsChanged += b.pixelsChanged;
+  a.wallMs.insert(a.wallMs.end(), b.wallMs.begin(), b.wallMs.end());
+}
+
+}  // namespace osd_cull::cli

@@ -1,0 +1,38 @@
+// Push constants and bindings of the bounds pass (shaders/bounds/*, osd_cull/frame/cull/
+// bounds_pass), shared by C++ and GLSL. Its output is the cull data the cone back-patch
+// methods read (cull_layout.h kCullBindingCones, kConeVec4s vec4 per patch).
+#ifndef OSD_CULL_SHARED_BOUNDS_LAYOUT_H
+#define OSD_CULL_SHARED_BOUNDS_LAYOUT_H
+#include "glsl_compat.h"
+
+OSD_CULL_SHARED_BEGIN
+
+OSD_CULL_CONST uint kBoundsBindingPoints = 0u;   // float points[]: GpuPatchSet::points()
+OSD_CULL_CONST uint kBoundsBindingCones = 1u;    // vec4 cones[]: the cull data written
+OSD_CULL_CONST uint kBoundsBindingScratch = 2u;  // vec4 scratch[]: kMaxVectors per patch
+OSD_CULL_CONST uint kMaxVectors = 64u;           // vectors one cone is built from, at most
+
+OSD_CULL_CONST uint kBoundsGroupSize = 32u;
+
+// Which cone a Bezier patch gets (Gregory patches always get the Gregory TCONE).
+OSD_CULL_CONST uint kBoundsTCone = 0u;
+OSD_CULL_CONST uint kBoundsNCone = 1u;
+
+struct BoundsConstants {
+  uint patchCount;  // patches [0, bezierCount) are Bezier, the rest Gregory
+  uint bezierCount;
+  uint pointStride;  // floats between control points
+  uint pointOffset;  // float index of control point 0
+  uint method;       // kBoundsTCone or kBoundsNCone
+  float pointError;  // bound of |device coordinate - double reference coordinate| of every
+                     // control point (docs/algorithms/bounds-pass.md)
+  float shrink;      // 0; tests only: bounds made tighter by this much (must then fail)
+  uint reserved;
+};
+
+OSD_CULL_SHARED_END
+
+#ifdef __cplusplus
+static_assert(sizeof(osd_cull::shader::BoundsConstants) == 32);
+#endif
+#endif

@@ -1,0 +1,110 @@
+// `osd-cull render SCENE.json`: plays a scene with two views under validation, writes every
+// frame of every view and the JSON figures with the frame count; an unwritable output folder
+// fails before rendering; a bad scene file fails with the JSON path of the problem.
+#include "support/run_command.h"
+#include "support/temp_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace osd_cull {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kScene = R"({
+  "version": 1,
+  "settings": {"frameCount": 2, "framesPerSecond": 24, "width": 96, "height": 64},
+  "meshes": [{"name": "cube", "builtIn": "creased-cube", "level": 1},
+             {"name": "torus", "builtIn": "torus", "level": 1}],
+  "instances": [
+    {"name": "cube", "mesh": "cube", "transform": {"translate": [100000, 0, 0]}},
+    {"name": "mirrored", "mesh": "cube", "parent": "cube",
+     "transform": {"translate": [2.5, 0, 0], "scale": [-1, 1, 1]}},
+    {"name": "ring", "mesh": "torus", "parent": "cube", "transform": {"translate": [0, 3, 0]},
+     "animation": {"spin": {"axis": [0, 0, 1], "degreesPerSecond": 45}}}
+  ],
+  "occluders": [{"box": {"min": [99996, -3, -1.5], "max": [100004, 6, -1.2]}}],
+  "views": [
+    {"name": "main", "camera": {"eye": [100001, -8, 4], "target": [100001, 1, 0]},
+     "path": {"orbit": {"degreesPerFrame": 10}}},
+    {"name": "sun", "shadow": {"direction": [0.3, 0.2, -1]}, "width": 64, "height": 64}
+  ]
+})";
+
+TEST(SceneCommand, RendersEveryViewOfEveryFrame) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  const fs::path scene = dir.write("scene.json", kScene);
+  const auto r = test::runCommand(test::osdCullProgram().string() + " render " + scene.string() +
+                                  " --validate --compare --tess 2 --out-dir " +
+                                  (dir.path() / "frames").string() + " --stats " +
+                                  (dir.path() / "stats.json").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  for (const char* line : {"view main frame 1:", "view sun frame 1:", "vs unculled",
+                           "2 instance(s) share its points"})
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+  for (const char* f : {"main_0000.png", "main_0001.png", "sun_0000.png", "sun_0001.png"})
+    EXPECT_TRUE(fs::exists(dir.path() / "frames" / f)) << f;
+  std::ifstream in(dir.path() / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats.at("frameCount"), 2);
+  ASSERT_EQ(stats.at("frames").size(), 4u);
+  EXPECT_EQ(stats.at("frames")[3].at("view"), "sun");
+  EXPECT_TRUE(stats.at("frames")[0].contains("unculled"));
+}
+
+TEST(SceneCommand, VerifiesEveryInstanceOnEveryFrame) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  const fs::path scene = dir.write("scene.json", kScene);
+  const auto r = test::runCommand(test::osdCullProgram().string() + " verify " + scene.string() +
+                                  " --frames 2 --views 1 --width 64 --height 64 --image-check "
+                                  "--validate --json " +
+                                  (dir.path() / "verify.json").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  std::ifstream in(dir.path() / "verify.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("frames"), 2);
+  EXPECT_EQ(j.at("instances"), 3);
+  EXPECT_EQ(j.at("views"), 2 * 3);  // per frame: the two scene views and one random view
+  EXPECT_TRUE(j.at("ok").get<bool>());
+  ASSERT_EQ(j.at("methods").size(), 4u);
+  for (const auto& m : j.at("methods")) {
+    EXPECT_EQ(m.at("false_culls"), 0) << m.at("name");
+    EXPECT_EQ(m.at("culled_not_in_reference"), 0) << m.at("name");
+    EXPECT_EQ(m.at("pixels_lost"), 0) << m.at("name");
+  }
+  EXPECT_GT(j.at("methods")[3].at("cull_rate").get<double>(), 0.05);  // tangent plane
+}
+
+TEST(SceneCommand, UnwritableOutputFolderFailsBeforeRendering) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  const fs::path scene = dir.write("scene.json", kScene);
+  const fs::path blocker = dir.write("blocker", "a file, not a folder");
+  const auto r = test::runCommand(test::osdCullProgram().string() + " render " + scene.string() +
+                                  " --out-dir " + (blocker / "frames").string());
+  EXPECT_EQ(r.exitCode(), 1) << r.output;
+  EXPECT_NE(r.output.find("cannot write there"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("device:"), std::string::npos) << r.output;
+}
+
+TEST(SceneCommand, BadSceneFileNamesThePath) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  const fs::path scene = dir.write("bad.json", R"({"version": 1,
+    "meshes": [{"name": "m", "builtIn": "cube"}],
+    "instances": [{"mesh": "m"}, {"mesh": "nothing"}],
+    "views": [{"name": "v", "camera": {"eye": [0, -5, 0], "target": [0, 0, 0]}}]})");
+  const auto r = test::runCommand(test::osdCullProgram().string() + " render " + scene.string());
+  EXPECT_EQ(r.exitCode(), 1) << r.output;
+  EXPECT_NE(r.output.find("/instances/1/mesh: unknown mesh 'nothing'"), std::string::npos)
+      << r.output;
+}
+
+}  // namespace
+}  // namespace osd_cull
