@@ -96,14 +96,14 @@ struct CullFrameStats {
 struct CullMesh {
   GpuPatchSet* gpu = nullptr;
   const PatchSet* host = nullptr;
-  glm::dmat4 model{1.0};  ///< object → world (instanceCamera()); setModel() changes it
-  /// Back-patch validity of this mesh, instead of CullFrameOptions::cull's (a scene's meshes
-  /// differ: closed or not, static or deforming).
-  std::optional<bound::BackPatchValidity> backPatchValidity;
   /// The cone methods' per-patch cull data recomputed on the GPU for a moving mesh
   /// (DynamicPatchMesh::cullData, bounds_pass.h), of the frame's back-patch method; null:
   /// built once on the host (static mesh). Must outlive the CullFrame.
   const vulkan::Buffer* cullData = nullptr;
+  glm::dmat4 model{1.0};  ///< object → world (instanceCamera()); setModel() changes it
+  /// Back-patch validity of this mesh, instead of CullFrameOptions::cull's (a scene's meshes
+  /// differ: closed or not, static or deforming).
+  std::optional<bound::BackPatchValidity> backPatchValidity;
 };
 
 /// \brief The frame pipeline of one view.

@@ -15,6 +15,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 
 namespace osd_cull::frame {
 
@@ -198,24 +200,54 @@ void CullPass::uploadHostCones(vulkan::Context& context) {
   vulkan::upload<float>(context, conesBuffer_, packed);
 }
 
-void CullPass::buildPipelines(vulkan::Context& context) {
-  setLayout_ = vulkan::createDescriptorSetLayout(context, kBindings);
-  std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
-  for (const CullMethod* m : stages_)
+// The layouts and pipelines of one kernel configuration. Creating a pipeline runs the
+// driver's compiler (lavapipe: LLVM, up to 0.4 s for the tangent-plane kernel), so passes with
+// the same kernel on the same device share one: a scene with many instances of a mesh has a
+// pass per instance and view.
+struct CullPipelines {
+  vulkan::UniqueDescriptorSetLayout setLayout;
+  vulkan::UniqueDescriptorSetLayout stageSetLayout;
+  vulkan::UniquePipelineLayout layout;
+  vulkan::UniquePipeline cull;
+  vulkan::UniquePipeline draws;
+};
+
+namespace {
+
+std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
+                                                     const std::string& kernel,
+                                                     const std::vector<const CullMethod*>& stages) {
+  static std::mutex mutex;
+  static std::map<std::pair<VkDevice, std::string>, std::weak_ptr<const CullPipelines>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::weak_ptr<const CullPipelines>& slot = cache[{context.device(), kernel}];
+  if (auto existing = slot.lock()) return existing;
+  auto p = std::make_shared<CullPipelines>();
+  p->setLayout = vulkan::createDescriptorSetLayout(context, kBindings);
+  std::vector<VkDescriptorSetLayout> layouts = {p->setLayout.get()};
+  for (const CullMethod* m : stages)
     if (!m->stageBindings.empty()) {
-      stageSetLayout_ = vulkan::createDescriptorSetLayout(context, m->stageBindings);
-      layouts.push_back(stageSetLayout_.get());
+      p->stageSetLayout = vulkan::createDescriptorSetLayout(context, m->stageBindings);
+      layouts.push_back(p->stageSetLayout.get());
     }
-  layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
-                                         VK_SHADER_STAGE_COMPUTE_BIT);
+  p->layout = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
+                                           VK_SHADER_STAGE_COMPUTE_BIT);
   const vulkan::Spirv cull =
-      vulkan::compileGlsl(composeKernel(stages_, lanes_, settings_.drawnTriangles),
-                          "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
-  cullPipeline_ = vulkan::createComputePipeline(context, layout_.get(), cull);
-  drawsPipeline_ = vulkan::createComputePipeline(
-      context, layout_.get(), vulkan::compileShader({"cull/write_draws.comp", {}}));
+      vulkan::compileGlsl(kernel, "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+  p->cull = vulkan::createComputePipeline(context, p->layout.get(), cull);
+  p->draws = vulkan::createComputePipeline(context, p->layout.get(),
+                                           vulkan::compileShader({"cull/write_draws.comp", {}}));
+  slot = p;
+  return p;
+}
+
+}  // namespace
+
+void CullPass::buildPipelines(vulkan::Context& context) {
+  pipelines_ =
+      sharedPipelines(context, composeKernel(stages_, lanes_, settings_.drawnTriangles), stages_);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
-  set_ = pool_->allocate(setLayout_.get());
+  set_ = pool_->allocate(pipelines_->setLayout.get());
   vulkan::DescriptorWriter()
       .buffer(sh::kCullBindingPoints, gpu_.points())
       .buffer(sh::kCullBindingCones, *cullData_)
@@ -291,7 +323,7 @@ sh::CullConstants CullPass::constants(const Camera& camera,
 
 void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
                       const TessellationOptions& tessellation, VkDescriptorSet stageSet) {
-  if (stageSetLayout_ && stageSet == VK_NULL_HANDLE)
+  if (pipelines_->stageSetLayout && stageSet == VK_NULL_HANDLE)
     throw Error("CullPass::record: the occlusion stage '" + settings_.occlusion +
                 "' needs its descriptor set");
   const sh::CullConstants c = constants(camera, tessellation);
@@ -301,21 +333,21 @@ void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
   vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kComputeReadWrite);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
-                          nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout.get(), 0, 1,
+                          &set_, 0, nullptr);
   if (stageSet != VK_NULL_HANDLE)
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 1, 1, &stageSet, 0,
-                            nullptr);
-  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout.get(), 1, 1,
+                            &stageSet, 0, nullptr);
+  vkCmdPushConstants(cmd, pipelines_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPipeline_.get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->cull.get());
     vkCmdDispatch(cmd, vulkan::groupCount(n, sh::kCullGroupSize / lanes_), 1, 1);
   }
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite, vulkan::scope::kComputeReadWrite);
   const uint32_t commandCount =
       maxDraws(gpu_.bezierCount(), chunkBezier_) + maxDraws(gpu_.gregoryCount(), chunkGregory_);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, drawsPipeline_.get());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->draws.get());
   vkCmdDispatch(cmd, std::max(1u, vulkan::groupCount(commandCount, sh::kDrawsGroupSize)), 1, 1);
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, kAfterCull);
 }

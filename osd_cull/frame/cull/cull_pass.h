@@ -52,6 +52,8 @@ struct CullSettings {
   bool drawnTriangles = true;
 };
 
+struct CullPipelines;
+
 /// \brief Survivor and draw counts of the last pass.
 struct CullCounts {
   uint32_t survivorsBezier = 0;
@@ -165,11 +167,7 @@ class CullPass {
   vulkan::Buffer drawList_;
   vulkan::Buffer counters_;
   vulkan::Buffer commands_;
-  vulkan::UniqueDescriptorSetLayout setLayout_;
-  vulkan::UniqueDescriptorSetLayout stageSetLayout_;
-  vulkan::UniquePipelineLayout layout_;
-  vulkan::UniquePipeline cullPipeline_;
-  vulkan::UniquePipeline drawsPipeline_;
+  std::shared_ptr<const CullPipelines> pipelines_;  // shared by passes with the same kernel
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkDescriptorSet drawSet_ = VK_NULL_HANDLE;  // gpu_'s set with drawList_, made on first draw
