@@ -42,6 +42,23 @@ void checkLevelZeroFaces(const Far::TopologyRefiner& refiner) {
                   " vertices; OpenSubdiv makes patches for non-quad faces only from level 1 on");
 }
 
+void buildRefinedStencils(const Far::TopologyRefiner& refiner, AdaptivePatches& out) {
+  const auto start = Clock::now();
+  using StencilFactory = Far::StencilTableFactoryReal<double>;
+  StencilFactory::Options stencilOptions;
+  stencilOptions.interpolationMode = StencilFactory::INTERPOLATE_VERTEX;
+  stencilOptions.generateOffsets = true;
+  stencilOptions.generateControlVerts = true;        // rows for level-0 vertices too
+  stencilOptions.generateIntermediateLevels = true;  // adaptive patches use every level
+  stencilOptions.factorizeIntermediateLevels = true;
+  out.refinedStencils.reset(StencilFactory::Create(refiner, stencilOptions));
+  out.stencilMs = msSince(start);
+  if (!out.refinedStencils) throw Error("OpenSubdiv could not build the refinement stencils");
+  if (out.refinedStencils->GetNumStencils() != out.refinedVertexCount)
+    throw Error("buildAdaptivePatches: " + std::to_string(out.refinedStencils->GetNumStencils()) +
+                " refinement stencils for " + std::to_string(out.refinedVertexCount) + " vertices");
+}
+
 }  // namespace
 
 void checkPatchOptions(const PatchOptions& options) {
@@ -90,23 +107,9 @@ AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchO
   out.patchTableMs = msSince(start);
   if (!out.patchTable) throw Error("OpenSubdiv could not build the patch table");
 
-  start = Clock::now();
-  using StencilFactory = Far::StencilTableFactoryReal<double>;
-  StencilFactory::Options stencilOptions;
-  stencilOptions.interpolationMode = StencilFactory::INTERPOLATE_VERTEX;
-  stencilOptions.generateOffsets = true;
-  stencilOptions.generateControlVerts = true;        // rows for level-0 vertices too
-  stencilOptions.generateIntermediateLevels = true;  // adaptive patches use every level
-  stencilOptions.factorizeIntermediateLevels = true;
-  out.refinedStencils.reset(StencilFactory::Create(refiner, stencilOptions));
-  out.stencilMs = msSince(start);
-  if (!out.refinedStencils) throw Error("OpenSubdiv could not build the refinement stencils");
-
   out.refinedVertexCount = refiner.GetNumVerticesTotal();
   out.localPointCount = out.patchTable->GetNumLocalPoints();
-  if (out.refinedStencils->GetNumStencils() != out.refinedVertexCount)
-    throw Error("buildAdaptivePatches: " + std::to_string(out.refinedStencils->GetNumStencils()) +
-                " refinement stencils for " + std::to_string(out.refinedVertexCount) + " vertices");
+  if (options.pointMatrix) buildRefinedStencils(refiner, out);
   if (out.localPointCount > 0) {
     if (!out.patchTable->LocalPointStencilPrecisionMatchesType<double>())
       throw Error("buildAdaptivePatches: OpenSubdiv built single-precision local-point stencils");

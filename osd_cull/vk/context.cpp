@@ -124,6 +124,7 @@ Context::Context(const ContextOptions& options)
   try {
     createInstance(options);
     pickDevice(options);
+    if (options.adjustDeviceInfo) options.adjustDeviceInfo(info_);
     createDevice();
   } catch (...) {
     destroy();
@@ -337,7 +338,8 @@ void Context::createDevice() {
   OSD_CULL_VK(vkCreateDevice(physicalDevice_, &info, nullptr, &device_));
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 
-  allocator_ = std::make_unique<MemoryAllocator>(physicalDevice_, device_, blockSize_);
+  allocator_ = std::make_unique<MemoryAllocator>(physicalDevice_, device_, blockSize_,
+                                                 opt.bufferDeviceAddress);
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

@@ -9,7 +9,7 @@ OSD_CULL_SHARED_BEGIN
 
 // Descriptor bindings of the cull set (set 0). Set 1 belongs to the occlusion stage, when one
 // is enabled (CullMethod::stageBindings).
-OSD_CULL_CONST uint kCullBindingPoints = 0u;    // float points[]: GpuPatchSet::points()
+OSD_CULL_CONST uint kCullBindingPoints = 0u;    // GpuPatchSet::pointBinding(): control_points.glsl
 OSD_CULL_CONST uint kCullBindingCones = 1u;     // vec4 cones[]: kConeVec4s per patch (PatchCone)
 OSD_CULL_CONST uint kCullBindingResults = 2u;   // uint results[]: one result code per patch
 OSD_CULL_CONST uint kCullBindingDrawList = 3u;  // uint drawList[]: survivors, Bezier from slot 0,

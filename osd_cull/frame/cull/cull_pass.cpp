@@ -6,6 +6,7 @@
 #include "osd_cull/frame/draw/draw_chunks.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 #include "osd_cull/vk/shader_compiler.h"
 #include "osd_cull/vk/transfer.h"
@@ -83,13 +84,15 @@ void packCone(const bound::ConeOfNormals& c, const bound::DerivativeBounds& d, f
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
 std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
-                          bool drawnTriangles, const CullMethod::Displaced* displaced) {
+                          bool drawnTriangles, const CullMethod::Displaced* displaced,
+                          bool pointsByAddress) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
   };
   std::string text = "#version 450\n";
   text += "#define CULL_LANES " + std::to_string(lanes) + "\n";
+  text += std::string("#define OSD_CULL_POINTS_BDA ") + (pointsByAddress ? "1" : "0") + "\n";
   text += std::string("#define CULL_FRUSTUM ") + (has(CullStage::Frustum) ? "1" : "0") + "\n";
   text += std::string("#define CULL_BACK_PATCH ") + (has(CullStage::BackPatch) ? "1" : "0") + "\n";
   text += std::string("#define CULL_OCCLUSION ") + (has(CullStage::Occlusion) ? "1" : "0") + "\n";
@@ -181,6 +184,7 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
                                               displacedKernel_.extension);
 
   const uint32_t n = host.patchCount();
+  checkLimits(n);
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   if (displacedMesh && cullData_ != &conesBuffer_)
@@ -205,6 +209,23 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
 }
 
 CullPass::~CullPass() = default;
+
+void CullPass::checkLimits(uint32_t n) const {
+  // Everything the pass binds, dispatches or draws, named, before any buffer exists
+  // (the points are GpuPatchSet's to check).
+  const std::string of = " of " + std::to_string(n) + " patches";
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4 * sh::kConeVec4s * sizeof(float),
+                                  "CullPass: the cones" + of);
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4, "CullPass: the result codes" + of);
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4, "CullPass: the draw list" + of);
+  vulkan::checkStorageBufferRange(context_, (uint64_t{n} + 2) * sizeof(VkDrawIndirectCommand),
+                                  "CullPass: the draw commands" + of);
+  vulkan::checkedGroups2D(context_, vulkan::groupCount(n, sh::kCullGroupSize / lanes_),
+                          "CullPass: the cull dispatch" + of);
+  vulkan::checkedGroups1D(context_, vulkan::groupCount(n + 2, sh::kDrawsGroupSize),
+                          "CullPass: the draw-command dispatch" + of);
+  vulkan::checkDrawIndirectCount(context_, n, "CullPass: the indirect draws" + of);
+}
 
 void CullPass::uploadHostCones(vulkan::Context& context) {
   constexpr size_t kFloatsPerCone = 4 * sh::kConeVec4s;
@@ -271,15 +292,15 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
 }  // namespace
 
 void CullPass::buildPipelines(vulkan::Context& context) {
-  pipelines_ =
-      sharedPipelines(context,
-                      composeKernel(stages_, lanes_, settings_.drawnTriangles,
-                                    displaced() ? &displacedKernel_ : nullptr),
-                      stages_);
+  pipelines_ = sharedPipelines(context,
+                               composeKernel(stages_, lanes_, settings_.drawnTriangles,
+                                             displaced() ? &displacedKernel_ : nullptr,
+                                             gpu_.pointsByAddress()),
+                               stages_);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(pipelines_->setLayout.get());
   vulkan::DescriptorWriter()
-      .buffer(sh::kCullBindingPoints, gpu_.points())
+      .buffer(sh::kCullBindingPoints, gpu_.pointBinding())
       .buffer(sh::kCullBindingCones, *cullData_)
       .buffer(sh::kCullBindingResults, results_)
       .buffer(sh::kCullBindingDrawList, drawList_)
@@ -377,7 +398,10 @@ void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->cull.get());
-    vkCmdDispatch(cmd, vulkan::groupCount(n, sh::kCullGroupSize / lanes_), 1, 1);
+    const vulkan::DispatchSize groups =
+        vulkan::checkedGroups2D(context_, vulkan::groupCount(n, sh::kCullGroupSize / lanes_),
+                                "CullPass: the cull dispatch");
+    vkCmdDispatch(cmd, groups.x, groups.y, 1);
   }
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite, vulkan::scope::kComputeReadWrite);
   const uint32_t commandCount =

@@ -82,7 +82,8 @@ class CullPass {
  public:
   /// \brief Builds the kernel variant for `settings` and uploads the per-mesh data (cones
   /// of the back-patch method, built on the host in double, rounded toward "visible").
-  /// \throws osd_cull::Error for unknown method names or a method in the wrong stage.
+  /// \throws osd_cull::Error for unknown method names, a method in the wrong stage, or a
+  /// buffer, dispatch or draw count beyond a device limit (named; before anything exists).
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings);
   /// \brief The same, reading the per-patch cull data from `cullData` (kConeVec4s vec4 per
@@ -159,6 +160,7 @@ class CullPass {
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings, const vulkan::Buffer* cullData);
   void buildPipelines(vulkan::Context& context);
+  void checkLimits(uint32_t patchCount) const;
   void uploadHostCones(vulkan::Context& context);
   shader::CullConstants constants(const Camera& camera,
                                   const TessellationOptions& tessellation) const;

@@ -3,6 +3,7 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 
 #include <shared/draw_layout.h>
@@ -74,7 +75,8 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
   auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored, displaced}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
-  std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
+  std::vector<vulkan::ShaderDefine> defines = {
+      {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
   std::vector<vulkan::ShaderDefine> evalDefines = defines;
   // Only the displaced variant's evaluation stage has displacement code (displace.glsl).
   if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
@@ -192,6 +194,7 @@ void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const P
                               uint32_t maxDraws, const RenderOptions& options) {
   if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
   if (maxDraws == 0) return;
+  vulkan::checkDrawIndirectCount(context_, maxDraws, "Renderer::recordIndirect");
   bindPatches(cmd, camera, draw, type, options);
   vkCmdDrawIndirectCount(cmd, commands.handle(), offset, count.handle(), countOffset, maxDraws,
                          sizeof(VkDrawIndirectCommand));
