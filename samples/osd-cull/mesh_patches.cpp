@@ -16,14 +16,13 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
     return out;
   }
   const CageMesh& cage = *mesh.cage;
-  // One refiner for both: the summary reads level 0, which refinement leaves as it is.
   const std::unique_ptr<Far::TopologyRefiner> refiner = makeTopologyRefiner(cage);
   out.backPatch = bound::backPatchValidity(summarize(*refiner), bound::signedVolume(cage));
   // The commands never move the cage: no cage -> point matrix (a fraction of the time and
   // memory at a million patches).
   PatchOptions pointsOnly = options;
   pointsOnly.pointMatrix = false;
-  PatchExtraction ex = extractPatches(*refiner, cage.positions, pointsOnly, cage.source, cage.uvs);
+  PatchExtraction ex = extractPatches(cage, pointsOnly);  // checks the scheme first
   out.patches = std::move(ex.patches);
   out.uvCorners = std::move(ex.uvCorners);
   return out;
