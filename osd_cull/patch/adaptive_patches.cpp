@@ -81,6 +81,23 @@ void attachLocalPointStencils(AdaptivePatches& out, const Far::PatchTable& table
                   std::to_string(index) + ", not a refined vertex");
 }
 
+void buildRefinedStencils(const Far::TopologyRefiner& refiner, AdaptivePatches& out) {
+  const auto start = Clock::now();
+  using StencilFactory = Far::StencilTableFactoryReal<double>;
+  StencilFactory::Options stencilOptions;
+  stencilOptions.interpolationMode = StencilFactory::INTERPOLATE_VERTEX;
+  stencilOptions.generateOffsets = true;
+  stencilOptions.generateControlVerts = true;        // rows for level-0 vertices too
+  stencilOptions.generateIntermediateLevels = true;  // adaptive patches use every level
+  stencilOptions.factorizeIntermediateLevels = true;
+  out.refinedStencils.reset(StencilFactory::Create(refiner, stencilOptions));
+  out.stencilMs = msSince(start);
+  if (!out.refinedStencils) throw Error("OpenSubdiv could not build the refinement stencils");
+  if (out.refinedStencils->GetNumStencils() != out.refinedVertexCount)
+    throw Error("buildAdaptivePatches: " + std::to_string(out.refinedStencils->GetNumStencils()) +
+                " refinement stencils for " + std::to_string(out.refinedVertexCount) + " vertices");
+}
+
 }  // namespace
 
 std::unique_ptr<const Far::StencilTableReal<double>> refinementStencils(
@@ -144,14 +161,8 @@ AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchO
   out.patchTableMs = msSince(start);
   if (!out.patchTable) throw Error("OpenSubdiv could not build the patch table");
 
-  start = Clock::now();
-  out.refinedStencils = refinementStencils(refiner);
-  out.stencilMs = msSince(start);
-
   out.refinedVertexCount = refiner.GetNumVerticesTotal();
-  if (out.refinedStencils->GetNumStencils() != out.refinedVertexCount)
-    throw Error("buildAdaptivePatches: " + std::to_string(out.refinedStencils->GetNumStencils()) +
-                " refinement stencils for " + std::to_string(out.refinedVertexCount) + " vertices");
+  if (options.pointMatrix) buildRefinedStencils(refiner, out);
   if (out.patchTable->GetNumLocalPoints() > 0 &&
       !out.patchTable->LocalPointStencilPrecisionMatchesType<double>())
     throw Error("buildAdaptivePatches: OpenSubdiv built single-precision local-point stencils");

@@ -40,7 +40,7 @@ struct ExtractionStats {
   double refineMs = 0.0;      ///< adaptive refinement
   double patchTableMs = 0.0;  ///< Far::PatchTable
   double stencilMs = 0.0;     ///< refinement and local-point stencils
-  double matrixMs = 0.0;      ///< composing the matrix and the points
+  double matrixMs = 0.0;      ///< the points (and the matrix, when built)
   double totalMs = 0.0;
 
   uint32_t patches() const { return regular + boundary + corner + gregory + bsplineEndCaps; }
@@ -49,7 +49,9 @@ struct ExtractionStats {
 /// \brief PatchSet + the matrix that recomputes its points from moved cage vertices.
 struct PatchExtraction {
   PatchSet patches;
-  PatchPointMatrix matrix;  ///< rows = patches.points, columns = cage vertices
+  /// rows = patches.points, columns = cage vertices; empty (0 x 0) when
+  /// PatchOptions::pointMatrix is off
+  PatchPointMatrix matrix;
   /// Texture coordinates of the patch corners (0,0), (1,0), (1,1), (0,1), four per patch in
   /// PatchSet order, bilinear over the patch (face_varying_uv.h); empty when the cage has no
   /// texture coordinates.

@@ -144,6 +144,7 @@ Context::Context(const ContextOptions& options)
   try {
     createInstance(options);
     pickDevice(options);
+    if (options.adjustDeviceInfo) options.adjustDeviceInfo(info_);
     createDevice();
   } catch (...) {
     destroy();
@@ -364,7 +365,8 @@ void Context::createOwnObjects() {
     if (!beginRendering_ || !endRendering_)
       throw Error("dynamic rendering is enabled but vkCmdBeginRendering is not available");
   }
-  allocator_ = std::make_unique<MemoryAllocator>(physicalDevice_, device_, blockSize_);
+  allocator_ = std::make_unique<MemoryAllocator>(physicalDevice_, device_, blockSize_,
+                                                 info_.optional.bufferDeviceAddress);
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

@@ -19,6 +19,8 @@
 
 namespace osd_cull::vulkan {
 
+struct DeviceInfo;
+
 /// \brief How to create a Context.
 struct ContextOptions {
   /// Device to use: an index into the list of devices, or a case-insensitive substring of
@@ -38,6 +40,11 @@ struct ContextOptions {
   bool printValidationMessages = true;
   /// Size of the memory blocks resources are sub-allocated from.
   VkDeviceSize memoryBlockSize = VkDeviceSize{64} << 20;
+  /// For tests of limit checks: edits the device facts after they are read and before the
+  /// device is created, e.g. a small maxStorageBufferRange or a hidden optional feature (a
+  /// hidden feature is not enabled). Lowering a limit or hiding a feature is always safe;
+  /// raising one makes the Context promise what the device cannot do.
+  std::function<void(DeviceInfo&)> adjustDeviceInfo;
   /// Further instance extensions to enable, e.g. a window system's surface extensions
   /// (glfwGetRequiredInstanceExtensions) for a viewer. Missing ones are an error naming them.
   std::vector<std::string> instanceExtensions;

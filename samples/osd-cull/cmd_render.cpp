@@ -3,19 +3,23 @@
 #include "command.h"
 #include "cull_options.h"
 #include "cull_report.h"
+#include "displacement_args.h"
 #include "mesh_patches.h"
 #include "mesh_source.h"
 #include "scene_render.h"
 #include "scene_source.h"
 
 #include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/patch/face_varying_uv.h"
 #include "osd_cull/scene/default_scene.h"
 
 #include "adapters/load_occluder.h"
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/draw/png_io.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/context.h"
@@ -25,6 +29,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace osd_cull::cli {
@@ -73,7 +78,9 @@ Options:
                          DIR/hiz_level_NN.png
 )";
 
-std::string usage() { return std::string(kUsageHead) + kCullOptionsUsage + kSceneRenderUsage; }
+std::string usage() {
+  return std::string(kUsageHead) + kCullOptionsUsage + kSceneRenderUsage + kDisplacementUsage;
+}
 
 struct Scene {
   PatchSet patches;
@@ -81,6 +88,7 @@ struct Scene {
   glm::dvec3 up{0, 0, 1};
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
   bound::BackPatchValidity backPatch;
+  std::vector<glm::dvec2> uvCorners;  ///< 4 per patch, empty without texture coordinates
 };
 
 Scene loadScene(const MeshSource& source, const PatchOptions& options) {
@@ -98,6 +106,7 @@ Scene loadScene(const MeshSource& source, const PatchOptions& options) {
   Scene scene;
   scene.patches = std::move(mesh.patches);
   scene.backPatch = mesh.backPatch;
+  scene.uvCorners = std::move(mesh.uvCorners);
   if (loaded.bezier) {  // BPT files (the teapot) are z up
     scene.up = {0, 0, 1};
     scene.viewDirection = {0.6, -1.0, 0.5};
@@ -152,6 +161,7 @@ int run(Args& args) {
   const bool statusView = args.flag("status-view");
   const auto pyramidDir = args.value("pyramid-dir");
   const MeshSource source = meshSourceFromArgs(args);
+  const DisplacementChoice displacementChoice = displacementFromArgs(args, false);
   args.finish();
   if (!out) throw Error("--out FILE.png is required");
   if (tess && adaptive) throw Error("--tess and --adaptive exclude each other");
@@ -165,6 +175,12 @@ int run(Args& args) {
     while (std::getline(list, file, ','))
       if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
   }
+  // Displacement: the map, and back-patch culling off (kDisplacedBackPatchNote).
+  std::optional<bound::DisplacementMap> displacementMap;
+  if (displacementChoice.map) {
+    displacementMap.emplace(adapters::loadDisplacementMap(*displacementChoice.map));
+    scene.backPatch = {false, frame::kDisplacedBackPatchNote};
+  }
   vulkan::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
@@ -175,6 +191,20 @@ int run(Args& args) {
             << scene.occluders.size() << " triangle occluders\n";
 
   frame::GpuPatchSet gpu(context, scene.patches);
+  std::unique_ptr<frame::GpuDisplacement> gpuDisplacement;
+  if (displacementMap) {
+    gpuDisplacement = std::make_unique<frame::GpuDisplacement>(
+        context, *displacementMap, scene.uvCorners, scene.patches.patchCount());
+    gpu.setDisplacement(gpuDisplacement.get());
+    const bound::DisplacementRange r = displacementMap->displacementRange();
+    std::cout << "displacement: " << displacementMap->name() << ", " << displacementMap->width()
+              << "x" << displacementMap->height() << ", scale " << displacementMap->scale()
+              << ", midlevel " << displacementMap->midlevel() << ", D in [" << r.dmin << ", "
+              << r.dmax << "], bound "
+              << bound::displacedKernelName(displacementChoice.kernels[0].extension,
+                                            displacementChoice.kernels[0].box)
+              << "; UV seam edges " << countUVSeamEdges(scene.patches, scene.uvCorners) << "\n";
+  }
   std::vector<frame::GpuTriangleMesh> occluderMeshes;
   for (const auto& m : scene.occluders) occluderMeshes.emplace_back(context, m);
   std::vector<const frame::GpuTriangleMesh*> occluders;
@@ -232,6 +262,11 @@ int run(Args& args) {
   frame::CullFrameOptions frameOptions = cull.frame;
   frameOptions.render = options;
   frameOptions.cull = cullSettings(cull, scene.backPatch);
+  if (displacementMap) {
+    frameOptions.cull.displacementMap = &*displacementMap;
+    frameOptions.cull.uvCorners = scene.uvCorners;
+    frameOptions.cull.displacedKernel = displacementChoice.kernels[0];
+  }
   const std::vector<const frame::CullMethod*>* stages = nullptr;
   if (cull.occlusion()) {
     cullFrame = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, frameOptions);

@@ -2,12 +2,14 @@
 // against the double-precision CPU reference, the visibility oracle and (optionally) dense
 // sampling and the image; prints a table and writes JSON.
 #include "command.h"
+#include "displacement_args.h"
 #include "mesh_patches.h"
 #include "scene_source.h"
 #include "scene_verify.h"
 #include "verify_report.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/verify/cull_verification.h"
 #include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/vk/context.h"
@@ -18,6 +20,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace osd_cull::cli {
@@ -64,6 +67,8 @@ Options:
                         docs/algorithms/drawn-triangles.md); such culls can take single
                         silhouette pixels, which are then reported but do not fail the run
   --json FILE           write the results as JSON
+  --displacement ...    see below; with --displaced-bound all (and --displaced-box all, the
+                        default then) the six kernels full-oobb ... con-caf run as methods
   --scheme S            override the subdivision scheme
   --device X            Vulkan device: index or name substring
   --validate            enable the Vulkan validation layers
@@ -94,6 +99,7 @@ int run(Args& args) {
   const bool validate = args.flag("validate");
   const bool surfaceExact = args.flag("surface-exact");
   const MeshSource source = meshSourceFromArgs(args);
+  const DisplacementChoice displacementChoice = displacementFromArgs(args, true);
   args.finish();
   if (imageCheck && noOracle)
     throw Error("--image-check compares with the oracle's draw; drop --no-oracle");
@@ -103,13 +109,23 @@ int run(Args& args) {
     methods = splitList(*methodsText);
     for (const auto& m : methods) frame::cullMethod(m);  // reject unknown names early
   } else {
+    // Every method but the displaced kernels, which run with --displacement (the ones
+    // --displaced-bound and --displaced-box choose).
     for (auto stage :
          {frame::CullStage::Frustum, frame::CullStage::BackPatch, frame::CullStage::Occlusion})
-      for (const auto& m : frame::cullMethodNames(stage)) methods.push_back(m);
+      for (const auto& m : frame::cullMethodNames(stage))
+        if (!frame::cullMethod(m).displaced) methods.push_back(m);
+    for (const std::string& k : kernelNames(displacementChoice)) methods.push_back(k);
   }
 
-  const MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
+  MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
+  // Displaced: no back-patch culling, and the oracle draws back faces too (the displaced
+  // surface may fold; its holes at UV seams show the inside).
+  if (displacementChoice.map) mesh.backPatch = {false, frame::kDisplacedBackPatchNote};
   const PatchSet& patches = mesh.patches;
+  std::optional<bound::DisplacementMap> displacementMap;
+  if (displacementChoice.map)
+    displacementMap.emplace(adapters::loadDisplacementMap(*displacementChoice.map));
   vulkan::ContextOptions contextOptions;
   contextOptions.device = device.value_or("");
   contextOptions.validation = validate;
@@ -125,6 +141,10 @@ int run(Args& args) {
   options.drawnTriangles = !surfaceExact;
   options.hiz.fullResolution = hizFull;
   options.hiz.lookup = hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
+  if (displacementMap) {
+    options.displacementMap = &*displacementMap;
+    options.uvCorners = mesh.uvCorners;
+  }
   frame::CullVerifier verifier(context, patches, methods, mesh.backPatch, options);
 
   frame::ViewSetOptions viewOptions;
@@ -142,6 +162,15 @@ int run(Args& args) {
   std::printf("views: %u %s (seed %llu), %ux%u, fov %.1f, tess %u, device %s\n", views,
               frame::toString(viewSet), static_cast<unsigned long long>(seed), width, height, fov,
               tess, context.info().name.c_str());
+  if (displacementMap) {
+    const bound::DisplacementRange r = displacementMap->displacementRange();
+    std::printf(
+        "displacement: %s, %ux%u, scale %g, midlevel %g, D in [%g, %g], lod %u; "
+        "back-patch culling off (%s)\n",
+        displacementMap->name().c_str(), displacementMap->width(), displacementMap->height(),
+        displacementMap->scale(), displacementMap->midlevel(), r.dmin, r.dmax,
+        displacementMap->maxLod(), frame::kDisplacedBackPatchNote);
+  }
   std::printf("back-patch culling: %s (%s)%s\n", mesh.backPatch.enabled ? "on" : "off",
               mesh.backPatch.reason.c_str(),
               surfaceExact ? ", surface-exact" : ", conservative for the drawn triangles");
@@ -212,7 +241,7 @@ int run(Args& args) {
 const Registration kRegistration(
     {"verify",
      "check every cull method against the CPU reference and the oracle on random views",
-     std::string(kUsage) + kSceneVerifyUsage,
+     std::string(kUsage) + kSceneVerifyUsage + kDisplacementUsage,
      {"no-oracle", "image-check", "validate", "hiz-full", "hiz-tight", "surface-exact"},
      run});
 

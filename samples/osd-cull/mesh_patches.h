@@ -9,7 +9,10 @@
 #include "osd_cull/patch/adaptive_patches.h"
 #include "osd_cull/patch/patch_set.h"
 
+#include <glm/vec2.hpp>
+
 #include <string>
+#include <vector>
 
 namespace osd_cull::cli {
 
@@ -18,6 +21,9 @@ struct MeshPatches {
   std::string name;
   PatchSet patches;
   bound::BackPatchValidity backPatch;
+  /// Texture coordinates of the patch corners, 4 per patch (PatchExtraction::uvCorners);
+  /// empty without texture coordinates.
+  std::vector<glm::dvec2> uvCorners;
 };
 
 /// \brief Extracts the patches of a cage (bound::backPatchValidity from its topology and

@@ -12,7 +12,7 @@
 
 layout(push_constant) uniform Push { BoundsConstants pc; };
 
-layout(std430, set = 0, binding = kBoundsBindingPoints) readonly buffer Points { float points[]; };
+#define POINTS_BINDING kBoundsBindingPoints  // read by common/control_points.glsl
 layout(std430, set = 0, binding = kBoundsBindingCones) writeonly buffer Cones { vec4 cones[]; };
 // kMaxVectors vec4 (xyz, error) per invocation: the vectors a cone is built from. Shared
 // memory, not a private array: lavapipe turns dynamically indexed private arrays into

@@ -7,7 +7,7 @@
 
 OSD_CULL_SHARED_BEGIN
 
-OSD_CULL_CONST uint kBoundsBindingPoints = 0u;   // float points[]: GpuPatchSet::points()
+OSD_CULL_CONST uint kBoundsBindingPoints = 0u;   // GpuPatchSet::pointBinding(): control_points.glsl
 OSD_CULL_CONST uint kBoundsBindingCones = 1u;    // vec4 cones[]: the cull data written
 OSD_CULL_CONST uint kBoundsBindingScratch = 2u;  // vec4 scratch[]: kMaxVectors per patch
 OSD_CULL_CONST uint kMaxVectors = 64u;           // vectors one cone is built from, at most

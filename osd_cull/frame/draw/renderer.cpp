@@ -2,7 +2,9 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/draw/dynamic_rendering.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 
 #include <shared/draw_layout.h>
@@ -62,6 +64,10 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
                                               kGraphicsStages);
   meshLayout_ = vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants),
                                              kGraphicsStages);
+  displacementSetLayout_ = vulkan::createDescriptorSetLayout(context, displacementSetBindings());
+  const VkDescriptorSetLayout displaced[] = {p, displacementSetLayout_.get()};
+  displacedLayout_ = vulkan::createPipelineLayout(context, displaced, sizeof(shader::DrawConstants),
+                                                  kGraphicsStages);
 }
 
 void Renderer::describeTarget(vulkan::GraphicsPipelineDesc& d, const TargetFormat& format) {
@@ -83,11 +89,15 @@ void Renderer::describeTarget(vulkan::GraphicsPipelineDesc& d, const TargetForma
 }
 
 VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
-                                   bool mirrored, const TargetFormat& format) {
-  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored, format}];
+                                   bool mirrored, bool displaced, const TargetFormat& format) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored, displaced, format}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
-  const std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
+  std::vector<vulkan::ShaderDefine> defines = {
+      {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
+  std::vector<vulkan::ShaderDefine> evalDefines = defines;
+  // Only the displaced variant's evaluation stage has displacement code (displace.glsl).
+  if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
   const std::vector<vulkan::ShaderDefine> fragment = {
       {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
   vulkan::GraphicsPipelineDesc d;
@@ -97,11 +107,11 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
                       vulkan::compileShader({"patch/patch.tesc", defines}),
                       {}});
   d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
-                      vulkan::compileShader({"patch/patch.tese", defines}),
+                      vulkan::compileShader({"patch/patch.tese", evalDefines}),
                       {}});
   d.stages.push_back(
       {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"patch/patch.frag", fragment}), {}});
-  d.layout = patchLayout_.get();
+  d.layout = displaced ? displacedLayout_.get() : patchLayout_.get();
   describeTarget(d, format);
   d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   d.patchControlPoints = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
@@ -203,12 +213,15 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
   const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
+  const GpuDisplacement* displacement = gpu.displacement();
+  const VkPipelineLayout layout = displacement ? displacedLayout_.get() : patchLayout_.get();
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
                     patchPipeline(type, options.cullBackFaces, options.wireframe,
-                                  isMirrored(camera), drawFormat_));
-  const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
-                          nullptr);
+                                  isMirrored(camera), displacement != nullptr, drawFormat_));
+  const VkDescriptorSet sets[] = {draw.set ? draw.set : gpu.descriptorSet(),
+                                  displacement ? displacement->descriptorSet() : VK_NULL_HANDLE};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, displacement ? 2 : 1,
+                          sets, 0, nullptr);
   RenderOptions effective = options;
   effective.tessellation = effectiveOptions(options.tessellation, gpu.hasTransitionEdges());
   shader::DrawConstants c = drawConstants(camera, effective);
@@ -216,7 +229,7 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
   c.pointStride = gpu.pointStride();
   c.pointOffset = gpu.pointOffset();
   c.itemBase = draw.itemBase;
-  vkCmdPushConstants(cmd, patchLayout_.get(), kGraphicsStages, 0, sizeof(c), &c);
+  vkCmdPushConstants(cmd, layout, kGraphicsStages, 0, sizeof(c), &c);
 }
 
 void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
@@ -225,6 +238,7 @@ void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const P
                               uint32_t maxDraws, const RenderOptions& options) {
   if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
   if (maxDraws == 0) return;
+  vulkan::checkDrawIndirectCount(context_, maxDraws, "Renderer::recordIndirect");
   bindPatches(cmd, camera, draw, type, options);
   vkCmdDrawIndirectCount(cmd, commands.handle(), offset, count.handle(), countOffset, maxDraws,
                          sizeof(VkDrawIndirectCommand));

@@ -137,7 +137,7 @@ class Renderer {
 
  private:
   VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored,
-                           const TargetFormat& format);
+                           bool displaced, const TargetFormat& format);
   VkPipeline trianglePipeline(const TargetFormat& format);
   // Render pass, subpass and formats of pipelines for `format`.
   void describeTarget(vulkan::GraphicsPipelineDesc& d, const TargetFormat& format);
@@ -153,8 +153,10 @@ class Renderer {
   vulkan::UniqueDescriptorSetLayout patchSetLayout_;
   vulkan::UniqueDescriptorSetLayout meshSetLayout_;
   vulkan::UniquePipelineLayout patchLayout_;
+  vulkan::UniqueDescriptorSetLayout displacementSetLayout_;
+  vulkan::UniquePipelineLayout displacedLayout_;  // set 0 patches, set 1 displacement
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool, bool, bool, TargetFormat>, vulkan::UniquePipeline>
+  std::map<std::tuple<PatchType, bool, bool, bool, bool, TargetFormat>, vulkan::UniquePipeline>
       patchPipelines_;
   std::map<TargetFormat, vulkan::UniquePipeline> trianglePipelines_;
   vulkan::PipelineStatisticsQuery statistics_;
