@@ -148,7 +148,7 @@ PatchExtraction extractPatches(const Far::TopologyRefiner& refiner, const Adapti
                                std::span<const glm::dvec3> positions, const std::string& source,
                                std::span<const glm::dvec2> uvs) {
   const std::string where = source.empty() ? std::string("mesh") : source;
-  const int cageVertices = adaptive.refinedStencils->GetNumControlVertices();
+  const int cageVertices = refiner.GetLevel(0).GetNumVertices();
   if (positions.size() != static_cast<std::size_t>(cageVertices))
     throw Error(where + ": " + std::to_string(positions.size()) + " positions for a cage of " +
                 std::to_string(cageVertices) + " vertices");
@@ -183,7 +183,7 @@ PatchExtraction extractPatches(const Far::TopologyRefiner& refiner, const Adapti
     set.origins.push_back(PatchOrigin::Gregory);
     if (uvEvaluator) uvEvaluator->appendCorners(ref.array, ref.index, out.uvCorners);
   }
-  if (options.pointMatrix) {
+  if (adaptive.refinedStencils) {  // PatchOptions::pointMatrix: the cage -> points matrix
     MatrixComposer rows(adaptive, cageVertices);
     for (std::size_t p = 0; p < bezier.size(); ++p)
       rows.addBezierPatch(table.GetPatchVertices(bezier[p].array, bezier[p].index),
