@@ -2,6 +2,7 @@
 
 #include "adapters/load_mesh.h"
 #include "adapters/load_occluder.h"
+#include "adapters/obj_sequence.h"
 #include "adapters/scene_file.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/draw/triangle_mesh.h"
@@ -12,20 +13,6 @@ namespace osd_cull::adapters {
 namespace {
 
 using namespace osd_cull::scene;
-
-std::unique_ptr<CageAnimation> makeAnimation(const MeshDescription& m,
-                                             std::span<const glm::dvec3> rest) {
-  switch (m.animation.kind) {
-    case AnimationSource::Kind::None:
-      return nullptr;
-    default:
-      // The deformers and OBJ sequences (scene/cage_animation.h) belong to the animation
-      // part of issue 10 and are not in this build yet.
-      throw Error("mesh '" + m.name + "': animation '" + toString(m.animation.kind) +
-                  "' is not available in this build yet");
-  }
-  (void)rest;
-}
 
 frame::TriangleMesh loadOccluder(const OccluderDescription& o) {
   frame::TriangleMesh mesh =
@@ -41,8 +28,12 @@ scene::LoadedScene loadScene(scene::SceneDescription description) {
   for (const MeshDescription& m : description.meshes) {
     try {
       CageMesh cage;
+      std::unique_ptr<CageAnimation> animation;
       if (m.animation.kind == AnimationSource::Kind::Sequence) {
-        throw Error("OBJ sequences are not available in this build yet");
+        ObjSequence sequence = loadObjSequence(m.animation.pattern, m.animation.framesPerSecond);
+        cage = std::move(sequence.firstFrame);
+        animation = std::move(sequence.animation);
+        if (m.scheme) cage.scheme = *m.scheme;
       } else if (!m.file.empty()) {
         LoadOptions options;
         options.scheme = m.scheme;
@@ -51,7 +42,7 @@ scene::LoadedScene loadScene(scene::SceneDescription description) {
         cage = *builtInMesh(m.builtIn);
         if (m.scheme) cage.scheme = *m.scheme;
       }
-      auto animation = makeAnimation(m, cage.positions);
+      if (!animation) animation = makeProceduralAnimation(m.animation, cage.positions);
       scene.meshes.push_back(
           makeSceneMesh(m.name, std::move(cage), m.patches, m.recentre, std::move(animation)));
     } catch (const Error& e) {

@@ -159,12 +159,21 @@ AnimationSource readAnimation(const Node& n, const Context& c) {
     if (n.has("framesPerSecond")) a.framesPerSecond = n["framesPerSecond"].number(1e-6, 1e6);
     return a;
   }
-  const std::string name =
-      n.object({"deformer", "axis", "amount", "frequency", "joints", "swingDegrees"})["deformer"]
-          .string();
+  const std::string name = n.object({"deformer", "axis", "amount", "frequency", "joints",
+                                     "swingDegrees", "rig"})["deformer"]
+                               .string();
   if (name == "skin") {
-    n.object({"deformer", "joints", "swingDegrees", "frequency"});
+    n.object({"deformer", "joints", "swingDegrees", "frequency", "rig"});
     a.kind = AnimationSource::Kind::Skin;
+    if (n.has("rig")) {
+      const std::string rig = n["rig"].string();
+      if (rig == "chain")
+        a.skinning.rig = SkinningRig::Chain;
+      else if (rig == "limbs")
+        a.skinning.rig = SkinningRig::Limbs;
+      else
+        n["rig"].fail("unknown rig '" + rig + "' (expected chain or limbs)");
+    }
     if (n.has("joints")) a.skinning.joints = int(n["joints"].integer(1, 64));
     if (n.has("swingDegrees")) a.skinning.swingDegrees = n["swingDegrees"].number(0, 180);
     if (n.has("frequency")) a.skinning.frequency = n["frequency"].number(0, 1e3);

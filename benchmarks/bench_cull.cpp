@@ -3,9 +3,13 @@
 //
 //   bench-cull [--mesh FILE] [--levels 1,2,3] [--views 20] [--tess 4,8,16]
 //              [--width 640] [--height 480] [--repeats 3] [--parts 12] [--device X]
+//              [--methods empty,tcone/surface,...]
 //
 // Part 1: wall time of one cull submission (counter reset, cull dispatch, draw-command
 // dispatch, wait), median over views x repeats, per patch; "empty" is a pass with no test.
+// The methods run interleaved: for each view and repeat every method once, so that the
+// load of a shared machine affects them alike. "compile ms" is the first pass of each
+// (pipeline creation, mostly lavapipe's shader compilation).
 // Back-patch methods run twice: respecting the drawn triangles (the default) and with
 // "/surface", the papers' surface-exact tests (CullSettings::drawnTriangles = false).
 // Part 2: frames of sphere views drawn in full and with culling (cull pass + survivors in
@@ -22,6 +26,7 @@
 #include "osd_cull/vk/context.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -38,8 +43,26 @@ struct Options {
   std::vector<uint32_t> tess = {4, 8, 16};
   uint32_t views = 20, width = 640, height = 480, repeats = 3;
   std::string device;
+  std::vector<std::string> methods = {"empty",
+                                      "frustum",
+                                      "tcone",
+                                      "tcone/surface",
+                                      "ncone",
+                                      "ncone/surface",
+                                      "tangent-plane",
+                                      "tangent-plane/surface",
+                                      "tangent-plane-16",
+                                      "tangent-plane-16/surface"};
   std::string parts = "12";  ///< which parts run
 };
+
+std::vector<std::string> names(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(item);
+  return out;
+}
 
 std::vector<uint32_t> numbers(const std::string& text) {
   std::vector<uint32_t> out;
@@ -73,6 +96,8 @@ Options parse(int argc, char** argv) {
       o.repeats = std::max(1u, numbers(next()).at(0));
     else if (a == "--device")
       o.device = next();
+    else if (a == "--methods")
+      o.methods = names(next());
     else if (a == "--parts")
       o.parts = next();
     else
@@ -101,8 +126,9 @@ frame::CullSettings settingsFor(std::string method, const bound::BackPatchValidi
 }
 
 void kernelCost(vulkan::Context& context, const Options& o) {
-  std::printf("\n| level | patches | method | cull rate | ns/patch (median) | ms/pass |\n");
-  std::printf("|---|---|---|---|---|---|\n");
+  std::printf(
+      "\n| level | patches | method | cull rate | ns/patch (median) | ms/pass | compile ms |\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
   for (uint32_t level : o.levels) {
     const Mesh mesh = loadCullMesh(o.mesh, level);
     frame::GpuPatchSet gpu(context, mesh.patches);
@@ -112,23 +138,32 @@ void kernelCost(vulkan::Context& context, const Options& o) {
     vo.height = o.height;
     const auto cameras = frame::randomViews(frame::boundsOf(mesh.patches.points), vo);
     const uint32_t n = mesh.patches.patchCount();
-    for (const std::string method :
-         {"empty", "frustum", "tcone", "tcone/surface", "ncone", "ncone/surface", "tangent-plane",
-          "tangent-plane/surface", "tangent-plane-16", "tangent-plane-16/surface"}) {
-      frame::CullPass pass(context, gpu, mesh.patches, settingsFor(method, mesh.validity));
-      pass.run(cameras[0]);  // warm-up: first dispatch compiles the kernel
-      std::vector<double> ms;
-      uint64_t culled = 0;
-      for (const auto& camera : cameras)
-        for (uint32_t r = 0; r < o.repeats; ++r) {
-          ms.push_back(pass.run(camera));
-          if (r == 0) culled += n - pass.counts().survivors();
-        }
-      std::printf("| %u | %u | %s | %.1f%% | %.0f | %.3f |\n", level, n, method.c_str(),
-                  100.0 * double(culled) / double(n) / double(cameras.size()), median(ms) * 1e6 / n,
-                  median(ms));
-      std::fflush(stdout);
+    std::vector<std::unique_ptr<frame::CullPass>> passes;
+    std::vector<double> compileMs;
+    for (const std::string& method : o.methods) {
+      const auto start = std::chrono::steady_clock::now();
+      passes.push_back(std::make_unique<frame::CullPass>(context, gpu, mesh.patches,
+                                                         settingsFor(method, mesh.validity)));
+      passes.back()->run(cameras[0]);  // pipeline creation and the first dispatch compile
+      compileMs.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count());
     }
+    std::vector<std::vector<double>> ms(passes.size());
+    std::vector<uint64_t> culled(passes.size(), 0);
+    for (const auto& camera : cameras)
+      for (uint32_t r = 0; r < o.repeats; ++r)
+        for (size_t m = 0; m < passes.size(); ++m) {
+          ms[m].push_back(passes[m]->run(camera));
+          if (r == 0) culled[m] += n - passes[m]->counts().survivors();
+        }
+    for (size_t m = 0; m < passes.size(); ++m) {
+      std::printf("| %u | %u | %s | %.1f%% | %.0f | %.3f | %.0f |\n", level, n,
+                  o.methods[m].c_str(),
+                  100.0 * double(culled[m]) / double(n) / double(cameras.size()),
+                  median(ms[m]) * 1e6 / n, median(ms[m]), compileMs[m]);
+    }
+    std::fflush(stdout);
   }
 }
 

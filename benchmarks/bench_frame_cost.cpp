@@ -131,14 +131,17 @@ Scene bigGuy(uint32_t level) {
 // A camera path: `frames` cameras.
 using Path = std::function<frame::Camera(uint32_t frame)>;
 
-Path orbitPath(const Scene& s, const Options& o, double distanceScale) {
+// An orbit around the scene's bounds from the distance that frames them at 40 degrees; a
+// narrower field of view (a close-up: parts of the scene off screen) keeps the eye there,
+// outside the bounding sphere.
+Path orbitPath(const Scene& s, const Options& o, double fovyDegrees) {
   const frame::Bounds b = frame::boundsOf(s.patches.points);
   const frame::Camera framed =
       frame::frameBounds(b, s.viewDirection, s.up, 40.0, o.width, o.height);
-  const glm::dvec3 eye = b.center() + (framed.eye() - b.center()) * distanceScale;
-  const double d = glm::distance(eye, b.center()), r = b.radius();
-  const frame::Camera start = frame::Camera::lookAt(eye, b.center(), s.up, 40.0, o.width, o.height,
-                                                    std::max(0.02 * r, d - 1.5 * r), d + 1.5 * r);
+  const double d = glm::distance(framed.eye(), b.center()), r = b.radius();
+  const frame::Camera start =
+      frame::Camera::lookAt(framed.eye(), b.center(), s.up, fovyDegrees, o.width, o.height,
+                            std::max(d - 1.5 * r, d * 1e-3), d + 1.5 * r);
   const double step = 360.0 / o.frames;
   return [=](uint32_t f) { return frame::orbit(start, b.center(), s.up, step * f + 7.0); };
 }
@@ -222,8 +225,8 @@ PathResult measurePath(vulkan::Context& context, const std::string& name, const 
     }
     std::vector<double> plainMs;
     uint64_t plainTes = 0, plainFragments = 0;
-    // Frame -1 and -2 warm up (pipelines, temporal status); then the path.
-    for (int f = -2; f < int(o.frames); ++f) {
+    // Frame -1 warms up (pipelines; temporal status at the path's first camera).
+    for (int f = -1; f < int(o.frames); ++f) {
       const frame::Camera cam = path(uint32_t(std::max(f, 0)));
       const frame::FrameStats p = renderer.render(plain, cam, {&draw, 1}, occluders, render);
       if (f >= 0) {
@@ -312,6 +315,7 @@ void printPath(const PathResult& r, const Options& o, FILE* csv) {
                      median(row.pass2), median(row.splitTotal));
     }
   std::fflush(stdout);
+  if (csv) std::fflush(csv);
 }
 
 // The lowest level from which on every measured level has a median ratio below 1.
@@ -349,7 +353,7 @@ void pyramidCost(vulkan::Context& context, const Options& o) {
   frame::RenderOptions render;
   render.tessellation.uniformLevel = 4;
   render.cullBackFaces = true;
-  const frame::Camera cam = orbitPath(scene, o, 1.0)(0);
+  const frame::Camera cam = orbitPath(scene, o, 40.0)(0);
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
   std::vector<double> frameMs, emptyMs;
   for (int i = 0; i < 3; ++i) renderer.render(target, cam, {&draw, 1}, {}, render);
@@ -438,15 +442,16 @@ int main(int argc, char** argv) {
       if (p.rfind("bigguy", 0) == 0 && !guy) guy = std::make_unique<Scene>(bigGuy(o.bigguyLevel));
       if (p == "default-orbit")
         results.push_back(measurePath(context, "built-in scene, orbit", *builtIn,
-                                      orbitPath(*builtIn, o, 1.0), o));
+                                      orbitPath(*builtIn, o, 40.0), o));
       else if (p == "default-walk")
         results.push_back(measurePath(context, "built-in scene, walk", *builtIn, walkPath(o), o));
       else if (p == "bigguy-orbit")
         results.push_back(
-            measurePath(context, guy->name + ", orbit", *guy, orbitPath(*guy, o, 1.0), o));
+            measurePath(context, guy->name + ", orbit", *guy, orbitPath(*guy, o, 40.0), o));
       else if (p == "bigguy-closeup")
-        results.push_back(measurePath(context, guy->name + ", close-up orbit", *guy,
-                                      orbitPath(*guy, o, 0.45), o));
+        results.push_back(measurePath(context,
+                                      guy->name + ", close-up orbit (14 degree field of view)",
+                                      *guy, orbitPath(*guy, o, 14.0), o));
       else
         throw Error("--paths: unknown path '" + p + "'");
       if (want('F')) printPath(results.back(), o, csv.get());

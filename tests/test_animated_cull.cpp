@@ -16,6 +16,8 @@
 #include "support/temp_dir.h"
 #include "support/vk_test_context.h"
 
+#include <shared/cull_layout.h>
+
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
@@ -94,7 +96,7 @@ TEST_F(AnimatedCullTest, EveryMethodHasNoFalseCullOnEveryFrameOfEveryAnimation) 
   frame::VisibilityOracle oracle(context());
   frame::TessellationOptions tess;
   tess.uniformLevel = 4;
-  const std::vector<std::string> methods = {"tcone", "ncone", "tangent-plane"};
+  const std::vector<std::string> methods = {"tcone", "ncone", "tangent-plane", "tangent-plane-16"};
   for (Source& src : sources(dir)) {
     frame::DynamicPatchMesh mesh(context(), src.cage, {}, src.path);
     const bound::BackPatchValidity validity = validityOf(src.cage);
@@ -109,7 +111,8 @@ TEST_F(AnimatedCullTest, EveryMethodHasNoFalseCullOnEveryFrameOfEveryAnimation) 
               : std::make_unique<frame::CullPass>(context(), mesh.gpu(), mesh.patches(), s,
                                                   mesh.cullData(ref)));
     }
-    uint64_t culled[3] = {0, 0, 0}, patchViews = 0;
+    std::vector<uint64_t> culled(methods.size(), 0);
+    uint64_t patchViews = 0;
     const frame::Bounds bounds = frame::boundsOf(mesh.patches().points);
     for (int f = 0; f < 3; ++f) {
       const double t = src.animation->duration() * (0.15 + 0.3 * f);
@@ -166,18 +169,19 @@ TEST_F(AnimatedCullTest, TwoPassFramesOfASkinnedMeshEqualTheUnculledImage) {
     frame::DynamicPatchMesh mesh(context(), cage, {}, path);
     frame::Renderer renderer(context());
     frame::RenderTarget target(context(), 160, 120), reference(context(), 160, 120);
+    frame::RenderTarget items(context(), 160, 120);
+    frame::VisibilityOracle oracle(context());
     frame::CullFrameOptions o;
     o.render.tessellation.uniformLevel = 4;
     o.cull = {true, "tcone", "hiz", validityOf(cage)};
-    const frame::CullMesh meshes[] = {
-        {.gpu = &mesh.gpu(),
-         .host = &mesh.patches(),
-         .cullData = &mesh.cullData(BackPatchMethod::TCone)}};
+    const frame::CullMesh meshes[] = {{.gpu = &mesh.gpu(),
+                                       .host = &mesh.patches(),
+                                       .cullData = &mesh.cullData(BackPatchMethod::TCone)}};
     frame::CullFrame cull(context(), renderer, target, meshes, o);
     const frame::Bounds bounds = frame::boundsOf(mesh.patches().points);
     const frame::Camera camera =
         frame::frameBounds(bounds, {0.3, 0.4, 1.0}, {0, 1, 0}, 40.0, 160, 120);
-    uint64_t culledTotal = 0;
+    uint64_t culledTotal = 0, occlusionTotal = 0;
     std::vector<glm::dvec3> positions(cage.positions.size());
     for (int f = 0; f < 8; ++f) {
       skin->positions(f / 8.0, positions);  // a fast swing: 45° of phase per frame
@@ -185,6 +189,19 @@ TEST_F(AnimatedCullTest, TwoPassFramesOfASkinnedMeshEqualTheUnculledImage) {
       mesh.update();
       const frame::CullFrameStats stats = cull.render(camera, {});
       culledTotal += stats.culled();
+      // Every patch the frame culled (any stage, Hi-Z included) has no pixel in this frame's
+      // oracle.
+      const frame::VisibilityCounts counts = oracle.query(
+          renderer, items, camera, mesh.gpu(), &mesh.patches(), {}, o.render.tessellation);
+      const std::vector<uint32_t> results = cull.readResults(0);
+      uint32_t falseCulls = 0, culledOcclusion = 0;
+      for (uint32_t p = 0; p < results.size(); ++p) {
+        const bound::CullCode code{results[p]};
+        falseCulls += code.culled() && counts.visible(p);
+        culledOcclusion += code.culled() && code.stage() == shader::kStageOcclusion;
+      }
+      EXPECT_EQ(falseCulls, 0u) << toString(path) << " frame " << f;
+      occlusionTotal += culledOcclusion;
       const frame::PatchDraw draw{&mesh.gpu(), &mesh.patches(), 0};
       renderer.render(reference, camera, {&draw, 1}, {}, o.render);
       const auto a = target.readItems(context()), b = reference.readItems(context());
@@ -200,6 +217,7 @@ TEST_F(AnimatedCullTest, TwoPassFramesOfASkinnedMeshEqualTheUnculledImage) {
       EXPECT_LE(differ, a.size() / 10000) << toString(path) << " frame " << f;
     }
     EXPECT_GT(culledTotal, 8u * mesh.patches().patchCount() / 10) << toString(path);
+    EXPECT_GT(occlusionTotal, 0u) << toString(path) << ": Hi-Z culled nothing";
   }
 }
 

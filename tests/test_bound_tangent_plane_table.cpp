@@ -1,9 +1,10 @@
 // The parametric tangent plane table (Loop, Nießner, Eisenacher §3, §5, §6): derived in
 // code, checked against the paper's published counts and against direct evaluation of
-// cross4(B, Bu, Bv) in clip space.
+// cross4(B, Bu, Bv) in clip space; the factored form of the GPU kernel against the table.
 #include "osd_cull/bound/clip_space.h"
 #include "osd_cull/bound/patch_eval.h"
 #include "osd_cull/bound/tangent_plane.h"
+#include "osd_cull/bound/tangent_plane_factored.h"
 #include "osd_cull/bound/tangent_plane_table.h"
 #include "test_bound_fixtures.h"
 
@@ -196,6 +197,81 @@ TEST(BoundTangentPlaneTable, CollapsedEdgeGivesExactlyZeroPlanesAlongIt) {
     for (int i = 8; i < 64; ++i) nonzero += planes.z[i] != 0.0;
     EXPECT_GT(nonzero, 50);
   }
+}
+
+// The table's world-space coefficients F_i = Σ w (E - b_j)·((b_k - b_j) × (b_l - b_j)), with
+// the terms of equal points skipped as the reference does, and Σ |w| |products| of each.
+std::pair<std::array<double, 64>, std::array<double, 64>> tableWorldCoefficients(
+    const Bezier& b, const glm::dvec3& eye) {
+  std::array<double, 64> f{}, m{};
+  for (const TangentPlaneTerm& t : tangentPlaneTerms()) {
+    if (b[t.j] == b[t.k] || b[t.k] == b[t.l] || b[t.j] == b[t.l]) continue;
+    const glm::dvec3 q = eye - b[t.j], dk = b[t.k] - b[t.j], dl = b[t.l] - b[t.j];
+    f[t.target] += t.weight * glm::dot(q, glm::cross(dk, dl));
+    m[t.target] += std::abs(t.weight) * glm::length(q) * glm::length(dk) * glm::length(dl);
+  }
+  return {f, m};
+}
+
+TEST(BoundTangentPlaneFactored, EqualsTheTableCoefficientsForEveryPatchKindAndEye) {
+  Rng rng(15);
+  for (int n = 0; n < 400; ++n) {
+    const auto kind = static_cast<test::PatchKind>(n % static_cast<int>(test::PatchKind::Count));
+    const Bezier b = test::randomBezier(rng, kind);
+    const glm::dvec3 eye = rng.inBox(n % 2 ? 4.0 : 50.0);
+    const auto [f, m] = tableWorldCoefficients(b, eye);
+    const TangentPlaneFactored factored = tangentPlaneFactored(b, eye);
+    for (int q = 0; q < 8; ++q)
+      for (int p = 0; p < 8; ++p) {
+        const size_t i = static_cast<size_t>(8 * q + p);
+        const double scale = tangentPlaneFactoredScale(p, q);
+        ASSERT_NEAR(factored.d[i] / scale, f[i], 1e-11 * (m[i] + factored.bound[i] / scale))
+            << test::name(kind) << " patch " << n << " coefficient " << i;
+        // The bound bounds the coefficient and vanishes with it along collapsed edges.
+        ASSERT_LE(std::abs(factored.d[i]), factored.bound[i] * (1 + 1e-12));
+        if (m[i] == 0.0) {
+          ASSERT_EQ(factored.bound[i], 0.0) << "coefficient " << i;
+        }
+      }
+  }
+}
+
+// Coefficients marked `collapsed` (a boundary of four equal points) must be exactly 0 with
+// every table term skipped, so that the kernel may give them margin 0 as the reference
+// does (Pcnt); other zero bounds happen (exact cancellation of unskipped terms) and the
+// kernel must count those as possibly positive. Adjacent points merged at random.
+TEST(BoundTangentPlaneFactored, CollapsedBoundariesAreExactlyZeroAsInTheReference) {
+  Rng rng(16);
+  int collapsed = 0, otherZeroBounds = 0;
+  for (int n = 0; n < 3000; ++n) {
+    Bezier b = test::randomBezier(rng, test::PatchKind::SmoothBump);
+    const int merges = rng.integer(1, 8);
+    for (int k = 0; k < merges; ++k) {
+      const int i = rng.integer(0, 3), j = rng.integer(0, 3);
+      const bool alongU = rng.integer(0, 1) == 0;
+      const int i2 = alongU ? std::min(i + 1, 3) : i, j2 = alongU ? j : std::min(j + 1, 3);
+      b[static_cast<size_t>(4 * j2 + i2)] = b[static_cast<size_t>(4 * j + i)];
+    }
+    if (n % 3 == 0)  // a whole boundary collapsed, as at the teapot's poles
+      for (int k = 1; k < 4; ++k)
+        b[static_cast<size_t>(n % 2 ? 4 * k : 12 + k)] = b[n % 2 ? 0 : 12];
+    const glm::dvec3 eye = rng.inBox(5.0);
+    const auto [f, m] = tableWorldCoefficients(b, eye);
+    const TangentPlaneFactored factored = tangentPlaneFactored(b, eye);
+    for (size_t i = 0; i < 64; ++i) {
+      if (factored.collapsed[i]) {
+        ++collapsed;
+        ASSERT_EQ(factored.bound[i], 0.0) << "patch " << n << " coefficient " << i;
+        ASSERT_EQ(factored.d[i], 0.0);
+        ASSERT_EQ(m[i], 0.0);
+      } else if (factored.bound[i] == 0.0) {
+        ++otherZeroBounds;
+        ASSERT_EQ(factored.d[i], 0.0);
+      }
+    }
+  }
+  EXPECT_GT(collapsed, 5000);
+  EXPECT_GT(otherZeroBounds, 100);
 }
 
 }  // namespace

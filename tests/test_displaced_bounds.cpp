@@ -12,6 +12,7 @@
 #include "osd_cull/patch/patch_eval.h"
 #include "osd_cull/scene/procedural_displacement.h"
 #include "support/temp_dir.h"
+#include "support/displacement_test_maps.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
@@ -125,16 +126,11 @@ TEST(PatchUVs, SeamEdgesAreCounted) {
   OSD_CULL_REQUIRE_DATA();
   const PatchExtraction ex =
       extractPatches(adapters::loadCage(test::dataDir() / "shapes/catmark_cube.obj"));
-  std::vector<glm::dvec3> corners;
-  for (uint32_t p = 0; p < ex.patches.patchCount(); ++p)
-    for (glm::dvec2 st : {glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(1, 1), glm::dvec2(0, 1)})
-      corners.push_back(evaluatePatch(ex.patches, p, st.x, st.y).position);
   // The cube's unfolding (14 texture coordinates for 8 vertices) cuts 7 of its 12 edges;
-  // each cut cage edge becomes 2^level patch edges at isolation level 2... at least 7.
-  const uint32_t seams = countUVSeamEdges(corners, ex.uvCorners);
-  EXPECT_GE(seams, 7u);
-  EXPECT_EQ(countUVSeamEdges(corners, std::vector<glm::dvec2>(corners.size(), glm::dvec2(0.5))),
-            0u);
+  // each cut cage edge becomes several patch edges (4 at isolation level 2).
+  EXPECT_EQ(countUVSeamEdges(ex.patches, ex.uvCorners), 7u * 4u);
+  const std::vector<glm::dvec2> constant(ex.uvCorners.size(), glm::dvec2(0.5));
+  EXPECT_EQ(countUVSeamEdges(ex.patches, constant), 0u);
 }
 
 // The displaced surface P + N D(uv) of a patch at (s, t), as the draw computes it (the
@@ -220,16 +216,7 @@ TEST(DisplacedBounds, EveryKernelContainsExtremeMaps) {
   OSD_CULL_REQUIRE_DATA();
   const PatchExtraction ex =
       extractPatches(adapters::loadCage(test::dataDir() / "shapes/catmark_cube.obj"));
-  std::vector<float> spike(32 * 32, 0.5f), step(32 * 32, 0.0f);
-  spike[17 * 32 + 9] = 1.0f;
-  for (size_t i = 0; i < step.size(); ++i) step[i] = (i % 32) < 16 ? 0.0f : 1.0f;
-  const bound::DisplacementMap maps[] = {
-      {"spike", 32, 32, spike, 0.8, 0.5},
-      {"step", 32, 32, step, 0.3, 0.5},
-      {"all-max", 8, 8, std::vector<float>(64, 1.0f), 0.4, 0.5},
-      {"all-min", 8, 8, std::vector<float>(64, 0.0f), 0.4, 0.5},
-      {"scale-0", 32, 32, step, 0.0, 0.5},
-  };
+  const auto maps = test::extremeDisplacementMaps(0.4);
   for (const auto& map : maps) expectAllKernelsContain(ex, map, 4);
 }
 

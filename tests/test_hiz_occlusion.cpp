@@ -6,8 +6,12 @@
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
+#include "osd_cull/frame/verify/cull_verification.h"
+#include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/default_scene.h"
+#include "osd_cull/scene/procedural.h"
 #include "support/vk_test_context.h"
 #include "support/vk_test_images.h"
 
@@ -121,6 +125,30 @@ TEST_F(HiZOcclusionTest, PatchesBehindAWallAreCulledExactlyWhereTheyShouldBe) {
     EXPECT_EQ(c.gpuCulled, 2u);
     EXPECT_EQ(c.cpuCulled, 2u);
   }
+}
+
+// Sub-pixel patches (docs/algorithms/occlusion.md, "Sub-pixel patches"): a 100 x 100 torus
+// at level 1 (10,000 patches) on a 32 x 32 image, a fraction of a pixel each, reproduces
+// the false culls of the 700 x 700 torus at 256 x 256. Without kHiZExtrapolationPixels, view 19 of
+// these views has a patch whose rasterized depth lies below all its control points' depths
+// and the reference and the kernel both cull it.
+TEST_F(HiZOcclusionTest, SubPixelPatchesOfAClosedTorusAreNeverFalselyCulled) {
+  PatchOptions po;
+  po.isolationLevel = 1;
+  const PatchSet set = extractPatches(scene::torus(100, 100), po).patches;
+  ASSERT_EQ(set.patchCount(), 10000u);  // one regular patch per quad
+  frame::VerifyOptions options;
+  options.tessellation.uniformLevel = 4;
+  frame::CullVerifier verifier(context(), set, {"hiz"}, {true, "closed torus"}, options);
+  frame::ViewSetOptions vo;
+  vo.count = 30;
+  vo.width = vo.height = 32;
+  const auto cameras = frame::randomViews(frame::boundsOf(set.points), vo);
+  for (uint32_t v = 17; v < 22; ++v) verifier.verifyView(cameras[v]);
+  const frame::MethodTotals& t = verifier.totals().at(0);
+  EXPECT_EQ(t.falseCulls, 0u);
+  EXPECT_EQ(t.notInReference, 0u);
+  EXPECT_GT(t.culled, t.patchViews / 4);  // the back half of the torus is still culled
 }
 
 }  // namespace

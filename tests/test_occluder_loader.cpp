@@ -24,6 +24,7 @@ TEST(OccluderLoader, PolygonsBecomeTriangleFans) {
   // fine for an occluder, refused for a cage).
   const fs::path p = writeFile("walls.obj",
                                "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nv 3 0.5 0\n"
+                               "vt 0 0\nvt 1 0\nvt 1 1\n"
                                "f 1 2 3 4\nf 2 5 7 6 3\nf 1/1 2/2 3/3\nf 1 2 4\n");
   const frame::TriangleMesh m = adapters::loadTriangleMesh(p);
   EXPECT_EQ(m.positions.size(), 7u);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
+
 namespace osd_cull {
 namespace {
 
@@ -262,6 +264,36 @@ TEST(PatchMatrix, UpdateRejectsWrongSizes) {
   EXPECT_THROW(ex.matrix.update(cage, points), Error);
   EXPECT_THROW(PatchPointMatrix(3, {2}, {0, 3}, {0.5, 0.5}), Error);  // column 3 of 3
   EXPECT_THROW(PatchPointMatrix(3, {3}, {0, 1}, {0.5, 0.5}), Error);  // sizes disagree
+}
+
+// Without the matrix (PatchOptions::pointMatrix off, for static meshes) the points are
+// refined directly: the same points up to rounding, the same params and origins, no matrix
+// and no refinement stencils.
+TEST(PatchExtraction, PointsWithoutTheMatrixEqualThePointsOfTheMatrix) {
+  for (const CageMesh& cage : {scene::cube(), scene::creasedCube(), scene::poleSphere(5),
+                               scene::defaultMesh(), scene::torus(7, 5, 2.0, 0.7)}) {
+    for (const EndCap endCaps : {EndCap::GregoryBasis, EndCap::BSplineBasis}) {
+      PatchOptions options;
+      options.endCaps = endCaps;
+      const PatchExtraction full = extractPatches(cage, options);
+      options.pointMatrix = false;
+      const PatchExtraction direct = extractPatches(cage, options);
+      EXPECT_EQ(direct.matrix.rowCount(), 0) << cage.source;
+      EXPECT_EQ(direct.stats.stencilMs, 0.0) << cage.source;
+      ASSERT_EQ(direct.patches.bezierCount, full.patches.bezierCount) << cage.source;
+      ASSERT_EQ(direct.patches.gregoryCount, full.patches.gregoryCount) << cage.source;
+      ASSERT_EQ(direct.patches.points.size(), full.patches.points.size()) << cage.source;
+      const double tolerance = 1e-13 * test::boundingDiagonal(cage.positions);
+      for (std::size_t i = 0; i < full.patches.points.size(); ++i)
+        ASSERT_LE(glm::length(direct.patches.points[i] - full.patches.points[i]), tolerance)
+            << cage.source << " point " << i;
+      for (uint32_t p = 0; p < full.patches.patchCount(); ++p) {
+        EXPECT_EQ(direct.patches.params[p].field0, full.patches.params[p].field0);
+        EXPECT_EQ(direct.patches.params[p].field1, full.patches.params[p].field1);
+        EXPECT_EQ(direct.patches.origins[p], full.patches.origins[p]);
+      }
+    }
+  }
 }
 
 TEST(PatchExtractionErrors, LoopAndBilinearAreRefusedWithAClearMessage) {

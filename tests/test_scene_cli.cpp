@@ -44,8 +44,8 @@ TEST(SceneCommand, RendersEveryViewOfEveryFrame) {
                                   (dir.path() / "frames").string() + " --stats " +
                                   (dir.path() / "stats.json").string());
   ASSERT_EQ(r.exitCode(), 0) << r.output;
-  for (const char* line : {"view main frame 1:", "view sun frame 1:", "vs unculled",
-                           "2 instance(s) share its points"})
+  for (const char* line :
+       {"view main frame 1:", "view sun frame 1:", "vs unculled", "2 instance(s) share its points"})
     EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
   for (const char* f : {"main_0000.png", "main_0001.png", "sun_0000.png", "sun_0001.png"})
     EXPECT_TRUE(fs::exists(dir.path() / "frames" / f)) << f;
@@ -79,6 +79,46 @@ TEST(SceneCommand, VerifiesEveryInstanceOnEveryFrame) {
     EXPECT_EQ(m.at("pixels_lost"), 0) << m.at("name");
   }
   EXPECT_GT(j.at("methods")[3].at("cull_rate").get<double>(), 0.05);  // tangent plane
+}
+
+// A cube cage whose top rises frame by frame, as frame_NN.obj files.
+std::string cubeFrame(double top, bool extraFace = false) {
+  std::string text;
+  for (int i = 0; i < 8; ++i)
+    text += "v " + std::to_string(i & 1 ? 1 : -1) + " " + std::to_string(i & 2 ? 1 : -1) + " " +
+            std::to_string(i & 4 ? top : -1.0) + "\n";
+  text += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+  if (extraFace) text += "f 1 2 3\n";
+  return text;
+}
+
+TEST(SceneCommand, PlaysAndVerifiesAnObjSequence) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  for (int f = 0; f < 3; ++f)
+    dir.write("frame_0" + std::to_string(f) + ".obj", cubeFrame(1.0 + 0.5 * f));
+  const std::string pattern = (dir.path() / "frame_##.obj").string();
+  const auto r = test::runCommand(test::osdCullProgram().string() + " render " + pattern +
+                                  " --frames 3 --width 64 --height 48 --validate --out-dir " +
+                                  (dir.path() / "out").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("deforms (sequence"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir.path() / "out" / "main_0002.png"));
+  const auto v = test::runCommand(test::osdCullProgram().string() + " verify " + pattern +
+                                  " --frames 3 --views 2 --width 64 --height 64 --validate");
+  EXPECT_EQ(v.exitCode(), 0) << v.output;
+  EXPECT_NE(v.output.find("tangent-plane"), std::string::npos) << v.output;
+}
+
+TEST(SceneCommand, SequenceWithChangedTopologyNamesTheFile) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  dir.write("frame_00.obj", cubeFrame(1.0));
+  dir.write("frame_01.obj", cubeFrame(1.5, true));
+  const auto r = test::runCommand(test::osdCullProgram().string() + " render " +
+                                  (dir.path() / "frame_##.obj").string() + " --frames 2");
+  EXPECT_EQ(r.exitCode(), 1) << r.output;
+  EXPECT_NE(r.output.find("frame_01.obj"), std::string::npos) << r.output;
 }
 
 TEST(SceneCommand, UnwritableOutputFolderFailsBeforeRendering) {

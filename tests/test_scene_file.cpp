@@ -131,6 +131,23 @@ TEST(SceneFile, CameraPathsInterpolateOrbitAndFrameTheScene) {
   }
 }
 
+TEST(SceneFile, SkinningReadsItsRig) {
+  const SceneDescription s = parse(R"({"version": 1,
+    "meshes": [{"name": "guy", "builtIn": "character",
+                "animation": {"deformer": "skin", "rig": "limbs", "swingDegrees": 40}}],
+    "views": [{"name": "v", "camera": {"eye": [0, -5, 1], "target": [0, 0, 1]}}]})");
+  EXPECT_EQ(s.meshes[0].animation.kind, scene::AnimationSource::Kind::Skin);
+  EXPECT_EQ(s.meshes[0].animation.skinning.rig, scene::SkinningRig::Limbs);
+  EXPECT_DOUBLE_EQ(s.meshes[0].animation.skinning.swingDegrees, 40.0);
+  // Loaded, the character deforms: its cage moves between two times.
+  const scene::LoadedScene loaded = adapters::loadScene(s);
+  ASSERT_NE(loaded.meshes[0].animation, nullptr);
+  std::vector<glm::dvec3> a(loaded.meshes[0].animation->vertexCount()), b = a;
+  loaded.meshes[0].animation->positions(0.0, a);
+  loaded.meshes[0].animation->positions(0.4, b);
+  EXPECT_NE(a, b);
+}
+
 TEST(SceneFile, MissingInstancesMeanOneInstancePerMesh) {
   const SceneDescription s = parse(R"({"version": 1,
     "meshes": [{"name": "m", "builtIn": "cube"}, {"name": "n", "builtIn": "torus"}],
@@ -194,6 +211,9 @@ TEST(SceneFile, BadInputNamesThePathAndTheProblem) {
       {"unknown deformer", R"({"version": 1, "meshes": [{"name": "m", "builtIn": "cube",
         "animation": {"deformer": "melt"}}], "views": []})",
        "/meshes/0/animation/deformer: unknown deformer 'melt'"},
+      {"unknown rig", R"({"version": 1, "meshes": [{"name": "m", "builtIn": "character",
+        "animation": {"deformer": "skin", "rig": "octopus"}}], "views": []})",
+       "/meshes/0/animation/rig: unknown rig 'octopus'"},
       {"level out of range",
        R"({"version": 1, "meshes": [{"name": "m", "builtIn": "cube", "level": 11}], "views": []})",
        "/meshes/0/level: expected an integer in [0, 10], got 11"},

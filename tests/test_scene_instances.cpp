@@ -173,7 +173,9 @@ TEST_F(SceneInstancesTest, InstancesSharingPointsDrawTheUnculledImage) {
       scene::composeTransform({0, 0, 0}, {0, 0, 0}, {-1, 1, 1}),
       scene::composeTransform({2.5, 0, 0}, {0, 30, 0}, {0.6, 1.4, 1.0})};
   std::vector<frame::CullMesh> meshes;
-  for (const glm::dmat4& m : models) meshes.push_back({&gpu, &cube.patches, m, cube.validity});
+  for (const glm::dmat4& m : models)
+    meshes.push_back(
+        {.gpu = &gpu, .host = &cube.patches, .model = m, .backPatchValidity = cube.validity});
   frame::CullFrameOptions options;
   options.render.tessellation.uniformLevel = 4;
   options.render.cullBackFaces = true;

@@ -1,5 +1,5 @@
 // scene::ScenePlayer: every view of a scene (a main camera on a path and a shadow-map view,
-// a spinning, sliding instance and a mirrored one)
+// a spinning, sliding instance, a mirrored one and the skinned character)
 // keeps its own status over the shared meshes, and each frame's culled image equals the same
 // frame drawn without culling (0 pixels lost, < 0.01% differing).
 #include "osd_cull/scene/default_scene.h"
@@ -13,9 +13,12 @@
 namespace osd_cull {
 namespace {
 
-class ScenePlayerTest : public test::VkTest {};
+class ScenePlayerTest : public test::VkTest {
+ protected:
+  void playAndCompare(const std::string& backPatchMethod);
+};
 
-TEST_F(ScenePlayerTest, EveryViewDrawsTheUnculledImageWithItsOwnStatus) {
+void ScenePlayerTest::playAndCompare(const std::string& backPatchMethod) {
   scene::LoadedScene s = scene::builtInScene(12);
   s.description.settings.width = 128;
   s.description.settings.height = 96;
@@ -38,8 +41,14 @@ TEST_F(ScenePlayerTest, EveryViewDrawsTheUnculledImageWithItsOwnStatus) {
   frame::CullFrameOptions options;
   options.render.tessellation.uniformLevel = 3;
   options.render.cullBackFaces = true;
-  options.cull.backPatch = "tangent-plane";
+  options.cull.backPatch = backPatchMethod;
   scene::ScenePlayer player(context(), s, options);
+  // The skinned character (instance 4) is back-patch culled with cones the GPU bounds pass
+  // recomputes every frame; the tangent plane's host-built data would go stale, so that
+  // method leaves it to the frustum and occlusion tests.
+  ASSERT_NE(player.cullFrame(0).cullPass(4), nullptr);
+  EXPECT_EQ(player.cullFrame(0).cullPass(4)->backPatchEnabled(),
+            backPatchMethod != "tangent-plane");
   ASSERT_EQ(player.viewCount(), 2u);
   ASSERT_EQ(player.instanceCount(), 6u);
   EXPECT_EQ(player.describe().size(), 5u);  // five meshes: the mirror shares the cube's points
@@ -75,6 +84,14 @@ TEST_F(ScenePlayerTest, EveryViewDrawsTheUnculledImageWithItsOwnStatus) {
   const auto mainStatus = player.cullFrame(0).visibility(0).readStatus(context());
   const auto sunStatus = player.cullFrame(1).visibility(0).readStatus(context());
   EXPECT_NE(mainStatus, sunStatus);
+}
+
+TEST_F(ScenePlayerTest, EveryViewDrawsTheUnculledImageWithItsOwnStatus) {
+  playAndCompare("tangent-plane");
+}
+
+TEST_F(ScenePlayerTest, SkinnedCharacterWithPerFrameConesDrawsTheUnculledImage) {
+  playAndCompare("ncone");
 }
 
 }  // namespace

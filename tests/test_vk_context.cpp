@@ -3,6 +3,7 @@
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/device_features.h"
 #include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
 
@@ -15,31 +16,52 @@ namespace {
 
 using test::VkTest;
 
-TEST(VkDeviceSelection, EmptySelectorPrefersLavapipe) {
-  const std::vector<std::string> names = {"AMD Radeon", "llvmpipe (LLVM 15.0.6, 256 bits)"};
-  EXPECT_EQ(vulkan::selectDevice(names, ""), 1u);
-  const std::vector<std::string> noCpu = {"AMD Radeon", "Intel UHD"};
-  EXPECT_EQ(vulkan::selectDevice(noCpu, ""), 0u);
+using vulkan::DeviceCandidate;
+constexpr auto kCpu = VK_PHYSICAL_DEVICE_TYPE_CPU;
+constexpr auto kDiscrete = VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
+constexpr auto kIntegrated = VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU;
+
+TEST(VkDeviceSelection, EmptySelectorPrefersADiscreteThenAnIntegratedGpuThenLavapipe) {
+  const std::vector<DeviceCandidate> all = {{"llvmpipe (LLVM 15.0.6, 256 bits)", kCpu},
+                                            {"Intel UHD", kIntegrated},
+                                            {"AMD Radeon", kDiscrete}};
+  EXPECT_EQ(vulkan::selectDevice(all, ""), 2u);
+  const std::vector<DeviceCandidate> noDiscrete = {{"llvmpipe", kCpu}, {"Intel UHD", kIntegrated}};
+  EXPECT_EQ(vulkan::selectDevice(noDiscrete, ""), 1u);
+  const std::vector<DeviceCandidate> cpuOnly = {{"llvmpipe", kCpu}};
+  EXPECT_EQ(vulkan::selectDevice(cpuOnly, ""), 0u);
 }
 
 TEST(VkDeviceSelection, IndexAndCaseInsensitiveNameSubstring) {
-  const std::vector<std::string> names = {"AMD Radeon", "llvmpipe (LLVM 15)", "Intel UHD"};
+  const std::vector<DeviceCandidate> names = {
+      {"AMD Radeon", kDiscrete}, {"llvmpipe (LLVM 15)", kCpu}, {"Intel UHD", kIntegrated}};
   EXPECT_EQ(vulkan::selectDevice(names, "2"), 2u);
   EXPECT_EQ(vulkan::selectDevice(names, "intel"), 2u);
   EXPECT_EQ(vulkan::selectDevice(names, "RADEON"), 0u);
+  EXPECT_EQ(vulkan::selectDevice(names, "llvmpipe"), 1u);
 }
 
 TEST(VkDeviceSelection, NoMatchListsTheDevices) {
-  const std::vector<std::string> names = {"AMD Radeon", "llvmpipe"};
+  const std::vector<DeviceCandidate> names = {{"AMD Radeon", kDiscrete}, {"llvmpipe", kCpu}};
   try {
     vulkan::selectDevice(names, "nvidia");
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("nvidia"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("1: llvmpipe"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("1: llvmpipe (CPU)"), std::string::npos);
   }
   EXPECT_THROW(vulkan::selectDevice(names, "7"), Error);
   EXPECT_THROW(vulkan::selectDevice({}, ""), Error);
+}
+
+TEST(VkDeviceSelection, TheChoiceIsReportedThroughTheLogCallback) {
+  std::vector<std::string> lines;
+  vulkan::ContextOptions options;
+  options.log = [&](const std::string& line) { lines.push_back(line); };
+  vulkan::Context context(options);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find(context.info().name), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find(vulkan::toString(context.info().type)), std::string::npos) << lines[0];
 }
 
 TEST_F(VkTest, ContextReportsTheChosenDeviceAndItsLimits) {

@@ -90,11 +90,15 @@ TEST(VkShader, EveryEmbeddedStageFileCompiles) {
     const std::string path(s.path);
     if (path.ends_with(".glsl") || path.ends_with(".h")) continue;
     SCOPED_TRACE(path);
-    // Patch stages need PATCH_POINTS; compile both variants (other files ignore it).
-    for (const char* points : {"16", "20"}) {
-      auto spirv = vulkan::compileShader({path, {{"PATCH_POINTS", points}}});
-      EXPECT_EQ((*spirv)[0], kSpirvMagic);
-    }
+    // Patch stages need PATCH_POINTS and, like every reader of control points,
+    // OSD_CULL_POINTS_BDA (common/control_points.glsl); compile every variant (other files
+    // ignore them).
+    for (const char* points : {"16", "20"})
+      for (const char* bda : {"0", "1"}) {
+        auto spirv =
+            vulkan::compileShader({path, {{"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", bda}}});
+        EXPECT_EQ((*spirv)[0], kSpirvMagic);
+      }
     ++stages;
   }
   EXPECT_GT(stages, 0u);

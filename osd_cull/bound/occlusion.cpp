@@ -13,6 +13,7 @@ namespace osd_cull::bound {
 namespace {
 
 using shader::kHiZDepthBias;
+using shader::kHiZExtrapolationPixels;
 using shader::kHiZFar;
 using shader::kHiZPixelMargin;
 using shader::kHiZRelativeError;
@@ -88,7 +89,7 @@ HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& 
   constexpr double inf = std::numeric_limits<double>::infinity();
   const double rel = double{kHiZRelativeError} * marginScale;
   glm::dvec2 lo(inf), hi(-inf);
-  double nearest = inf;
+  double nearest = inf, lowest = inf, highest = -inf;
   for (const glm::dvec3& p : points) {
     const glm::dvec4 c = clipPoint(p, viewProj);
     const glm::dvec4 m = absClipPoint(p, viewProj);  // magnitudes c is summed from
@@ -101,12 +102,14 @@ HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& 
     lo = glm::min(lo, glm::dvec2(ndc) - glm::dvec2(err));
     hi = glm::max(hi, glm::dvec2(ndc) + glm::dvec2(err));
     nearest = std::min(nearest, ndc.z - err.z);
+    lowest = std::min(lowest, ndc.z);
+    highest = std::max(highest, ndc.z);
   }
   // Vulkan viewport: pixel x = (ndc.x + 1) / 2 * width, y likewise (the projection flips y).
   const double pad = double{kHiZPixelMargin} * marginScale;
   const double px0 = (lo.x * 0.5 + 0.5) * width - pad, px1 = (hi.x * 0.5 + 0.5) * width + pad;
   const double py0 = (lo.y * 0.5 + 0.5) * height - pad, py1 = (hi.y * 0.5 + 0.5) * height + pad;
-  if (!std::isfinite(px0 + px1 + py0 + py1 + nearest)) return box;
+  if (!std::isfinite(px0 + px1 + py0 + py1 + nearest + highest - lowest)) return box;
   if (px1 < 0.0 || py1 < 0.0 || px0 > width || py0 > height) return box;
   auto pixel = [](double v, uint32_t size) {
     return static_cast<uint32_t>(std::clamp(std::floor(v), 0.0, double(size - 1)));
@@ -116,7 +119,11 @@ HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& 
   box.x1 = pixel(px1, width);
   box.y0 = pixel(py0, height);
   box.y1 = pixel(py1, height);
-  box.nearestDepth = nearest - double{kHiZDepthBias} * marginScale;
+  // The rasterizer may extrapolate depth past a triangle (kHiZExtrapolationPixels says why).
+  const double n = std::max((hi.x - lo.x) * 0.5 * width, (hi.y - lo.y) * 0.5 * height);
+  const double extrapolation = n > kHiZExtrapolationPixels ? kHiZExtrapolationPixels / n : 1.0;
+  box.nearestDepth =
+      nearest - extrapolation * (highest - lowest) - double{kHiZDepthBias} * marginScale;
   return box;
 }
 

@@ -69,7 +69,10 @@ struct HiZScreenBox {
   bool valid = false;  ///< false: a point with w <= 0, non-finite input, or off screen
   uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< pixels [x0, x1] x [y0, y1], clamped
   /// Lower bound of the patch's rasterized depth: the smallest z/w of the points, each
-  /// widened by its rounding margin, minus kHiZDepthBias (all times the margin scale).
+  /// widened by its rounding margin, minus min(1, kHiZExtrapolationPixels / n) times the
+  /// depth range of the points, n the larger side of the box in pixels (the rasterizer's
+  /// depth extrapolation) and kHiZDepthBias (times the margin
+  /// scale).
   double nearestDepth = 0.0;
 };
 

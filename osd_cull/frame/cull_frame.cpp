@@ -79,6 +79,8 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
   for (uint32_t i = 0; i < options.statsSlots; ++i)
     slots_.push_back(std::make_unique<StatsSlot>(context, meshes.size()));
   const CullSettings& cull = options.cull;
+  if (!cull.occlusion.empty() && target.format().samples != VK_SAMPLE_COUNT_1_BIT)
+    throw Error("CullFrame: Hi-Z occlusion needs a single-sample depth attachment");
   if (!cull.occlusion.empty()) {
     pyramid_ = std::make_unique<HiZPyramid>(context, target.depth(), options.hiz);
     stage_ = std::make_unique<HiZCullStage>(context, *pyramid_);
@@ -240,7 +242,7 @@ uint64_t CullFrame::record(VkCommandBuffer cmd, const Camera& camera,
                            std::span<const GpuTriangleMesh* const> occluders) {
   StatsSlot& slot = beginFrame(camera);
   recordFirstPass(cmd, camera, occluders, slot);
-  if (pyramid_) pyramid_->record(cmd, RenderTarget::kDepthLayout);
+  if (pyramid_) pyramid_->record(cmd, target_.depthLayout());
   recordCull(cmd, camera, slot);
   recordSecondPass(cmd, camera, slot);
   for (auto& v : visibility_) v->advance();
@@ -287,7 +289,7 @@ CullFrameStats CullFrame::render(const Camera& camera,
         context_, [&](VkCommandBuffer cmd) { recordFirstPass(cmd, camera, occluders, slot); });
     if (pyramid_)
       pyramidMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {
-        pyramid_->record(cmd, RenderTarget::kDepthLayout);
+        pyramid_->record(cmd, target_.depthLayout());
       });
     cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) { recordCull(cmd, camera, slot); });
     pass2Ms =

@@ -96,14 +96,14 @@ struct CullFrameStats {
 struct CullMesh {
   GpuPatchSet* gpu = nullptr;
   const PatchSet* host = nullptr;
-  glm::dmat4 model{1.0};  ///< object → world (instanceCamera()); setModel() changes it
-  /// Back-patch validity of this mesh, instead of CullFrameOptions::cull's (a scene's meshes
-  /// differ: closed or not, static or deforming).
-  std::optional<bound::BackPatchValidity> backPatchValidity;
   /// The cone methods' per-patch cull data recomputed on the GPU for a moving mesh
   /// (DynamicPatchMesh::cullData, bounds_pass.h), of the frame's back-patch method; null:
   /// built once on the host (static mesh). Must outlive the CullFrame.
   const vulkan::Buffer* cullData = nullptr;
+  glm::dmat4 model{1.0};  ///< object → world (instanceCamera()); setModel() changes it
+  /// Back-patch validity of this mesh, instead of CullFrameOptions::cull's (a scene's meshes
+  /// differ: closed or not, static or deforming).
+  std::optional<bound::BackPatchValidity> backPatchValidity;
 };
 
 /// \brief The frame pipeline of one view.
@@ -133,10 +133,11 @@ class CullFrame {
   /// - start with barriers that wait for every earlier command of the queue that used the
   ///   frame's buffers (patch points written by a deformer included) and the pyramid;
   /// - begin the target's clear pass (color, item and depth images: any previous layout,
-  ///   contents discarded) and later its load pass, and leave the images in the layouts of
-  ///   RenderTarget: color TRANSFER_SRC_OPTIMAL, items GENERAL, depth
-  ///   DEPTH_STENCIL_ATTACHMENT_OPTIMAL, with their writes made available (the render
-  ///   passes' external dependencies);
+  ///   contents discarded) and later its load pass, and leave the images in the target's
+  ///   resting layouts (own targets: color TRANSFER_SRC_OPTIMAL, items GENERAL, depth
+  ///   DEPTH_STENCIL_ATTACHMENT_OPTIMAL; an application's: ExternalTarget::colorLayout and
+  ///   depthLayout), with their writes made available (the render passes' external
+  ///   dependencies, or the barriers of dynamic rendering, docs/integration.md);
   /// - move the depth image to DEPTH_STENCIL_READ_ONLY_OPTIMAL for the pyramid build and
   ///   back; the pyramid image stays in GENERAL;
   /// - copy the frame's statistics into a readback slot, made available to the host.

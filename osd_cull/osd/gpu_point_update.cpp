@@ -42,10 +42,12 @@ GpuPointUpdate::GpuPointUpdate(DeviceContext& deviceContext, int cageVertexCount
     // w = 1 once; the kernel writes xyz only.
     const vulkan::Buffer& points = points_.buffer();
     points_.markUsed(deviceContext_.submit([&](Batch& batch) {
-      vulkan::memoryBarrier(batch.commandBuffer(), vulkan::scope::kAll, vulkan::scope::kTransferWrite);
+      vulkan::memoryBarrier(batch.commandBuffer(), vulkan::scope::kAll,
+                            vulkan::scope::kTransferWrite);
       vkCmdFillBuffer(batch.commandBuffer(), points.handle(), 0, VK_WHOLE_SIZE,
                       std::bit_cast<uint32_t>(1.0f));
-      vulkan::memoryBarrier(batch.commandBuffer(), vulkan::scope::kTransferWrite, vulkan::scope::kAll);
+      vulkan::memoryBarrier(batch.commandBuffer(), vulkan::scope::kTransferWrite,
+                            vulkan::scope::kAll);
     }));
   }
 }
@@ -80,6 +82,34 @@ uint64_t GpuPointUpdate::update(std::span<const glm::dvec3> cage) {
     scratch_.insert(scratch_.end(),
                     {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
   return update(scratch_);
+}
+
+uint64_t GpuPointUpdate::updateFrom(const EvaluatorBinding& source) {
+  if (source.desc.length != 3)
+    throw Error(
+        "GpuPointUpdate::updateFrom: positions must be 3 floats per vertex, the source "
+        "descriptor says " +
+        std::to_string(source.desc.length));
+  const EvaluatorBinding dst{points_.BindVBO(),
+                             static_cast<size_t>(pointStride()) * static_cast<size_t>(pointCount()),
+                             BufferDescriptor(0, 3, pointStride())};
+  lastTicket_ = deviceContext_.submit([&](Batch& batch) {
+    evaluator_.record(batch, matrix_, source, dst, {}, {}, 0, matrix_.GetNumStencils());
+  });
+  points_.markUsed(lastTicket_);
+  return lastTicket_;
+}
+
+uint64_t GpuPointUpdate::updateFrom(const VkVertexBuffer& source, int firstElement) {
+  if (firstElement < 0 || firstElement + 3 > source.GetNumElements())
+    throw Error("GpuPointUpdate::updateFrom: positions at element " + std::to_string(firstElement) +
+                " do not fit vertices of " + std::to_string(source.GetNumElements()) + " floats");
+  const uint64_t ticket = updateFrom(
+      {source.BindVBO(),
+       static_cast<size_t>(source.GetNumVertices()) * static_cast<size_t>(source.GetNumElements()),
+       BufferDescriptor(firstElement, 3, source.GetNumElements())});
+  source.markUsed(ticket);
+  return ticket;
 }
 
 void GpuPointUpdate::wait() const { deviceContext_.wait(lastTicket_); }

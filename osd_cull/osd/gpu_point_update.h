@@ -63,6 +63,19 @@ class GpuPointUpdate {
   uint64_t update(std::span<const float> cageXyz);
   /// \brief The same from double positions (rounded to float).
   uint64_t update(std::span<const glm::dvec3> cage);
+  /// \brief Computes every control point from positions already on the device: vertex i
+  /// of `source` (x, y, z floats at source.desc.offset + i * source.desc.stride, length 3)
+  /// is matrix column i. For an adaptive Osd::Mesh's vertex buffer after Refine() use the
+  /// ApplicationPatches::fromPatchPoints matrix; for the application's own buffer of cage
+  /// positions the cage matrix. Submitted, not waited for, ordered after earlier work on
+  /// the queue (a buffer another queue writes needs the application's semaphore first).
+  /// \returns the submission's ticket.
+  /// \throws osd_cull::Error when the source holds fewer vertices than the matrix reads or
+  /// its descriptor is not 3 floats per vertex.
+  uint64_t updateFrom(const EvaluatorBinding& source);
+  /// \brief updateFrom() an Osd vertex buffer (e.g. `*mesh.GetVertexBuffer()` of a VkMesh),
+  /// positions at float `firstElement` of each vertex.
+  uint64_t updateFrom(const VkVertexBuffer& source, int firstElement = 0);
   /// \brief Waits for the latest update.
   void wait() const;
 

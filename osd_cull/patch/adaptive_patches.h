@@ -31,6 +31,11 @@ struct PatchOptions {
   /// Infinitely sharp creases and corners become regular boundary-like patches instead of
   /// being isolated to the last level (OpenSubdiv's useInfSharpPatch).
   bool infSharpPatches = true;
+  /// Also build what recomputes the points from a moved cage: the refinement stencils and
+  /// the cage -> point matrix (PatchExtraction::matrix). Off (a static mesh): the points are
+  /// refined directly, in a fraction of the time and memory (about 1.7 KB per Bézier patch
+  /// less), and the matrix is empty.
+  bool pointMatrix = true;
 };
 
 /// \brief A patch table with double-precision stencils for all of its points.
@@ -41,13 +46,18 @@ struct PatchOptions {
 /// gives the point in terms of cage vertices, what
 /// Far::StencilTableFactory::AppendLocalPointStencilTable computes.
 struct AdaptivePatches {
-  std::unique_ptr<const Far::PatchTable> patchTable;
+  /// Owned when built here; for an application's table (adoptPatchTable) a non-owning
+  /// pointer (no-op deleter).
+  std::shared_ptr<const Far::PatchTable> patchTable;
   /// One stencil per vertex of every refinement level, level 0 included (as identity
-  /// stencils); columns are the cage (level 0) vertices.
+  /// stencils); columns are the cage (level 0) vertices. Null when
+  /// PatchOptions::pointMatrix is off.
   std::unique_ptr<const Far::StencilTableReal<double>> refinedStencils;
-  /// One stencil per local (end-cap) point over refined vertices; owned by patchTable,
-  /// null when there are no local points.
+  /// One stencil per local (end-cap) point over refined vertices; owned by patchTable (or
+  /// by convertedLocalPointStencils), null when there are no local points.
   const Far::StencilTableReal<double>* localPointStencils = nullptr;
+  /// A double copy of a single-precision table's local-point stencils (adoptPatchTable).
+  std::unique_ptr<const Far::StencilTableReal<double>> convertedLocalPointStencils;
   int refinedVertexCount = 0;  ///< vertices of all levels (refiner.GetNumVerticesTotal())
   int localPointCount = 0;     ///< end-cap points after them
   double refineMs = 0.0;       ///< adaptive refinement
@@ -63,5 +73,23 @@ void checkPatchOptions(const PatchOptions& options);
 /// \throws osd_cull::Error for Loop or bilinear refiners ("Loop patches are not extracted
 /// yet"), an already refined refiner, or bad options.
 AdaptivePatches buildAdaptivePatches(Far::TopologyRefiner& refiner, const PatchOptions& options);
+
+/// \brief Takes a refiner and patch table the application already built (no second
+/// refinement): only the refinement stencils are computed here, in double, and the
+/// table's local-point stencils are used as they are (float ones widened to double, so
+/// the surface is the application's). Both must outlive the result.
+///
+/// The table must come from this refiner, refined adaptively (RefineAdaptive) with
+/// Catmull-Clark rules, with end caps GREGORY_BASIS or BSPLINE_BASIS and without
+/// single-crease patches (useSingleCreasePatch = false): patches of type REGULAR and
+/// GREGORY_BASIS only.
+/// \throws osd_cull::Error naming what does not fit (scheme, uniform refinement, a table
+/// of another refiner, the patch type and the option that produced it).
+AdaptivePatches adoptPatchTable(const Far::TopologyRefiner& refiner, const Far::PatchTable& table);
+
+/// \brief Refinement stencils (double, one per vertex of every level, level 0 included)
+/// of an already refined refiner.
+std::unique_ptr<const Far::StencilTableReal<double>> refinementStencils(
+    const Far::TopologyRefiner& refiner);
 
 }  // namespace osd_cull

@@ -40,7 +40,7 @@ struct ExtractionStats {
   double refineMs = 0.0;      ///< adaptive refinement
   double patchTableMs = 0.0;  ///< Far::PatchTable
   double stencilMs = 0.0;     ///< refinement and local-point stencils
-  double matrixMs = 0.0;      ///< composing the matrix and the points
+  double matrixMs = 0.0;      ///< the points (and the matrix, when built)
   double totalMs = 0.0;
 
   uint32_t patches() const { return regular + boundary + corner + gregory + bsplineEndCaps; }
@@ -49,7 +49,9 @@ struct ExtractionStats {
 /// \brief PatchSet + the matrix that recomputes its points from moved cage vertices.
 struct PatchExtraction {
   PatchSet patches;
-  PatchPointMatrix matrix;  ///< rows = patches.points, columns = cage vertices
+  /// rows = patches.points, columns = cage vertices; empty (0 x 0) when
+  /// PatchOptions::pointMatrix is off
+  PatchPointMatrix matrix;
   /// Texture coordinates of the patch corners (0,0), (1,0), (1,1), (0,1), four per patch in
   /// PatchSet order, bilinear over the patch (face_varying_uv.h); empty when the cage has no
   /// texture coordinates.
@@ -68,6 +70,30 @@ PatchExtraction extractPatches(const CageMesh& cage, const PatchOptions& options
 PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const glm::dvec3> positions,
                                const PatchOptions& options = {}, const std::string& source = {},
                                std::span<const glm::dvec2> uvs = {});
+
+/// \brief The composition step alone: the PatchSet and matrix of refinement results (from
+/// buildAdaptivePatches() or adoptPatchTable() on `refiner`) for level-0 `positions`, and
+/// with `uvs` (face-varying channel 0 of the base level) the uvCorners.
+PatchExtraction extractPatches(const Far::TopologyRefiner& refiner, const AdaptivePatches& adaptive,
+                               std::span<const glm::dvec3> positions, const std::string& source,
+                               std::span<const glm::dvec2> uvs = {});
+
+/// \brief A patch of a Far::PatchTable: patch array and index in it.
+struct PatchRef {
+  int array;
+  int index;
+};
+
+/// \brief The patches of a table in PatchSet order: all REGULAR (→ Bézier) patches, then all
+/// GREGORY_BASIS ones, each in table order.
+struct PatchOrder {
+  std::vector<PatchRef> bezier;
+  std::vector<PatchRef> gregory;
+};
+
+/// \brief PatchOrder of `table`.
+/// \throws osd_cull::Error naming `where` for any other patch type.
+PatchOrder patchOrder(const Far::PatchTable& table, const std::string& where);
 
 /// \brief The origin of a regular B-spline patch from its PatchParam: BSplineEndCap if
 /// OpenSubdiv marks it irregular, else by its boundary edges: none → Regular, one →

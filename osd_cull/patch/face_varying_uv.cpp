@@ -1,6 +1,7 @@
 #include "osd_cull/patch/face_varying_uv.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/patch/patch_eval.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <glm/geometric.hpp>
@@ -119,6 +120,15 @@ uint32_t countUVSeamEdges(std::span<const glm::dvec3> positions,
       }
     }
   return seams;
+}
+
+uint32_t countUVSeamEdges(const PatchSet& patches, std::span<const glm::dvec2> corners) {
+  std::vector<glm::dvec3> positions;
+  positions.reserve(4 * size_t{patches.patchCount()});
+  for (uint32_t p = 0; p < patches.patchCount(); ++p)
+    for (glm::dvec2 st : kCorners)
+      positions.push_back(evaluatePatch(patches, p, st.x, st.y).position);
+  return countUVSeamEdges(positions, corners);
 }
 
 }  // namespace osd_cull

@@ -12,6 +12,8 @@
 /// uses the same corners, so the bound (the box of the four corners, exact for bilinear
 /// interpolation) is exact for what is drawn.
 
+#include "osd_cull/patch/patch_set.h"
+
 #include <opensubdiv/far/patchTable.h>
 #include <opensubdiv/far/topologyRefiner.h>
 
@@ -54,5 +56,9 @@ class PatchUVEvaluator {
 /// counts once.
 uint32_t countUVSeamEdges(std::span<const glm::dvec3> positions,
                           std::span<const glm::dvec2> corners);
+
+/// \brief countUVSeamEdges() of a patch set: the corner positions are the patches' own
+/// (evaluated at (0,0), (1,0), (1,1), (0,1)); `corners` as PatchExtraction::uvCorners.
+uint32_t countUVSeamEdges(const PatchSet& patches, std::span<const glm::dvec2> corners);
 
 }  // namespace osd_cull

@@ -46,6 +46,11 @@ SceneDescription defaultSceneDescription(uint32_t frames) {
   mesh("pole-sphere", "pole-sphere-5");
   mesh("creased-cube", "creased-cube");
   mesh("character", "character");
+  // Arms and legs swing (the skinning deformer's limb rig): a walk on the spot.
+  d.meshes.back().animation.kind = AnimationSource::Kind::Skin;
+  d.meshes.back().animation.skinning.rig = SkinningRig::Limbs;
+  d.meshes.back().animation.skinning.swingDegrees = 35.0;
+  d.meshes.back().animation.skinning.frequency = 1.0;
   auto instance = [&](size_t m, const glm::dvec3& at, double size) {
     InstanceDescription i;
     i.name = d.meshes[m].name;
@@ -88,9 +93,12 @@ SceneDescription defaultSceneDescription(uint32_t frames) {
 LoadedScene builtInScene(uint32_t frames) {
   LoadedScene s;
   s.description = defaultSceneDescription(frames);
-  for (const MeshDescription& m : s.description.meshes)
+  for (const MeshDescription& m : s.description.meshes) {
+    CageMesh cage = *builtInMesh(m.builtIn);
+    auto animation = makeProceduralAnimation(m.animation, cage.positions);
     s.meshes.push_back(
-        makeSceneMesh(m.name, *builtInMesh(m.builtIn), m.patches, m.recentre, nullptr));
+        makeSceneMesh(m.name, std::move(cage), m.patches, m.recentre, std::move(animation)));
+  }
   for (const OccluderDescription& o : s.description.occluders)
     s.occluders.push_back(frame::boxMesh(o.boxMin, o.boxMax));
   return s;

@@ -29,8 +29,8 @@ Scene defaultScene(const PatchOptions& options = {});
 
 /// \brief The same objects as a scene description (docs/scene-format.md), each mesh an
 /// instance placed by its transform, plus a standing character (scene::character()) in
-/// front of the wall, with `frames` frames of a camera path at 24 fps: a
-/// main view that swings around the objects and closes in.
+/// front of the wall whose arms and legs swing (skinning, limb rig), with `frames` frames of a
+/// camera path at 24 fps: a main view that swings around the objects and closes in.
 SceneDescription defaultSceneDescription(uint32_t frames = 48);
 
 /// \brief defaultSceneDescription() loaded (built-in cages only, no files).

@@ -1,11 +1,31 @@
 #include "osd_cull/scene/loaded_scene.h"
 
+#include "osd_cull/error.h"
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/scene/scene_eval.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace osd_cull::scene {
+
+std::unique_ptr<CageAnimation> makeProceduralAnimation(const AnimationSource& a,
+                                                       std::span<const glm::dvec3> rest) {
+  switch (a.kind) {
+    case AnimationSource::Kind::None:
+      return nullptr;
+    case AnimationSource::Kind::Twist:
+      return makeTwist(rest, a.deformer);
+    case AnimationSource::Kind::Bend:
+      return makeBend(rest, a.deformer);
+    case AnimationSource::Kind::Wave:
+      return makeWave(rest, a.deformer);
+    case AnimationSource::Kind::Skin:
+      return makeSkinning(rest, a.skinning);
+    case AnimationSource::Kind::Sequence:
+      break;
+  }
+  throw Error("an OBJ sequence is a file: load it with adapters::loadScene()");
+}
 
 SceneMesh makeSceneMesh(std::string name, CageMesh cage, const PatchOptions& options, bool recentre,
                         std::unique_ptr<CageAnimation> animation) {
@@ -18,6 +38,7 @@ SceneMesh makeSceneMesh(std::string name, CageMesh cage, const PatchOptions& opt
   m.validity =
       bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
   m.extraction = extractPatches(cage, options);
+  m.restCage = cage.positions;
   m.restBounds = frame::boundsOf(m.extraction.patches.points);
   m.animation = std::move(animation);
   return m;

@@ -19,7 +19,8 @@ namespace osd_cull::scene {
 /// matrix, and its animation.
 struct SceneMesh {
   std::string name;
-  PatchExtraction extraction;  ///< rest-pose patches (recentred) and the matrix
+  PatchExtraction extraction;        ///< rest-pose patches (recentred) and the matrix
+  std::vector<glm::dvec3> restCage;  ///< the cage positions they came from (recentred)
   /// Subtracted from every cage position (the animation's too) at load; the instances'
   /// transforms add it back, so world positions are unchanged (SceneMeshDescription::recentre).
   glm::dvec3 recentreOffset{0.0};
@@ -34,6 +35,12 @@ struct LoadedScene {
   std::vector<SceneMesh> meshes;
   std::vector<frame::TriangleMesh> occluders;  ///< world coordinates
 };
+
+/// \brief The deformer `source` names (twist, bend, wave, skin) on the rest cage `rest`;
+/// null for none. Sequences are files: adapters::loadScene() loads them.
+/// \throws osd_cull::Error for a sequence, or as the deformer factories.
+std::unique_ptr<CageAnimation> makeProceduralAnimation(const AnimationSource& source,
+                                                       std::span<const glm::dvec3> rest);
 
 /// \brief Fills a SceneMesh from a cage: recentres it (when `recentre`), refines it with
 /// `options`, and records its validity and rest bounds. `animation` (may be null) must

@@ -1,9 +1,12 @@
 #include "osd_cull/scene/scene_player.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_methods.h"
+#include "osd_cull/frame/dynamic_patch_mesh.h"
 #include "osd_cull/scene/scene_eval.h"
 
 #include <map>
+#include <optional>
 
 namespace osd_cull::scene {
 
@@ -12,10 +15,17 @@ namespace osd_cull::scene {
 struct ScenePlayer::Points {
   size_t mesh = 0;
   double timeOffset = 0.0;
-  PatchSet host;  // object space, current pose
-  std::unique_ptr<frame::GpuPatchSet> gpu;
+  // A static mesh: its rest pose.
+  PatchSet rest;
+  std::unique_ptr<frame::GpuPatchSet> restGpu;
+  // A deforming mesh: the cage input, control points and GPU bounds passes of
+  // frame/dynamic_patch_mesh.h.
+  std::unique_ptr<frame::DynamicPatchMesh> dynamic;
   std::vector<glm::dvec3> cage;  // scratch for the animation
   frame::Bounds bounds;
+
+  frame::GpuPatchSet& gpu() { return dynamic ? dynamic->gpu() : *restGpu; }
+  const PatchSet& host() { return dynamic ? dynamic->patches() : rest; }
 };
 
 ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
@@ -34,8 +44,13 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
       auto p = std::make_unique<Points>();
       p->mesh = inst.mesh;
       p->timeOffset = offset;
-      p->host = mesh.extraction.patches;
-      p->gpu = std::make_unique<frame::GpuPatchSet>(context, p->host);
+      if (mesh.animation) {
+        p->dynamic =
+            std::make_unique<frame::DynamicPatchMesh>(context, mesh.extraction, mesh.restCage);
+      } else {
+        p->rest = mesh.extraction.patches;
+        p->restGpu = std::make_unique<frame::GpuPatchSet>(context, p->rest);
+      }
       p->bounds = mesh.restBounds;
       points_.push_back(std::move(p));
     }
@@ -44,16 +59,30 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
   for (const frame::TriangleMesh& m : scene.occluders) occluderMeshes_.emplace_back(context, m);
   for (const auto& m : occluderMeshes_) occluderPtrs_.push_back(&m);
 
+  // A deforming mesh gets its cones from the GPU bounds pass of the cone method in use; the
+  // tangent plane's drawn-triangle data is built on the host only, so it stays off there.
+  std::optional<bound::BackPatchMethod> coneMethod;
+  if (!options.cull.backPatch.empty()) {
+    const bound::BackPatchMethod ref = frame::cullMethod(options.cull.backPatch).reference;
+    if (ref == bound::BackPatchMethod::TCone || ref == bound::BackPatchMethod::NCone)
+      coneMethod = ref;
+  }
   std::vector<frame::CullMesh> meshes;
   for (const Instance& inst : instances_) {
     Points& p = *points_[inst.points];
     const SceneMesh& mesh = scene.meshes[p.mesh];
-    frame::CullMesh m{p.gpu.get(), &p.host, inst.model, mesh.validity};
-    // Until the per-frame bounds pass recomputes the cones, a deforming mesh is culled by
-    // the tests that read its control points only (frustum, occlusion).
-    if (mesh.animation)
-      m.backPatchValidity = bound::BackPatchValidity{
-          false, "mesh '" + mesh.name + "' deforms; its cones are built once"};
+    frame::CullMesh m{.gpu = &p.gpu(),
+                      .host = &p.host(),
+                      .model = inst.model,
+                      .backPatchValidity = mesh.validity};
+    if (p.dynamic && mesh.validity.enabled) {
+      if (coneMethod)
+        m.cullData = &p.dynamic->cullData(*coneMethod);
+      else if (!options.cull.backPatch.empty())
+        m.backPatchValidity = bound::BackPatchValidity{
+            false, "mesh '" + mesh.name + "' deforms; its bounds are recomputed per frame for " +
+                       "tcone and ncone only"};
+    }
     meshes.push_back(std::move(m));
   }
   for (const ViewDescription& v : d.views) {
@@ -71,12 +100,12 @@ ScenePlayer::~ScenePlayer() = default;
 
 uint32_t ScenePlayer::patchCount() const {
   uint32_t n = 0;
-  for (const Instance& i : instances_) n += points_[i.points]->host.patchCount();
+  for (const Instance& i : instances_) n += points_[i.points]->host().patchCount();
   return n;
 }
 
 const PatchSet& ScenePlayer::patches(size_t i) const {
-  return points_.at(instances_.at(i).points)->host;
+  return points_.at(instances_.at(i).points)->host();
 }
 
 void ScenePlayer::seek(uint32_t frameIndex) {
@@ -88,9 +117,9 @@ void ScenePlayer::seek(uint32_t frameIndex) {
     p->cage.resize(mesh.animation->vertexCount());
     mesh.animation->positions(t + p->timeOffset, p->cage);
     for (glm::dvec3& v : p->cage) v -= mesh.recentreOffset;
-    mesh.extraction.matrix.update(p->cage, p->host.points);
-    p->gpu->updatePoints(context_, p->host.points);
-    p->bounds = frame::boundsOf(p->host.points);
+    p->dynamic->setCagePositions(p->cage);
+    p->dynamic->update();
+    p->bounds = frame::boundsOf(p->dynamic->patches().points);
   }
   std::vector<frame::Bounds> objectBounds;
   std::vector<glm::dmat4> models;
@@ -125,11 +154,11 @@ frame::FrameStats ScenePlayer::renderUnculled(size_t view, frame::RenderTarget& 
   std::vector<frame::PatchDraw> draws;
   uint32_t base = 0;
   for (const Instance& i : instances_) {
-    const Points& p = *points_[i.points];
-    frame::PatchDraw draw{p.gpu.get(), &p.host, base};
+    Points& p = *points_[i.points];
+    frame::PatchDraw draw{&p.gpu(), &p.host(), base};
     draw.model = &i.model;
     draws.push_back(draw);
-    base += p.host.patchCount();
+    base += p.host().patchCount();
   }
   frame::RenderOptions o = v.frame->options().render;
   o.clear = true;
@@ -142,8 +171,9 @@ std::vector<std::string> ScenePlayer::describe() const {
     const SceneMesh& mesh = scene_.meshes[p->mesh];
     size_t users = 0;
     for (const Instance& i : instances_) users += points_[i.points].get() == p.get();
-    std::string line = "mesh '" + mesh.name + "': " + std::to_string(p->host.bezierCount) +
-                       " Bezier + " + std::to_string(p->host.gregoryCount) + " Gregory patches, " +
+    const PatchSet& host = p->host();
+    std::string line = "mesh '" + mesh.name + "': " + std::to_string(host.bezierCount) +
+                       " Bezier + " + std::to_string(host.gregoryCount) + " Gregory patches, " +
                        std::to_string(users) + " instance(s) share its points";
     line += mesh.animation ? ", deforms (" + mesh.animation->describe() + ")" : ", static";
     if (glm::length(mesh.recentreOffset) > 0.0) {

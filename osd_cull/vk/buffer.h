@@ -13,7 +13,9 @@ namespace osd_cull::vulkan {
 class Context;
 
 /// \brief A buffer bound to a sub-allocated memory range. Usage always includes
-/// TRANSFER_SRC and TRANSFER_DST so that any buffer can be uploaded to and read back.
+/// TRANSFER_SRC and TRANSFER_DST so that any buffer can be uploaded to and read back, and
+/// storage buffers get SHADER_DEVICE_ADDRESS when the device has bufferDeviceAddress, so
+/// that shaders can read more than maxStorageBufferRange through deviceAddress().
 /// Upload and Readback buffers are persistently mapped (mapped() is non-null).
 class Buffer {
  public:
@@ -25,6 +27,13 @@ class Buffer {
   VkBuffer handle() const { return buffer_.get(); }
   VkDeviceSize size() const { return size_; }
   VkBufferUsageFlags usage() const { return usage_; }
+  /// \brief The buffer's device address (vkGetBufferDeviceAddress).
+  /// \throws osd_cull::Error naming bufferDeviceAddress when the buffer has none (the device
+  /// lacks the feature or the buffer is not a storage buffer).
+  VkDeviceAddress deviceAddress() const;
+  /// \brief The device's maxStorageBufferRange: the most one storage-buffer descriptor of
+  /// this buffer may cover (checked by DescriptorWriter).
+  VkDeviceSize maxStorageRange() const { return maxStorageRange_; }
   explicit operator bool() const { return static_cast<bool>(buffer_); }
   /// \brief Host pointer to the buffer's bytes, or nullptr if its memory is not mapped.
   std::byte* mapped() const { return allocation_.mapped(); }
@@ -46,6 +55,8 @@ class Buffer {
   Allocation allocation_;
   VkDeviceSize size_ = 0;
   VkBufferUsageFlags usage_ = 0;
+  VkDeviceAddress address_ = 0;
+  VkDeviceSize maxStorageRange_ = 0;
 };
 
 }  // namespace osd_cull::vulkan

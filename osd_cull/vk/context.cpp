@@ -2,6 +2,7 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/vk/check.h"
+#include "osd_cull/vk/device_features.h"
 
 #include <algorithm>
 #include <cctype>
@@ -19,10 +20,12 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-std::string deviceList(std::span<const std::string> names) {
+std::string deviceList(std::span<const DeviceCandidate> devices) {
   std::string out;
-  for (size_t i = 0; i < names.size(); ++i) out += "\n  " + std::to_string(i) + ": " + names[i];
-  return names.empty() ? std::string("\n  (none)") : out;
+  for (size_t i = 0; i < devices.size(); ++i)
+    out += "\n  " + std::to_string(i) + ": " + devices[i].name + " (" + toString(devices[i].type) +
+           ")";
+  return devices.empty() ? std::string("\n  (none)") : out;
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
@@ -72,14 +75,30 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
   return devices;
 }
 
-std::vector<std::string> deviceNames(VkInstance instance) {
-  std::vector<std::string> names;
+std::vector<DeviceCandidate> deviceCandidates(VkInstance instance) {
+  std::vector<DeviceCandidate> out;
   for (VkPhysicalDevice d : physicalDevices(instance)) {
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(d, &p);
-    names.emplace_back(p.deviceName);
+    out.push_back({p.deviceName, p.deviceType});
   }
-  return names;
+  return out;
+}
+
+// Rank of a device type for the default choice (lower is preferred).
+int typeRank(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 3;
+    default:
+      return 4;
+  }
 }
 
 }  // namespace
@@ -88,7 +107,7 @@ std::vector<std::string> listDevices() {
   VkInstance instance = createBareInstance();
   std::vector<std::string> names;
   try {
-    names = deviceNames(instance);
+    for (const DeviceCandidate& d : deviceCandidates(instance)) names.push_back(d.name);
   } catch (...) {
     vkDestroyInstance(instance, nullptr);
     throw;
@@ -97,26 +116,27 @@ std::vector<std::string> listDevices() {
   return names;
 }
 
-uint32_t selectDevice(std::span<const std::string> names, std::string_view selector) {
-  if (names.empty()) throw Error("no Vulkan device found (is mesa-vulkan-drivers installed?)");
+uint32_t selectDevice(std::span<const DeviceCandidate> devices, std::string_view selector) {
+  if (devices.empty()) throw Error("no Vulkan device found (is mesa-vulkan-drivers installed?)");
   if (selector.empty()) {
-    for (size_t i = 0; i < names.size(); ++i)
-      if (lower(names[i]).find("llvmpipe") != std::string::npos) return static_cast<uint32_t>(i);
-    return 0;
+    size_t best = 0;
+    for (size_t i = 1; i < devices.size(); ++i)
+      if (typeRank(devices[i].type) < typeRank(devices[best].type)) best = i;
+    return static_cast<uint32_t>(best);
   }
   if (std::all_of(selector.begin(), selector.end(),
                   [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) {
     const unsigned long index = std::stoul(std::string(selector));
-    if (index >= names.size())
+    if (index >= devices.size())
       throw Error("Vulkan device index " + std::string(selector) +
-                  " is out of range; devices:" + deviceList(names));
+                  " is out of range; devices:" + deviceList(devices));
     return static_cast<uint32_t>(index);
   }
   const std::string needle = lower(selector);
-  for (size_t i = 0; i < names.size(); ++i)
-    if (lower(names[i]).find(needle) != std::string::npos) return static_cast<uint32_t>(i);
+  for (size_t i = 0; i < devices.size(); ++i)
+    if (lower(devices[i].name).find(needle) != std::string::npos) return static_cast<uint32_t>(i);
   throw Error("no Vulkan device name contains '" + std::string(selector) +
-              "'; devices:" + deviceList(names));
+              "'; devices:" + deviceList(devices));
 }
 
 Context::Context(const ContextOptions& options)
@@ -124,6 +144,7 @@ Context::Context(const ContextOptions& options)
   try {
     createInstance(options);
     pickDevice(options);
+    if (options.adjustDeviceInfo) options.adjustDeviceInfo(info_);
     createDevice();
   } catch (...) {
     destroy();
@@ -136,6 +157,7 @@ Context::~Context() { destroy(); }
 void Context::destroy() {
   commandPool_.reset();
   allocator_.reset();
+  if (!ownsDevice_) return;  // the application's device and instance stay
   if (device_) vkDestroyDevice(device_, nullptr);
   device_ = VK_NULL_HANDLE;
   if (messenger_) {
@@ -217,44 +239,31 @@ void Context::createInstance(const ContextOptions& options) {
 
 void Context::pickDevice(const ContextOptions& options) {
   const std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
-  const std::vector<std::string> names = deviceNames(instance_);
+  const std::vector<DeviceCandidate> candidates = deviceCandidates(instance_);
   std::string selector = options.device;
+  const char* how = "given by the caller";
   if (selector.empty())
-    if (const char* env = std::getenv("OSD_CULL_DEVICE")) selector = env;
-  info_.index = selectDevice(names, selector);
-  physicalDevice_ = devices[info_.index];
-
-  VkPhysicalDeviceVulkan12Properties props12{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES};
-  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-  VkPhysicalDeviceProperties base;
-  vkGetPhysicalDeviceProperties(physicalDevice_, &base);
-  const bool is12 = base.apiVersion >= VK_API_VERSION_1_2;
-  if (is12) props.pNext = &props12;
-  vkGetPhysicalDeviceProperties2(physicalDevice_, &props);
-  info_.name = props.properties.deviceName;
-  info_.type = props.properties.deviceType;
-  info_.apiVersion = props.properties.apiVersion;
-  info_.limits = props.properties.limits;
-  if (is12) info_.driver = std::string(props12.driverName) + " " + props12.driverInfo;
-
-  std::vector<std::string> missing;
-  if (!is12)
-    missing.push_back("Vulkan 1.2 (device reports " +
-                      std::to_string(VK_API_VERSION_MAJOR(info_.apiVersion)) + "." +
-                      std::to_string(VK_API_VERSION_MINOR(info_.apiVersion)) + ")");
+    if (const char* env = std::getenv("OSD_CULL_DEVICE")) {
+      selector = env;
+      how = "from OSD_CULL_DEVICE";
+    }
+  if (selector.empty()) how = "default: discrete, then integrated GPU, then CPU";
+  const uint32_t index = selectDevice(candidates, selector);
+  physicalDevice_ = devices[index];
+  info_ = describeDevice(physicalDevice_, index);
 
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  VkPhysicalDeviceDynamicRenderingFeatures dynamic{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
+  const bool is12 = info_.apiVersion >= VK_API_VERSION_1_2;
+  const bool dynamicExtension =
+      hasDeviceExtension(physicalDevice_, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
   if (is12) f.pNext = &f12;
+  if (is12 && dynamicExtension) f12.pNext = &dynamic;
   vkGetPhysicalDeviceFeatures2(physicalDevice_, &f);
-  if (!f.features.tessellationShader) missing.push_back("tessellationShader");
-  if (!f.features.pipelineStatisticsQuery) missing.push_back("pipelineStatisticsQuery");
-  if (!f.features.multiDrawIndirect) missing.push_back("multiDrawIndirect");
-  if (is12 && !f12.drawIndirectCount) missing.push_back("drawIndirectCount");
-  if (info_.limits.maxTessellationPatchSize < 20)
-    missing.push_back("maxTessellationPatchSize >= 20 (has " +
-                      std::to_string(info_.limits.maxTessellationPatchSize) + ")");
+  std::vector<std::string> missing =
+      missingRequiredFeatures(findFeatures(f), info_.apiVersion, info_.limits);
 
   uint32_t familyCount = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
@@ -284,22 +293,18 @@ void Context::pickDevice(const ContextOptions& options) {
   }
   deviceExtensions_ = options.deviceExtensions;
 
-  if (!missing.empty()) {
-    std::string list;
-    for (const auto& m : missing) list += (list.empty() ? "" : ", ") + m;
+  if (!missing.empty())
     throw Error("Vulkan device " + std::to_string(info_.index) + " '" + info_.name +
-                "' lacks required features: " + list +
+                "' lacks required features: " + joinNames(missing) +
                 " (choose another device with --device or OSD_CULL_DEVICE; devices:" +
-                deviceList(names) + ")");
-  }
-  info_.optional.shaderFloat64 = f.features.shaderFloat64;
-  info_.optional.samplerFilterMinmax = f12.samplerFilterMinmax;
-  info_.optional.bufferDeviceAddress = f12.bufferDeviceAddress;
-  info_.optional.hostQueryReset = f12.hostQueryReset;
-  info_.optional.vertexPipelineStoresAndAtomics = f.features.vertexPipelineStoresAndAtomics;
-  info_.optional.fragmentStoresAndAtomics = f.features.fragmentStoresAndAtomics;
-  info_.optional.fillModeNonSolid = f.features.fillModeNonSolid;
-  info_.optional.geometryShader = f.features.geometryShader;
+                deviceList(candidates) + ")");
+  info_.optional = optionalFeaturesOf(findFeatures(f), dynamicExtension);
+  const std::string line = "osd_cull: Vulkan device " + std::to_string(index) + " '" + info_.name +
+                           "' (" + toString(info_.type) + ", " + how + ")";
+  if (options.log)
+    options.log(line);
+  else
+    std::cerr << line << "\n";
 }
 
 void Context::createDevice() {
@@ -319,6 +324,11 @@ void Context::createDevice() {
   f.features.fragmentStoresAndAtomics = opt.fragmentStoresAndAtomics;
   f.features.fillModeNonSolid = opt.fillModeNonSolid;
   f.features.geometryShader = opt.geometryShader;
+  // Dynamic rendering through the extension: the instance asks for Vulkan 1.2 only.
+  VkPhysicalDeviceDynamicRenderingFeatures dynamic{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
+  dynamic.dynamicRendering = VK_TRUE;
+  if (opt.dynamicRendering) f12.pNext = &dynamic;
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -327,7 +337,9 @@ void Context::createDevice() {
   queueInfo.pQueuePriorities = &priority;
 
   std::vector<const char*> extensions;
-  for (const std::string& e : deviceExtensions_) extensions.push_back(e.c_str());
+  for (const std::string& e : deviceExtensions_)
+    if (e != VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME) extensions.push_back(e.c_str());
+  if (opt.dynamicRendering) extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &f;
   info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
@@ -336,8 +348,25 @@ void Context::createDevice() {
   info.pQueueCreateInfos = &queueInfo;
   OSD_CULL_VK(vkCreateDevice(physicalDevice_, &info, nullptr, &device_));
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+  createOwnObjects();
+}
 
-  allocator_ = std::make_unique<MemoryAllocator>(physicalDevice_, device_, blockSize_);
+void Context::createOwnObjects() {
+  if (info_.optional.dynamicRendering) {
+    // The extension's entry points first (how our own device enables it), then core 1.3's
+    // (an application's 1.3 device without the extension).
+    for (const char* suffix : {"KHR", ""}) {
+      beginRendering_ = reinterpret_cast<PFN_vkCmdBeginRenderingKHR>(
+          vkGetDeviceProcAddr(device_, (std::string("vkCmdBeginRendering") + suffix).c_str()));
+      endRendering_ = reinterpret_cast<PFN_vkCmdEndRenderingKHR>(
+          vkGetDeviceProcAddr(device_, (std::string("vkCmdEndRendering") + suffix).c_str()));
+      if (beginRendering_ && endRendering_) break;
+    }
+    if (!beginRendering_ || !endRendering_)
+      throw Error("dynamic rendering is enabled but vkCmdBeginRendering is not available");
+  }
+  allocator_ = std::make_unique<MemoryAllocator>(physicalDevice_, device_, blockSize_,
+                                                 info_.optional.bufferDeviceAddress);
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

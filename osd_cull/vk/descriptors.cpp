@@ -52,6 +52,14 @@ void DescriptorPool::reset() { OSD_CULL_VK(vkResetDescriptorPool(device_, pool_.
 DescriptorWriter& DescriptorWriter::buffer(uint32_t binding, const Buffer& buffer,
                                            VkDescriptorType type, VkDeviceSize offset,
                                            VkDeviceSize range) {
+  const VkDeviceSize covered = range == VK_WHOLE_SIZE ? buffer.size() - offset : range;
+  if ((type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ||
+       type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER_DYNAMIC) &&
+      covered > buffer.maxStorageRange())
+    throw Error("descriptor binding " + std::to_string(binding) + ": a storage buffer range of " +
+                std::to_string(covered) + " bytes exceeds the device's maxStorageBufferRange of " +
+                std::to_string(buffer.maxStorageRange()) +
+                " bytes (read it through a buffer device address or split it)");
   writes_.push_back({binding, type, buffer.descriptor(offset, range), {}, false});
   return *this;
 }

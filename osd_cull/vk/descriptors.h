@@ -47,6 +47,9 @@ class DescriptorPool {
 class DescriptorWriter {
  public:
   /// \brief A storage or uniform buffer range (whole buffer by default).
+  /// \throws osd_cull::Error when a storage-buffer range exceeds the device's
+  /// maxStorageBufferRange (such buffers must be read through a device address or split),
+  /// before anything is written or recorded.
   DescriptorWriter& buffer(uint32_t binding, const Buffer& buffer,
                            VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                            VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE);

@@ -71,18 +71,39 @@ Image::Image(Context& context, const ImageDesc& desc) : desc_(desc) {
   OSD_CULL_VK(
       vkBindImageMemory(context.device(), image, allocation_.memory(), allocation_.offset()));
 
+  makeViews(context, aspectOf(desc.format));
+}
+
+Image Image::borrow(Context& context, VkImage image, const ImageDesc& desc) {
+  if (!image) throw Error("vulkan::Image::borrow: the image handle is null");
+  if (desc.width == 0 || desc.height == 0 || desc.mipLevels == 0)
+    throw Error("vulkan::Image::borrow: width, height and mip levels must be positive (got " +
+                std::to_string(desc.width) + "x" + std::to_string(desc.height) + ", " +
+                std::to_string(desc.mipLevels) + " mips)");
+  Image out;
+  out.desc_ = desc;
+  out.borrowed_ = image;
+  const VkImageAspectFlags aspect = aspectOf(desc.format);
+  out.makeViews(context, (aspect & VK_IMAGE_ASPECT_DEPTH_BIT)
+                             ? VkImageAspectFlags{VK_IMAGE_ASPECT_DEPTH_BIT}
+                             : aspect);
+  return out;
+}
+
+void Image::makeViews(Context& context, VkImageAspectFlags aspect) {
   auto makeView = [&](uint32_t base, uint32_t count) {
     VkImageViewCreateInfo v{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    v.image = image;
+    v.image = handle();
     v.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    v.format = desc.format;
-    v.subresourceRange = {aspectOf(desc.format), base, count, 0, 1};
+    v.format = desc_.format;
+    v.subresourceRange = {aspect, base, count, 0, 1};
     VkImageView view = VK_NULL_HANDLE;
     OSD_CULL_VK(vkCreateImageView(context.device(), &v, nullptr, &view));
     return UniqueImageView(context.device(), view);
   };
-  view_ = makeView(0, desc.mipLevels);
-  for (uint32_t level = 0; level < desc.mipLevels; ++level) mipViews_.push_back(makeView(level, 1));
+  view_ = makeView(0, desc_.mipLevels);
+  for (uint32_t level = 0; level < desc_.mipLevels; ++level)
+    mipViews_.push_back(makeView(level, 1));
 }
 
 }  // namespace osd_cull::vulkan

@@ -35,7 +35,16 @@ class Image {
   Image() = default;
   Image(Context& context, const ImageDesc& desc);
 
-  VkImage handle() const { return image_.get(); }
+  /// \brief Wraps an image the application owns (e.g. its depth attachment) without
+  /// owning it: only the views made here are destroyed with the wrapper. `desc` must say
+  /// what the image is (size, format, mip levels, the usage it was created with). Views of
+  /// depth formats show the depth aspect only (for sampling); barriers use aspect().
+  /// \throws osd_cull::Error for a null image or a zero size.
+  static Image borrow(Context& context, VkImage image, const ImageDesc& desc);
+
+  VkImage handle() const { return image_ ? image_.get() : borrowed_; }
+  /// \brief True when the image belongs to someone else (borrow()).
+  bool borrowed() const { return borrowed_ != VK_NULL_HANDLE; }
   const ImageDesc& desc() const { return desc_; }
   uint32_t width() const { return desc_.width; }
   uint32_t height() const { return desc_.height; }
@@ -45,10 +54,12 @@ class Image {
   VkImageView view() const { return view_.get(); }
   /// \brief A view of one mip level (for storage-image writes per level).
   VkImageView mipView(uint32_t level) const { return mipViews_.at(level).get(); }
-  explicit operator bool() const { return static_cast<bool>(image_); }
+  explicit operator bool() const { return handle() != VK_NULL_HANDLE; }
 
  private:
+  void makeViews(Context& context, VkImageAspectFlags aspect);
   UniqueImage image_;
+  VkImage borrowed_ = VK_NULL_HANDLE;
   Allocation allocation_;
   UniqueImageView view_;
   std::vector<UniqueImageView> mipViews_;

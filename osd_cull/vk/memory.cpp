@@ -49,8 +49,8 @@ std::byte* Allocation::mapped() const {
 }
 
 MemoryAllocator::MemoryAllocator(VkPhysicalDevice physicalDevice, VkDevice device,
-                                 VkDeviceSize blockSize)
-    : device_(device), blockSize_(blockSize) {
+                                 VkDeviceSize blockSize, bool deviceAddress)
+    : device_(device), blockSize_(blockSize), deviceAddress_(deviceAddress) {
   vkGetPhysicalDeviceMemoryProperties(physicalDevice, &properties_);
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(physicalDevice, &props);
@@ -93,6 +93,10 @@ MemoryAllocator::Block& MemoryAllocator::newBlock(uint32_t typeIndex, ResourceKi
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = size;
   info.memoryTypeIndex = typeIndex;
+  // Buffers may be read through their device address (vulkan::Buffer::deviceAddress).
+  VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  if (deviceAddress_ && kind == ResourceKind::Linear) info.pNext = &flags;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   OSD_CULL_VK(vkAllocateMemory(device_, &info, nullptr, &memory));
   auto block = std::make_unique<Block>();
@@ -121,6 +125,11 @@ Allocation MemoryAllocator::allocate(const VkMemoryRequirements& requirements, M
   const VkDeviceSize alignment =
       std::max(requirements.alignment, hostVisible ? nonCoherentAtomSize_ : VkDeviceSize{1});
   const VkDeviceSize size = alignUp(std::max<VkDeviceSize>(requirements.size, 1), alignment);
+  const uint32_t heap = properties_.memoryTypes[typeIndex].heapIndex;
+  if (size > properties_.memoryHeaps[heap].size)
+    throw Error("a Vulkan allocation of " + std::to_string(size) + " bytes exceeds memory heap " +
+                std::to_string(heap) + " of " + std::to_string(properties_.memoryHeaps[heap].size) +
+                " bytes (the device's memory heap size)");
 
   std::lock_guard lock(mutex_);
   // First fit: carve [start, start + size) out of the first free range that holds it.

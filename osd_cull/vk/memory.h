@@ -58,13 +58,17 @@ class Allocation {
 /// Thread-safe.
 class MemoryAllocator {
  public:
-  MemoryAllocator(VkPhysicalDevice physicalDevice, VkDevice device, VkDeviceSize blockSize);
+  /// \brief `deviceAddress`: allocate buffer memory with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT
+  /// (needs the bufferDeviceAddress feature enabled), so any buffer may have an address.
+  MemoryAllocator(VkPhysicalDevice physicalDevice, VkDevice device, VkDeviceSize blockSize,
+                  bool deviceAddress = false);
   MemoryAllocator(const MemoryAllocator&) = delete;
   MemoryAllocator& operator=(const MemoryAllocator&) = delete;
   ~MemoryAllocator();
 
   /// \brief Memory for a resource with these requirements.
-  /// \throws osd_cull::Error when no memory type fits `use` or the device is out of memory.
+  /// \throws osd_cull::Error when no memory type fits `use`, the request is larger than the
+  /// memory heap of its type (named, before any allocation) or the device is out of memory.
   Allocation allocate(const VkMemoryRequirements& requirements, MemoryUse use, ResourceKind kind);
 
   /// \brief Counts for reports and tests.
@@ -98,6 +102,7 @@ class MemoryAllocator {
   VkPhysicalDeviceMemoryProperties properties_{};
   VkDeviceSize blockSize_;
   VkDeviceSize nonCoherentAtomSize_;
+  bool deviceAddress_ = false;
   mutable std::mutex mutex_;
   std::vector<std::unique_ptr<Block>> blocks_;
 };

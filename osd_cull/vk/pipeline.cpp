@@ -4,6 +4,7 @@
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/descriptors.h"
+#include "osd_cull/vk/image.h"
 
 namespace osd_cull::vulkan {
 
@@ -108,7 +109,7 @@ UniquePipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDe
   raster.lineWidth = 1.0f;
   VkPipelineMultisampleStateCreateInfo multisample{
       VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  multisample.rasterizationSamples = desc.samples;
   VkPipelineDepthStencilStateCreateInfo depth{
       VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = desc.depthTest;
@@ -143,6 +144,20 @@ UniquePipeline createGraphicsPipeline(Context& context, const GraphicsPipelineDe
   info.layout = desc.layout;
   info.renderPass = desc.renderPass;
   info.subpass = desc.subpass;
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  if (!desc.renderPass) {
+    if (desc.colorFormats.size() != desc.colorAttachments)
+      throw Error(
+          "createGraphicsPipeline: dynamic rendering needs one format per color attachment (" +
+          std::to_string(desc.colorAttachments) + " attachments, " +
+          std::to_string(desc.colorFormats.size()) + " formats)");
+    rendering.colorAttachmentCount = desc.colorAttachments;
+    rendering.pColorAttachmentFormats = desc.colorFormats.data();
+    rendering.depthAttachmentFormat = desc.depthFormat;
+    if (aspectOf(desc.depthFormat) & VK_IMAGE_ASPECT_STENCIL_BIT)
+      rendering.stencilAttachmentFormat = desc.depthFormat;
+    info.pNext = &rendering;
+  }
   VkPipeline pipeline = VK_NULL_HANDLE;
   OSD_CULL_VK(
       vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));

@@ -69,9 +69,15 @@ struct GraphicsStage {
 struct GraphicsPipelineDesc {
   std::vector<GraphicsStage> stages;
   VkPipelineLayout layout = VK_NULL_HANDLE;
+  /// Null: dynamic rendering with the formats below (VkPipelineRenderingCreateInfo).
   VkRenderPass renderPass = VK_NULL_HANDLE;
   uint32_t subpass = 0;
   uint32_t colorAttachments = 1;
+  /// Dynamic rendering only: one format per color attachment, and the depth format (its
+  /// stencil aspect, if any, is declared too).
+  std::vector<VkFormat> colorFormats;
+  VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+  VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
   uint32_t patchControlPoints = 0;  ///< for PATCH_LIST
   VkPolygonMode polygonMode = VK_POLYGON_MODE_FILL;

@@ -9,28 +9,45 @@
 
 namespace osd_cull::vulkan {
 
-void uploadBytes(Context& context, const Buffer& dst, std::span<const std::byte> bytes,
-                 VkDeviceSize dstOffset) {
-  if (bytes.empty()) return;
-  if (dstOffset + bytes.size() > dst.size())
-    throw Error("vulkan::upload: " + std::to_string(bytes.size()) + " bytes at offset " +
+void uploadGenerated(Context& context, const Buffer& dst, VkDeviceSize bytes,
+                     const std::function<void(std::span<std::byte>, VkDeviceSize)>& fill,
+                     VkDeviceSize dstOffset) {
+  if (bytes == 0) return;
+  if (dstOffset + bytes > dst.size())
+    throw Error("vulkan::upload: " + std::to_string(bytes) + " bytes at offset " +
                 std::to_string(dstOffset) + " do not fit a buffer of " +
                 std::to_string(dst.size()) + " bytes");
-  Buffer staging(context, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
-  std::memcpy(staging.mapped(), bytes.data(), bytes.size());
-  context.submit([&](VkCommandBuffer cmd) {
-    memoryBarrier(cmd, scope::kAll, scope::kTransferWrite);
-    VkBufferCopy region{0, dstOffset, bytes.size()};
-    vkCmdCopyBuffer(cmd, staging.handle(), dst.handle(), 1, &region);
-    memoryBarrier(cmd, scope::kTransferWrite, scope::kAll);
-  });
+  // One staging buffer of at most kUploadChunkBytes, refilled: a large upload never holds a
+  // second full-size copy in host-visible memory (on lavapipe that is process memory).
+  const VkDeviceSize chunk = std::min(bytes, kUploadChunkBytes);
+  Buffer staging(context, chunk, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUse::Upload);
+  for (VkDeviceSize done = 0; done < bytes; done += chunk) {
+    const VkDeviceSize n = std::min(chunk, bytes - done);
+    fill(std::span<std::byte>(staging.mapped(), static_cast<size_t>(n)), done);
+    context.submit([&](VkCommandBuffer cmd) {
+      memoryBarrier(cmd, scope::kAll, scope::kTransferWrite);
+      VkBufferCopy region{0, dstOffset + done, n};
+      vkCmdCopyBuffer(cmd, staging.handle(), dst.handle(), 1, &region);
+      memoryBarrier(cmd, scope::kTransferWrite, scope::kAll);
+    });
+  }
+}
+
+void uploadBytes(Context& context, const Buffer& dst, std::span<const std::byte> bytes,
+                 VkDeviceSize dstOffset) {
+  uploadGenerated(
+      context, dst, bytes.size(),
+      [&](std::span<std::byte> chunk, VkDeviceSize offset) {
+        std::memcpy(chunk.data(), bytes.data() + offset, chunk.size());
+      },
+      dstOffset);
 }
 
 std::vector<std::byte> readbackBytes(Context& context, const Buffer& src, VkDeviceSize offset,
                                      VkDeviceSize size) {
   if (offset > src.size())
-    throw Error("vulkan::readback: offset " + std::to_string(offset) + " is beyond the buffer end (" +
-                std::to_string(src.size()) + " bytes)");
+    throw Error("vulkan::readback: offset " + std::to_string(offset) +
+                " is beyond the buffer end (" + std::to_string(src.size()) + " bytes)");
   if (size == VK_WHOLE_SIZE) size = src.size() - offset;
   if (offset + size > src.size())
     throw Error("vulkan::readback: range [" + std::to_string(offset) + ", " +

@@ -11,12 +11,24 @@
 
 #include <cstddef>
 #include <cstring>
+#include <functional>
 #include <span>
 #include <vector>
 
 namespace osd_cull::vulkan {
 
 class Context;
+
+/// \brief Staging size of uploads: larger uploads are copied in pieces of this size.
+inline constexpr VkDeviceSize kUploadChunkBytes = VkDeviceSize{16} << 20;
+
+/// \brief Fills `bytes` bytes of `dst` from `dstOffset` on with what `fill(chunk, offset)`
+/// writes into each staging piece (`offset`: of the piece within the `bytes`), so a caller
+/// can convert its data straight into staging memory without a full-size host copy.
+/// \throws osd_cull::Error when the range does not fit.
+void uploadGenerated(Context& context, const Buffer& dst, VkDeviceSize bytes,
+                     const std::function<void(std::span<std::byte>, VkDeviceSize)>& fill,
+                     VkDeviceSize dstOffset = 0);
 
 /// \brief Copies `bytes` into `dst` at `dstOffset`.
 /// \throws osd_cull::Error when the range does not fit.

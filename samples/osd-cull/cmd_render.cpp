@@ -4,6 +4,7 @@
 #include "cull_options.h"
 #include "cull_report.h"
 #include "device_options.h"
+#include "displacement_args.h"
 #include "mesh_patches.h"
 #include "mesh_source.h"
 #include "option_checks.h"
@@ -12,13 +13,16 @@
 #include "scene_source.h"
 
 #include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/patch/face_varying_uv.h"
 #include "osd_cull/scene/default_scene.h"
 
 #include "adapters/load_occluder.h"
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/draw/png_io.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/context.h"
@@ -30,6 +34,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace osd_cull::cli {
@@ -51,6 +56,7 @@ struct Scene {
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
   bound::BackPatchValidity backPatch;
   std::vector<std::string> notes;  ///< the loader's notes on the mesh
+  std::vector<glm::dvec2> uvCorners;  ///< 4 per patch, empty without texture coordinates
 };
 
 Scene loadScene(const MeshSource& source, const PatchOptions& options) {
@@ -70,6 +76,7 @@ Scene loadScene(const MeshSource& source, const PatchOptions& options) {
   scene.patches = std::move(mesh.patches);
   scene.backPatch = mesh.backPatch;
   scene.notes = std::move(mesh.notes);
+  scene.uvCorners = std::move(mesh.uvCorners);
   if (loaded.bezier) {  // BPT files (the teapot) are z up
     scene.up = {0, 0, 1};
     scene.viewDirection = {0.6, -1.0, 0.5};
@@ -126,6 +133,13 @@ int run(const RenderArgs& args) {
   Scene scene = loadScene(source, patchOptions);
   for (const std::string& file : splitList(args.occluders))
     if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
+  const DisplacementChoice displacement = displacementChoice(args.displacement, false);
+  // Displacement: the map, and back-patch culling off (kDisplacedBackPatchNote).
+  std::optional<bound::DisplacementMap> displacementMap;
+  if (displacement.map) {
+    displacementMap.emplace(adapters::loadDisplacementMap(*displacement.map));
+    scene.backPatch = {false, frame::kDisplacedBackPatchNote};
+  }
   vulkan::Context context(args.device);
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << scene.patches.source << ": " << scene.patches.bezierCount
@@ -134,6 +148,20 @@ int run(const RenderArgs& args) {
   for (const std::string& note : scene.notes) std::cout << "note: " << note << "\n";
 
   frame::GpuPatchSet gpu(context, scene.patches);
+  std::unique_ptr<frame::GpuDisplacement> gpuDisplacement;
+  if (displacementMap) {
+    gpuDisplacement = std::make_unique<frame::GpuDisplacement>(
+        context, *displacementMap, scene.uvCorners, scene.patches.patchCount());
+    gpu.setDisplacement(gpuDisplacement.get());
+    const bound::DisplacementRange r = displacementMap->displacementRange();
+    std::cout << "displacement: " << displacementMap->name() << ", " << displacementMap->width()
+              << "x" << displacementMap->height() << ", scale " << displacementMap->scale()
+              << ", midlevel " << displacementMap->midlevel() << ", D in [" << r.dmin << ", "
+              << r.dmax << "], bound "
+              << bound::displacedKernelName(displacement.kernels[0].extension,
+                                            displacement.kernels[0].box)
+              << "; UV seam edges " << countUVSeamEdges(scene.patches, scene.uvCorners) << "\n";
+  }
   std::vector<frame::GpuTriangleMesh> occluderMeshes;
   for (const auto& m : scene.occluders) occluderMeshes.emplace_back(context, m);
   std::vector<const frame::GpuTriangleMesh*> occluders;
@@ -191,6 +219,11 @@ int run(const RenderArgs& args) {
   frame::CullFrameOptions frameOptions = cull.frame;
   frameOptions.render = options;
   frameOptions.cull = cullSettings(cull, scene.backPatch);
+  if (displacementMap) {
+    frameOptions.cull.displacementMap = &*displacementMap;
+    frameOptions.cull.uvCorners = scene.uvCorners;
+    frameOptions.cull.displacedKernel = displacement.kernels[0];
+  }
   const std::vector<const frame::CullMethod*>* stages = nullptr;
   if (cull.occlusion()) {
     cullFrame = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, frameOptions);
@@ -383,6 +416,7 @@ Runner setup(CLI::App& app) {
                  "DIR/hiz_level_NN.png")
       ->type_name("DIR")
       ->group("Culling");
+  addDisplacementOptions(app, args->displacement, false);
   return [args] { return run(*args); };
 }
 

@@ -3,6 +3,7 @@
 // sampling and the image; prints a table and writes JSON.
 #include "command.h"
 #include "device_options.h"
+#include "displacement_args.h"
 #include "mesh_patches.h"
 #include "option_checks.h"
 #include "scene_source.h"
@@ -11,6 +12,7 @@
 #include "verify_report.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/verify/cull_verification.h"
 #include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/vk/context.h"
@@ -22,6 +24,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace osd_cull::cli {
@@ -49,7 +52,8 @@ std::vector<std::string> allMethods() {
   std::vector<std::string> methods;
   for (auto stage :
        {frame::CullStage::Frustum, frame::CullStage::BackPatch, frame::CullStage::Occlusion})
-    for (const auto& m : frame::cullMethodNames(stage)) methods.push_back(m);
+    for (const auto& m : frame::cullMethodNames(stage))
+      if (!frame::cullMethod(m).displaced) methods.push_back(m);  // those run with --displacement
   return methods;
 }
 
@@ -70,12 +74,20 @@ int run(const VerifyArgs& args) {
   if (views == 0) throw UsageError("--views: the mesh form needs at least 1 view");
   if (imageCheck && args.noOracle)
     throw UsageError("--image-check compares with the oracle's draw; drop --no-oracle");
-  const std::vector<std::string> methods =
-      args.methods.empty() ? allMethods() : splitList(args.methods);
+  const DisplacementChoice displacement = displacementChoice(args.displacement, true);
+  std::vector<std::string> methods = args.methods.empty() ? allMethods() : splitList(args.methods);
+  // Without --methods: the displaced kernels --displaced-bound and --displaced-box choose.
+  if (args.methods.empty())
+    for (const std::string& name : kernelNames(displacement)) methods.push_back(name);
   if (!args.json.empty()) checkOutputFile(args.json, "--json", {".json"});
 
-  const MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
+  MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
+  // Displaced: no back-patch culling, and the oracle draws back faces too (the displaced
+  // surface may fold; its holes at UV seams show the inside).
+  if (displacement.map) mesh.backPatch = {false, frame::kDisplacedBackPatchNote};
   const PatchSet& patches = mesh.patches;
+  std::optional<bound::DisplacementMap> displacementMap;
+  if (displacement.map) displacementMap.emplace(adapters::loadDisplacementMap(*displacement.map));
   vulkan::Context context(args.device);
 
   frame::VerifyOptions options;
@@ -88,6 +100,10 @@ int run(const VerifyArgs& args) {
   options.drawnTriangles = !surfaceExact;
   options.hiz.fullResolution = args.hizFull;
   options.hiz.lookup = args.hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
+  if (displacementMap) {
+    options.displacementMap = &*displacementMap;
+    options.uvCorners = mesh.uvCorners;
+  }
   frame::CullVerifier verifier(context, patches, methods, mesh.backPatch, options);
 
   frame::ViewSetOptions viewOptions;
@@ -106,6 +122,15 @@ int run(const VerifyArgs& args) {
   std::printf("views: %u %s (seed %llu), %ux%u, fov %.1f, tess %u, device %s\n", views,
               frame::toString(viewSet), static_cast<unsigned long long>(seed), width, height, fov,
               tess, context.info().name.c_str());
+  if (displacementMap) {
+    const bound::DisplacementRange r = displacementMap->displacementRange();
+    std::printf(
+        "displacement: %s, %ux%u, scale %g, midlevel %g, D in [%g, %g], lod %u; "
+        "back-patch culling off (%s)\n",
+        displacementMap->name().c_str(), displacementMap->width(), displacementMap->height(),
+        displacementMap->scale(), displacementMap->midlevel(), r.dmin, r.dmax,
+        displacementMap->maxLod(), frame::kDisplacedBackPatchNote);
+  }
   std::printf("back-patch culling: %s (%s)%s\n", mesh.backPatch.enabled ? "on" : "off",
               mesh.backPatch.reason.c_str(),
               surfaceExact ? ", surface-exact" : ", conservative for the drawn triangles");
@@ -228,6 +253,7 @@ Runner setup(CLI::App& app) {
                "silhouette pixels, which are then reported but do not fail the run");
   app.add_option("--json", args->json, "write the results as JSON")->type_name("FILE.json");
   addDeviceOptions(app, args->device);
+  addDisplacementOptions(app, args->displacement, true);
   return [args] { return run(*args); };
 }
 

@@ -9,6 +9,8 @@
 #include "osd_cull/patch/adaptive_patches.h"
 #include "osd_cull/patch/patch_set.h"
 
+#include <glm/vec2.hpp>
+
 #include <string>
 #include <vector>
 
@@ -22,6 +24,9 @@ struct MeshPatches {
   /// What the loader ignored or found unusual (CageMesh::notes): commands print these as
   /// `note: ...`, so that e.g. a dropped `vertexedit` tag is never silent.
   std::vector<std::string> notes;
+  /// Texture coordinates of the patch corners, 4 per patch (PatchExtraction::uvCorners);
+  /// empty without texture coordinates.
+  std::vector<glm::dvec2> uvCorners;
 };
 
 /// \brief Extracts the patches of a cage (bound::backPatchValidity from its topology and

@@ -4,6 +4,7 @@
 /// and its scene form (scene_render.cpp).
 
 #include "cull_options.h"
+#include "displacement_args.h"
 #include "mesh_source.h"
 
 #include "osd_cull/vk/context.h"
@@ -19,6 +20,7 @@ struct RenderArgs {
   MeshSource source;
   PatchOptions patchOptions;
   CullArgs cull;  ///< cull.mode empty: not given (mesh: none; scene: all)
+  DisplacementArgs displacement;  ///< the mesh form only
   vulkan::ContextOptions device;
   std::string out;                 ///< required by the mesh form
   std::optional<uint32_t> width;   ///< mesh: 640; scene: its own

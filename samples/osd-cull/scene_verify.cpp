@@ -81,12 +81,11 @@ int verifyScene(const VerifyArgs& args) {
       for (const frame::Camera& c : frame::randomViews(player.bounds(), vo)) cameras.push_back(c);
     for (size_t i = 0; i < player.instanceCount(); ++i) {
       const scene::SceneMesh& mesh = loaded.meshes[d.instances[i].mesh];
-      // A deforming instance is checked on this frame's points: a fresh verifier.
+      // A deforming instance is checked on this frame's points: a fresh verifier, whose
+      // passes build their cones from those points.
       if (!verifiers[i] || mesh.animation) {
-        const bound::BackPatchValidity validity =
-            mesh.animation ? bound::BackPatchValidity{false, "deforming mesh"} : mesh.validity;
         verifiers[i] = std::make_unique<frame::CullVerifier>(context, player.patches(i), methods,
-                                                             validity, options);
+                                                             mesh.validity, options);
         if (f == d.settings.frameStart)
           for (const auto& s : verifiers[i]->skipped())
             skipped.emplace_back(s.first + " on " + d.instances[i].name, s.second);

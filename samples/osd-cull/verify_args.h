@@ -3,6 +3,7 @@
 /// \brief The parsed options of `osd-cull verify`, shared by its mesh form (cmd_verify.cpp)
 /// and its scene form (scene_verify.cpp).
 
+#include "displacement_args.h"
 #include "mesh_source.h"
 
 #include "osd_cull/vk/context.h"
@@ -18,6 +19,7 @@ struct VerifyArgs {
   MeshSource source;
   PatchOptions patchOptions;
   vulkan::ContextOptions device;
+  DisplacementArgs displacement;  ///< the mesh form only
   std::optional<uint32_t> views;   ///< mesh: 100; scene: 4 per frame
   std::optional<uint32_t> frames;  ///< scene only: 2
   uint64_t seed = 1;

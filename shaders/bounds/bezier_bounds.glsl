@@ -7,9 +7,7 @@
 #define OSD_CULL_BOUNDS_BEZIER_GLSL
 #include "bounds_common.glsl"
 
-uint gFirst = 0u;  // the patch's first control point
-
-vec3 b(int i, int j) { return controlPoint(gFirst + uint(4 * j + i)); }
+vec3 b(int i, int j) { return pointAt(uint(4 * j + i)); }
 
 // bound::bezierDerivativeBounds: G = max 3 |Δb|, H = max(6 |Δ²b|, 9 |Δu Δv b|). A second
 // difference of device points is off by 4 sqrt(3) pc.pointError and rounds by 16u of the
@@ -17,7 +15,7 @@ vec3 b(int i, int j) { return controlPoint(gFirst + uint(4 * j + i)); }
 vec3 derivativeBounds() {
   float maxAbs = 0.0;
   [[dont_unroll]] for (uint k = 0u; k < 16u; ++k) {
-    vec3 p = controlPoint(gFirst + k);
+    vec3 p = pointAt(k);
     maxAbs = max(maxAbs, max(abs(p.x), max(abs(p.y), abs(p.z))));
   }
   float d1 = 0.0, d2 = 0.0, d11 = 0.0;

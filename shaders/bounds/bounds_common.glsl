@@ -12,12 +12,15 @@
 
 layout(push_constant) uniform Push { BoundsConstants pc; };
 
-layout(std430, set = 0, binding = kBoundsBindingPoints) readonly buffer Points { float points[]; };
+#define POINTS_BINDING kBoundsBindingPoints  // read by common/control_points.glsl
 layout(std430, set = 0, binding = kBoundsBindingCones) writeonly buffer Cones { vec4 cones[]; };
-// kMaxVectors vec4 (xyz, error) per patch: the vectors a cone is built from. Device memory,
-// not a private array: lavapipe turns dynamically indexed private arrays into select
-// ladders and took minutes to compile this kernel with them.
-layout(std430, set = 0, binding = kBoundsBindingScratch) buffer Scratch { vec4 scratch[]; };
+// kMaxVectors vec4 (xyz, error) per invocation: the vectors a cone is built from. Shared
+// memory, not a private array: lavapipe turns dynamically indexed private arrays into
+// select ladders and took minutes to compile this kernel with them.
+shared vec4 scratch[kBoundsGroupSize * kMaxVectors];
+// The patch's control points, copied once from the points buffer (each is read many times;
+// storage-buffer reads are the slow part of this kernel on lavapipe).
+shared vec3 patchPoints[kBoundsGroupSize * 20u];
 
 const float kU = 1.0 / 16777216.0;
 const float kTrigSlack = 1.0 / 1024.0;
@@ -32,7 +35,15 @@ float differenceError(vec3 v) { return 3.5 * pc.pointError + 2.0 * kU * length(v
 
 // The vectors a cone must hold, each with a bound of its absolute error (exact zeros are
 // skipped, as in the reference: they add nothing to a non-negative combination).
-uint gBase = 0u;  // this patch's first scratch slot
+uint gBase = 0u;    // this invocation's first scratch slot
+uint gPoints = 0u;  // this invocation's first patchPoints slot
+
+// Control point k of the patch (after loadPatchPoints).
+vec3 pointAt(uint k) { return patchPoints[gPoints + k]; }
+void loadPatchPoints(uint first, uint count) {
+  gPoints = gl_LocalInvocationIndex * 20u;
+  [[dont_unroll]] for (uint k = 0u; k < count; ++k) patchPoints[gPoints + k] = controlPoint(first + k);
+}
 uint gCount = 0u;
 
 vec3 vecAt(uint i) { return scratch[gBase + i].xyz; }
@@ -96,7 +107,8 @@ DirCone boundDirections() {
   float best = approxMinCos(axis, far);
   vec3 centre = axis;
   [[dont_unroll]] for (int k = 1; k <= 8; ++k) {
-    approxMinCos(normalize(centre), far);
+    // `far` is the farthest vector from normalize(centre): from the evaluation of the
+    // previous candidate (the reference recomputes it; the result is the same).
     centre += (vecAt(far) / length(vecAt(far)) - centre) / float(k + 1);
     if (!(length(centre) > 0.0)) break;
     vec3 candidate = normalize(centre);
@@ -151,7 +163,7 @@ void placeApex(inout DirCone cone, uint first, uint count, out vec3 apex, out fl
   vec3 centre = vec3(0.0);
   float maxAbs = 0.0;
   [[dont_unroll]] for (uint k = 0u; k < count; ++k) {
-    vec3 p = controlPoint(first + k);
+    vec3 p = pointAt(k);
     centre += p;
     maxAbs = max(maxAbs, max(abs(p.x), max(abs(p.y), abs(p.z))));
   }
@@ -159,7 +171,7 @@ void placeApex(inout DirCone cone, uint first, uint count, out vec3 apex, out fl
   float tanGamma = cone.sinAngle / cone.cosAngle * (1.0 + 4.0 * kU);
   float t = -3.0e38, radius = 0.0, rho = 0.0;
   [[dont_unroll]] for (uint k = 0u; k < count; ++k) {
-    vec3 d = controlPoint(first + k) - centre;
+    vec3 d = pointAt(k) - centre;
     float h = dot(d, cone.axis);
     float r = length(d - h * cone.axis);
     t = max(t, r * tanGamma - h);

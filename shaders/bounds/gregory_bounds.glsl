@@ -9,7 +9,7 @@
 #include "bounds_common.glsl"
 
 void addGregoryDifference(uint first, int hi, int lo, float sign) {
-  vec3 v = sign * (controlPoint(first + uint(hi)) - controlPoint(first + uint(lo)));
+  vec3 v = sign * (pointAt(uint(hi)) - pointAt(uint(lo)));
   addVector(v, differenceError(v));
 }
 

@@ -11,11 +11,11 @@ void main() {
   uint p = gl_GlobalInvocationID.x;
   if (p >= pc.patchCount) return;
   uint first = firstPoint(p);
-  gFirst = first;
-  gBase = p * kMaxVectors;
+  gBase = gl_LocalInvocationIndex * kMaxVectors;
   uint count = isBezier(p) ? 16u : 20u;
   bool finite = true;
-  [[dont_unroll]] for (uint k = 0u; k < count; ++k) finite = finite && isFiniteF(controlPoint(first + k));
+  loadPatchPoints(first, count);
+  [[dont_unroll]] for (uint k = 0u; k < count; ++k) finite = finite && isFiniteF(pointAt(k));
   if (!finite) {
     writeCone(p, invalidCone(kVerdictNonFinite), vec3(0.0), 0.0, vec4(0.0));
     return;

@@ -1,7 +1,8 @@
 // Patch control points and finite tests, shared by the cull kernel (cull/cull_common.glsl)
 // and the bounds pass (bounds/bounds_common.glsl). The includer declares a push-constant
-// block `pc` with bezierCount, pointOffset and pointStride, and a float buffer `points`
-// (GpuPatchSet::points(), PatchSet layout: Bezier patches first, then Gregory).
+// block `pc` with bezierCount, pointOffset and pointStride, and defines POINTS_BINDING and
+// OSD_CULL_POINTS_BDA for controlPoint() (control_points.glsl: GpuPatchSet::points(),
+// PatchSet layout: Bezier patches first, then Gregory).
 #ifndef OSD_CULL_COMMON_PATCH_POINTS_GLSL
 #define OSD_CULL_COMMON_PATCH_POINTS_GLSL
 
@@ -19,8 +20,5 @@ uint firstPoint(uint patchIndex) {
                               : pc.bezierCount * 16u + (patchIndex - pc.bezierCount) * 20u;
 }
 
-vec3 controlPoint(uint index) {
-  uint base = pc.pointOffset + index * pc.pointStride;
-  return vec3(points[base], points[base + 1u], points[base + 2u]);
-}
+#include "control_points.glsl"
 #endif

@@ -6,7 +6,7 @@
 
 layout(push_constant) uniform Push { CullConstants pc; };
 
-layout(std430, set = 0, binding = kCullBindingPoints) readonly buffer Points { float points[]; };
+#define POINTS_BINDING kCullBindingPoints  // read by common/control_points.glsl
 layout(std430, set = 0, binding = kCullBindingCones) readonly buffer Cones { vec4 cones[]; };
 layout(std430, set = 0, binding = kCullBindingResults) writeonly buffer Results { uint results[]; };
 layout(std430, set = 0, binding = kCullBindingDrawList) writeonly buffer DrawList { uint drawList[]; };

@@ -28,7 +28,9 @@ shared uint sResult[kPatchesPerGroup];
 void main() {
   const uint lane = gl_LocalInvocationIndex % kLanes;
   const uint slot = gl_LocalInvocationIndex / kLanes;
-  const uint patchIndex = gl_WorkGroupID.x * kPatchesPerGroup + slot;
+  // The host spreads more than maxComputeWorkGroupCount[0] groups over y (vk/limits.h).
+  const uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  const uint patchIndex = group * kPatchesPerGroup + slot;
   const bool inRange = patchIndex < pc.patchCount;
   uint result = kResultInitial;
   PatchClipBounds bounds;

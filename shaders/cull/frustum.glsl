@@ -8,6 +8,18 @@
 #define OSD_CULL_CULL_FRUSTUM_GLSL
 #include "cull_common.glsl"
 
+// The points whose convex hull bounds the patch: its control points, or with CULL_DISPLACED
+// the 8 corners of the displaced bound (displaced_bound.glsl). prepareBound() runs first.
+#if CULL_DISPLACED
+#include "displaced_bound.glsl"
+#else
+void prepareBound(uint patchIndex) {}
+uint boundPointCount(uint patchIndex) { return pointCount(patchIndex); }
+vec3 boundPoint(uint patchIndex, uint k) { return controlPoint(firstPoint(patchIndex) + k); }
+vec4 boundClipPoint(vec3 p) { return clipPoint(p); }
+vec4 boundAbsClipPoint(vec3 p) { return absClipPoint(p); }
+#endif
+
 // What the frustum test and the occlusion stage know about a patch's control points.
 struct PatchClipBounds {
   uint outsideAll;  // bit p: every point is certainly outside plane p (bound::FrustumPlane)
@@ -25,11 +37,15 @@ PatchClipBounds patchClipBounds(uint patchIndex) {
   b.ndcMin = vec3(3.0e38);
   b.ndcMax = vec3(-3.0e38);
   const float eps = kCullRelativeMargin;
-  uint first = firstPoint(patchIndex), n = pointCount(patchIndex);
+  prepareBound(patchIndex);
+#if CULL_DISPLACED
+  b.finite = b.finite && gBoundFinite;
+#endif
+  uint n = boundPointCount(patchIndex);
   for (uint k = 0u; k < n && b.finite; ++k) {
-    vec3 p = controlPoint(first + k);
-    vec4 c = clipPoint(p);
-    vec4 m = absClipPoint(p);
+    vec3 p = boundPoint(patchIndex, k);
+    vec4 c = boundClipPoint(p);
+    vec4 m = boundAbsClipPoint(p);
     if (!isFiniteF(p) || !isFiniteF(c) || !isFiniteF(m)) {
       b.finite = false;
       break;

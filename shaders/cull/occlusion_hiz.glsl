@@ -16,10 +16,11 @@ layout(std140, set = 1, binding = 1) uniform HiZUniform { HiZParams hizParams; }
 uint occlusionVerdict(uint patchIndex, PatchClipBounds bounds) {
   if (!bounds.finite) return kOcclusionVerdictUntested;
   HiZBox box = hizBoxBegin();
-  uint first = firstPoint(patchIndex), n = pointCount(patchIndex);
+  // The points patchClipBounds() used (control points, or the displaced bound's corners).
+  uint n = boundPointCount(patchIndex);
   for (uint k = 0u; k < n; ++k) {
-    vec3 p = controlPoint(first + k);
-    hizBoxAdd(box, clipPoint(p), absClipPoint(p));
+    vec3 p = boundPoint(patchIndex, k);
+    hizBoxAdd(box, boundClipPoint(p), boundAbsClipPoint(p));
   }
   int level;
   ivec2 t0, t1;

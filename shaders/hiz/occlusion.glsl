@@ -15,10 +15,11 @@ struct HiZBox {
   vec2 lo;        // NDC x, y box, widened by the rounding margins
   vec2 hi;
   float nearest;  // smallest z/w minus margins
+  float farthest; // largest z/w plus margins
   bool valid;     // false: a point at or behind the eye plane, or NaN/Inf
 };
 
-HiZBox hizBoxBegin() { return HiZBox(vec2(kHiZInf), vec2(-kHiZInf), kHiZInf, true); }
+HiZBox hizBoxBegin() { return HiZBox(vec2(kHiZInf), vec2(-kHiZInf), kHiZInf, -kHiZInf, true); }
 
 // Adds one control point: c = viewProj * (p, 1), m = |viewProj| * (|p|, 1).
 void hizBoxAdd(inout HiZBox b, vec4 c, vec4 m) {
@@ -33,6 +34,7 @@ void hizBoxAdd(inout HiZBox b, vec4 c, vec4 m) {
   b.lo = min(b.lo, ndc.xy - err.xy);
   b.hi = max(b.hi, ndc.xy + err.xy);
   b.nearest = min(b.nearest, ndc.z - err.z);
+  b.farthest = max(b.farthest, ndc.z + err.z);
 }
 
 // The footprint of the box: level ceil(log2(n)) - baseShift for an n-pixel box (one finer
@@ -76,7 +78,15 @@ bool hizOccluded(HiZBox b, HiZParams hiz, sampler2D pyramid) {
   if (!hizFootprint(b, hiz, level, t0, t1)) return false;
   float far = max(max(texelFetch(pyramid, t0, level).r, texelFetch(pyramid, ivec2(t1.x, t0.y), level).r),
                   max(texelFetch(pyramid, ivec2(t0.x, t1.y), level).r, texelFetch(pyramid, t1, level).r));
-  float nearest = b.nearest - kHiZDepthBias * kHiZGpuMarginScale;
+  // The rasterizer may extrapolate depth past a triangle (hiz_layout.h
+  // kHiZExtrapolationPixels). The range between the widened ends is at least the reference's
+  // range of the points; the box side is taken smaller than the reference's (its wider
+  // margins add far less than 0.1 (n + 1) pixels), so its factor is at least the reference's.
+  vec2 side = (b.hi - b.lo) * 0.5 * vec2(hiz.width, hiz.height);
+  float n = 0.9 * max(side.x, side.y) - 0.1;
+  float extrapolation = n > kHiZExtrapolationPixels ? kHiZExtrapolationPixels / n : 1.0;
+  float nearest = b.nearest - extrapolation * (b.farthest - b.nearest) -
+                  kHiZDepthBias * kHiZGpuMarginScale;
   return nearest >= far;
 }
 #endif

@@ -10,7 +10,13 @@ layout(location = 1) in vec3 teNormal;
 layout(location = 2) flat in uint tePatch;
 
 layout(location = 0) out vec4 outColor;
+// ITEM_BUFFER 0: a target without an item buffer (the application's color and depth).
+#ifndef ITEM_BUFFER
+#define ITEM_BUFFER 1
+#endif
+#if ITEM_BUFFER
 layout(location = 1) out uint outItem;
+#endif
 // Front faces win depth ties (kFlagFrontWinsTies, on by default): a back-facing fragment is pushed back by one pixel's worth of
 // its depth slope (as depthBiasSlopeFactor 1 would) plus 2^-22 of its depth. On a closed
 // surface seen from outside a ray meets a front face first, but where a front and a back
@@ -38,7 +44,9 @@ void main() {
   if ((pc.flags & kFlagPatchTypeColors) != 0u)
     base = kTypeColors[(tePatch >> kDrawListStatusShift) & 3u];
   outColor = vec4(shade(base, tePosition, teNormal, pc.eye.xyz), 1.0);
+#if ITEM_BUFFER
   outItem = pc.itemBase + patchIndex + 1u;
+#endif
   float z = gl_FragCoord.z;
   float slope = max(abs(dFdx(z)), abs(dFdy(z)));
   bool pushBack = !gl_FrontFacing && (pc.flags & kFlagFrontWinsTies) != 0u;

@@ -6,6 +6,9 @@
 #include "patch_common.glsl"
 #include "edge_curves.glsl"
 #include "osd/patch_basis.glsl"
+#if defined(PATCH_DISPLACED)
+#include "displace.glsl"
+#endif
 
 layout(quads, equal_spacing, ccw) in;
 
@@ -86,6 +89,9 @@ void main() {
   else if (p.x == 1.0 && tcHi[2] == 0.0) P = edgePoint(2, p.y, tcLo[2]);
   else if (p.y == 1.0 && tcHi[3] == 0.0) P = edgePoint(3, p.x, tcLo[3]);
 
+#if defined(PATCH_DISPLACED)
+  n = displace(tcPatch & kDrawListPatchMask, uv, P, n, dPu, dPv);
+#endif
   tePosition = P;
   teNormal = n;
   tePatch = tcPatch;

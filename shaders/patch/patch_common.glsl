@@ -17,7 +17,8 @@ float tessUniformLevel() { return pc.viewport.z; }
 float tessMaxLevel() { return pc.viewport.w; }
 uint tessMode() { return pc.mode; }
 
-layout(std430, set = 0, binding = 0) readonly buffer Points { float points[]; };
+#define POINTS_BINDING 0
+#include "../common/control_points.glsl"
 layout(std430, set = 0, binding = 1) readonly buffer Params { uint params[]; };
 layout(std430, set = 0, binding = 2) readonly buffer DrawList { uint drawList[]; };
 
@@ -26,11 +27,6 @@ uint firstPoint(uint patchIndex) {
   return patchIndex < pc.bezierCount
              ? patchIndex * 16u
              : pc.bezierCount * 16u + (patchIndex - pc.bezierCount) * 20u;
-}
-
-vec3 controlPoint(uint index) {
-  uint base = pc.pointOffset + index * pc.pointStride;
-  return vec3(points[base], points[base + 1u], points[base + 2u]);
 }
 
 // Far::PatchParam transition mask: bit k set when edge k (0: v=0, 1: u=1, 2: v=1, 3: u=0)

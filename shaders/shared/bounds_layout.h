@@ -7,12 +7,12 @@
 
 OSD_CULL_SHARED_BEGIN
 
-OSD_CULL_CONST uint kBoundsBindingPoints = 0u;   // float points[]: GpuPatchSet::points()
+OSD_CULL_CONST uint kBoundsBindingPoints = 0u;   // GpuPatchSet::pointBinding(): control_points.glsl
 OSD_CULL_CONST uint kBoundsBindingCones = 1u;    // vec4 cones[]: the cull data written
 OSD_CULL_CONST uint kBoundsBindingScratch = 2u;  // vec4 scratch[]: kMaxVectors per patch
 OSD_CULL_CONST uint kMaxVectors = 64u;           // vectors one cone is built from, at most
 
-OSD_CULL_CONST uint kBoundsGroupSize = 32u;
+OSD_CULL_CONST uint kBoundsGroupSize = 16u;  // shared memory: 16 x (64 + 20) x 16 bytes
 
 // Which cone a Bezier patch gets (Gregory patches always get the Gregory TCONE).
 OSD_CULL_CONST uint kBoundsTCone = 0u;

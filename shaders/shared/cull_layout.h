@@ -9,7 +9,7 @@ OSD_CULL_SHARED_BEGIN
 
 // Descriptor bindings of the cull set (set 0). Set 1 belongs to the occlusion stage, when one
 // is enabled (CullMethod::stageBindings).
-OSD_CULL_CONST uint kCullBindingPoints = 0u;    // float points[]: GpuPatchSet::points()
+OSD_CULL_CONST uint kCullBindingPoints = 0u;    // GpuPatchSet::pointBinding(): control_points.glsl
 OSD_CULL_CONST uint kCullBindingCones = 1u;     // vec4 cones[]: kConeVec4s per patch (PatchCone)
 OSD_CULL_CONST uint kCullBindingResults = 2u;   // uint results[]: one result code per patch
 OSD_CULL_CONST uint kCullBindingDrawList = 3u;  // uint drawList[]: survivors, Bezier from slot 0,
@@ -18,6 +18,8 @@ OSD_CULL_CONST uint kCullBindingCounters = 4u;  // uint counters[kCounterCount]
 OSD_CULL_CONST uint kCullBindingCommands = 5u;  // uvec4 commands[]: VkDrawIndirectCommand
 OSD_CULL_CONST uint kCullBindingParams = 7u;    // uint params[]: GpuPatchSet::params(), read
                                                 // for transition edges (drawn-triangle bound)
+OSD_CULL_CONST uint kCullBindingDisplacedView = 8u;  // DisplacedView: per-view matrices of
+                                                     // the displaced bounds (CULL_DISPLACED)
 OSD_CULL_CONST uint kCullBindingTable = 6u;     // uvec2 table[]: the method's constant table
 // (CullMethod::table). The tangent-plane table: per term (target | j << 8 | k << 16 | l << 24,
 // floatBitsToUint(weight)). A buffer, not GLSL constants: lavapipe's LLVM backend needs
@@ -85,7 +87,9 @@ OSD_CULL_CONST uint kResultInitial = 0x00FFFFF0u;
 //   kCullRelativeMargin times an upper bound of the magnitudes it is computed from (their
 //   fp32 error, including rounding the inputs to float, is below 15 * 2^-24 of that bound);
 // - tangent plane (shaders/cull/tangent_plane_common.glsl): arithmetic error < 35 * 2^-24 ma,
-//   input rounding < 4 * 2^-24 mb, and the reference's own margin < 1.32e-11 mr / |e.w|.
+//   input rounding < 4 * 2^-24 mb, and the reference's own margin < 1.32e-11 mr / |e.w|;
+//   the factored form (tangent_plane_factored.glsl): arithmetic error < 34 * 2^-24 M, input
+//   rounding bounded with 2^-24 (kTpInputMargin uses 16 times that).
 #ifdef __cplusplus
 inline constexpr float kCullRelativeMargin = 1e-5f;
 inline constexpr float kTpArithmeticMargin = 1e-5f;
@@ -114,6 +118,17 @@ struct CullConstants {
   float tessPixelsPerSegment;  // adaptive tessellation target (DrawConstants.eye.w); 0: the
                                // draws tessellate uniformly (viewport.z)
   float snapPerDistance;       // bound::snapPerDistance of the draws (drawn-triangle bound)
+};
+
+// What the displaced bounds (shaders/cull/displaced_bound.glsl) need of a view beyond
+// CullConstants.viewProjection: the camera-aligned frustum works in camera space.
+struct DisplacedView {
+  mat4 view;         // world to camera space (camera looking down -z)
+  mat4 projection;   // camera to clip space
+  uint perspective;  // 1: bound::isCameraAlignedPerspective(projection), the CAF can be built
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 OSD_CULL_SHARED_END

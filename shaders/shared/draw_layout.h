@@ -7,7 +7,7 @@
 OSD_CULL_SHARED_BEGIN
 
 // Descriptor bindings of the patch draw set (set 0).
-OSD_CULL_CONST uint kBindingPoints = 0;  // float points[]: control points, pointStride floats each
+OSD_CULL_CONST uint kBindingPoints = 0;  // control points: common/control_points.glsl
 OSD_CULL_CONST uint kBindingParams = 1;  // uint params[]: Far::PatchParam field0, field1 per patch
 OSD_CULL_CONST uint kBindingDrawList = 2;  // uint drawList[]: patch index per draw slot
 

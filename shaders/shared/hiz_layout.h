@@ -36,6 +36,17 @@ OSD_CULL_CONST float kHiZRelativeError = 3.814697265625e-6f;  // 2^-18
 OSD_CULL_CONST float kHiZDepthBias = 9.5367431640625e-7f;     // 2^-20
 OSD_CULL_CONST float kHiZPixelMargin = 0.015625f;             // 1/64
 OSD_CULL_CONST float kHiZGpuMarginScale = 2.0f;
+// Depth extrapolation of the rasterizer (docs/algorithms/occlusion.md, "Sub-pixel
+// patches"): lavapipe interpolates depth over a plane through the triangle's float vertices
+// but decides coverage on vertices snapped to 1/256 pixel, so a covered pixel centre can lie
+// outside the triangle and get a depth below all three vertices' (measured: 1% of a
+// sub-pixel patch's depth range). The nearest depth is lowered by min(1,
+// kHiZExtrapolationPixels / n) times the patch's depth range (farthest - nearest control
+// point), n the larger side of its screen box in pixels: a triangle of a patch n pixels
+// wide at tessellation t is about n/t high and spans about range/t in depth, so the
+// snapping (at most 1/256 pixel) over its height extrapolates about range/(256 n),
+// whatever t; 1/16 pixel leaves a factor of 16 for thin triangles.
+OSD_CULL_CONST float kHiZExtrapolationPixels = 0.0625f;
 
 // HiZParams.lookup: the level a box is looked up at. Paper (§4.1.1): ceil(log2(n)) for an
 // n-pixel box, where 2x2 texels always cover it. Tight: one level finer when the box, as it

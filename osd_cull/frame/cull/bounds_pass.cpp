@@ -109,7 +109,9 @@ BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu,
   layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::BoundsConstants),
                                          VK_SHADER_STAGE_COMPUTE_BIT);
   const std::string text = "#version 450\n#extension GL_EXT_control_flow_attributes : require\n" +
-                           gregoryTables() + "#include \"bounds/patch_bounds_main.glsl\"\n";
+                           std::string("#define OSD_CULL_POINTS_BDA ") +
+                           pointsByAddressDefine(context) + "\n" + gregoryTables() +
+                           "#include \"bounds/patch_bounds_main.glsl\"\n";
   pipeline_ = vulkan::createComputePipeline(
       context, layout_.get(),
       vulkan::compileGlsl(text, "bounds/patch_bounds.comp", VK_SHADER_STAGE_COMPUTE_BIT));
@@ -123,13 +125,14 @@ void BoundsPass::record(VkCommandBuffer cmd, double pointError, float shrink) {
   if (!(std::isfinite(pointError) && pointError >= 0.0))
     throw Error("BoundsPass::record: pointError must be finite and >= 0, got " +
                 std::to_string(pointError));
-  if (boundPoints_ != gpu_.points().handle()) {  // first use, or readPointsFrom() since
+  // First use, or readPointsFrom() since (a point record follows it by itself).
+  if (boundPoints_ != gpu_.pointBinding().handle()) {
     vulkan::DescriptorWriter()
-        .buffer(sh::kBoundsBindingPoints, gpu_.points())
+        .buffer(sh::kBoundsBindingPoints, gpu_.pointBinding())
         .buffer(sh::kBoundsBindingCones, cones_)
         .buffer(sh::kBoundsBindingScratch, scratch_)
         .update(context_.device(), set_);
-    boundPoints_ = gpu_.points().handle();
+    boundPoints_ = gpu_.pointBinding().handle();
   }
   sh::BoundsConstants c{};
   c.patchCount = gpu_.patchCount();

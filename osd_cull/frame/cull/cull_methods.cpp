@@ -17,10 +17,14 @@ const char* toString(CullStage stage) {
 }
 
 std::span<const CullMethod> cullMethods() {
-  static const std::vector<CullMethod> methods = {
-      frustumCullMethod(),      tconeCullMethod(),          nconeCullMethod(),
-      tangentPlaneCullMethod(), tangentPlane16CullMethod(), hizCullMethod(),
-  };
+  static const std::vector<CullMethod> methods = [] {
+    std::vector<CullMethod> m = {
+        frustumCullMethod(),      tconeCullMethod(),          nconeCullMethod(),
+        tangentPlaneCullMethod(), tangentPlane16CullMethod(), hizCullMethod(),
+    };
+    for (CullMethod& d : displacedCullMethods()) m.push_back(std::move(d));
+    return m;
+  }();
   return methods;
 }
 

@@ -10,10 +10,12 @@
 /// static objects would be dropped by the linker from the static library.)
 
 #include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/bound/displaced_bounds.h"
 #include "osd_cull/vk/descriptors.h"
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -47,6 +49,13 @@ struct CullMethod {
   bound::BackPatchMethod reference = bound::BackPatchMethod::None;
   /// Occlusion stage: the bindings of its descriptor set (set 1), passed to CullPass::record.
   std::vector<vulkan::DescriptorBinding> stageBindings;
+  /// Displaced kernels (cull_method_displaced.cpp): Hi-Z occlusion, and the frustum test of
+  /// the same pass, on this displaced bound of a displaced mesh (CullSettings::displacement).
+  struct Displaced {
+    bound::DisplacedExtension extension = bound::DisplacedExtension::ACoN;
+    bound::DisplacedBox box = bound::DisplacedBox::CAF;
+  };
+  std::optional<Displaced> displaced;
 };
 
 /// \brief Every registered method, in stage order.
@@ -66,5 +75,7 @@ CullMethod nconeCullMethod();
 CullMethod tangentPlaneCullMethod();
 CullMethod tangentPlane16CullMethod();
 CullMethod hizCullMethod();
+/// \brief The six displaced kernels full-oobb ... con-caf (Niessner & Loop Table 1).
+std::vector<CullMethod> displacedCullMethods();
 
 }  // namespace osd_cull::frame

@@ -2,9 +2,11 @@
 
 #include "osd_cull/bound/clip_space.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/draw/draw_chunks.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 #include "osd_cull/vk/shader_compiler.h"
 #include "osd_cull/vk/transfer.h"
@@ -15,6 +17,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 
 namespace osd_cull::frame {
 
@@ -30,7 +34,9 @@ const vulkan::DescriptorBinding kBindings[] = {
     {sh::kCullBindingCounters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingCommands, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingTable, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-    {sh::kCullBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    {sh::kCullBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingDisplacedView, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+     VK_SHADER_STAGE_COMPUTE_BIT}};
 
 // What the outputs are read by after the pass: indirect draws, the patch draw shaders (draw
 // list) and the host (results, counters).
@@ -78,18 +84,23 @@ void packCone(const bound::ConeOfNormals& c, const bound::DerivativeBounds& d, f
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
 std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
-                          bool drawnTriangles) {
+                          bool drawnTriangles, const CullMethod::Displaced* displaced,
+                          bool pointsByAddress) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
   };
   std::string text = "#version 450\n";
   text += "#define CULL_LANES " + std::to_string(lanes) + "\n";
+  text += std::string("#define OSD_CULL_POINTS_BDA ") + (pointsByAddress ? "1" : "0") + "\n";
   text += std::string("#define CULL_FRUSTUM ") + (has(CullStage::Frustum) ? "1" : "0") + "\n";
   text += std::string("#define CULL_BACK_PATCH ") + (has(CullStage::BackPatch) ? "1" : "0") + "\n";
   text += std::string("#define CULL_OCCLUSION ") + (has(CullStage::Occlusion) ? "1" : "0") + "\n";
   text += std::string("#define CULL_DRAWN ") +
           (drawnTriangles && has(CullStage::BackPatch) ? "1" : "0") + "\n";
+  text += std::string("#define CULL_DISPLACED ") + (displaced ? "1" : "0") + "\n";
+  if (displaced)
+    text += "#define DISPLACED_BOX " + std::to_string(static_cast<uint32_t>(displaced->box)) + "\n";
   for (const CullMethod* m : stages)
     if (m->generatedGlsl) text += m->generatedGlsl();
   text += "#include \"cull/frustum.glsl\"\n";
@@ -146,8 +157,12 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
     lanes_ = std::max(lanes_, m.lanesPerPatch);
   };
   if (settings.frustum) add("frustum", CullStage::Frustum);
+  const bool displacedMesh = settings.displacementMap != nullptr;
   if (!settings.backPatch.empty()) {
-    if (settings.backPatchValidity.enabled) {
+    if (displacedMesh) {
+      cullMethod(settings.backPatch);  // still reject unknown names
+      backPatchNote_ = "back-patch culling off for " + host.source + ": " + kDisplacedBackPatchNote;
+    } else if (settings.backPatchValidity.enabled) {
       add(settings.backPatch, CullStage::BackPatch);
     } else {
       cullMethod(settings.backPatch);  // still reject unknown names
@@ -156,11 +171,28 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
     }
   }
   if (!settings.occlusion.empty()) add(settings.occlusion, CullStage::Occlusion);
+  displacedKernel_ = settings.displacedKernel;
+  for (const CullMethod* m : stages_)
+    if (m->displaced) {
+      if (!displacedMesh)
+        throw Error("CullPass: method '" + m->name + "' bounds displaced surfaces; " + host.source +
+                    " has no displacement map");
+      displacedKernel_ = *m->displaced;
+    }
+  if (displacedMesh)
+    displaced_ = bound::buildDisplacedPatches(host, settings.uvCorners, *settings.displacementMap,
+                                              displacedKernel_.extension);
 
   const uint32_t n = host.patchCount();
+  checkLimits(n);
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  if (displacedMesh && cullData_ != &conesBuffer_)
+    throw Error("CullPass: " + host.source +
+                " is displaced; displaced bounds are built on the host for static meshes "
+                "(per-frame displaced bounds of animated meshes are not implemented)");
   if (cullData_ == &conesBuffer_) uploadHostCones(context);
+  displacedView_ = vulkan::Buffer(context, sizeof(sh::DisplacedView), storage);
   std::vector<uint32_t> table(2, 0u);
   for (const CullMethod* m : stages_)
     if (m->table) table = m->table();
@@ -178,6 +210,23 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
 
 CullPass::~CullPass() = default;
 
+void CullPass::checkLimits(uint32_t n) const {
+  // Everything the pass binds, dispatches or draws, named, before any buffer exists
+  // (the points are GpuPatchSet's to check).
+  const std::string of = " of " + std::to_string(n) + " patches";
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4 * sh::kConeVec4s * sizeof(float),
+                                  "CullPass: the cones" + of);
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4, "CullPass: the result codes" + of);
+  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4, "CullPass: the draw list" + of);
+  vulkan::checkStorageBufferRange(context_, (uint64_t{n} + 2) * sizeof(VkDrawIndirectCommand),
+                                  "CullPass: the draw commands" + of);
+  vulkan::checkedGroups2D(context_, vulkan::groupCount(n, sh::kCullGroupSize / lanes_),
+                          "CullPass: the cull dispatch" + of);
+  vulkan::checkedGroups1D(context_, vulkan::groupCount(n + 2, sh::kDrawsGroupSize),
+                          "CullPass: the draw-command dispatch" + of);
+  vulkan::checkDrawIndirectCount(context_, n, "CullPass: the indirect draws" + of);
+}
+
 void CullPass::uploadHostCones(vulkan::Context& context) {
   constexpr size_t kFloatsPerCone = 4 * sh::kConeVec4s;
   std::vector<float> packed(kFloatsPerCone, 0.0f);
@@ -193,31 +242,65 @@ void CullPass::uploadHostCones(vulkan::Context& context) {
       packCone(cones_[p], d, &packed[kFloatsPerCone * p]);
     }
   }
+  if (displaced()) packed = packDisplacedPatches(displaced_);
   conesBuffer_ =
       vulkan::Buffer(context, packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   vulkan::upload<float>(context, conesBuffer_, packed);
 }
 
-void CullPass::buildPipelines(vulkan::Context& context) {
-  setLayout_ = vulkan::createDescriptorSetLayout(context, kBindings);
-  std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
-  for (const CullMethod* m : stages_)
+// The layouts and pipelines of one kernel configuration. Creating a pipeline runs the
+// driver's compiler (lavapipe: LLVM, up to 0.4 s for the tangent-plane kernel), so passes with
+// the same kernel on the same device share one: a scene with many instances of a mesh has a
+// pass per instance and view.
+struct CullPipelines {
+  vulkan::UniqueDescriptorSetLayout setLayout;
+  vulkan::UniqueDescriptorSetLayout stageSetLayout;
+  vulkan::UniquePipelineLayout layout;
+  vulkan::UniquePipeline cull;
+  vulkan::UniquePipeline draws;
+};
+
+namespace {
+
+std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
+                                                     const std::string& kernel,
+                                                     const std::vector<const CullMethod*>& stages) {
+  static std::mutex mutex;
+  static std::map<std::pair<VkDevice, std::string>, std::weak_ptr<const CullPipelines>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::weak_ptr<const CullPipelines>& slot = cache[{context.device(), kernel}];
+  if (auto existing = slot.lock()) return existing;
+  auto p = std::make_shared<CullPipelines>();
+  p->setLayout = vulkan::createDescriptorSetLayout(context, kBindings);
+  std::vector<VkDescriptorSetLayout> layouts = {p->setLayout.get()};
+  for (const CullMethod* m : stages)
     if (!m->stageBindings.empty()) {
-      stageSetLayout_ = vulkan::createDescriptorSetLayout(context, m->stageBindings);
-      layouts.push_back(stageSetLayout_.get());
+      p->stageSetLayout = vulkan::createDescriptorSetLayout(context, m->stageBindings);
+      layouts.push_back(p->stageSetLayout.get());
     }
-  layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
-                                         VK_SHADER_STAGE_COMPUTE_BIT);
+  p->layout = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
+                                           VK_SHADER_STAGE_COMPUTE_BIT);
   const vulkan::Spirv cull =
-      vulkan::compileGlsl(composeKernel(stages_, lanes_, settings_.drawnTriangles),
-                          "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
-  cullPipeline_ = vulkan::createComputePipeline(context, layout_.get(), cull);
-  drawsPipeline_ = vulkan::createComputePipeline(
-      context, layout_.get(), vulkan::compileShader({"cull/write_draws.comp", {}}));
+      vulkan::compileGlsl(kernel, "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+  p->cull = vulkan::createComputePipeline(context, p->layout.get(), cull);
+  p->draws = vulkan::createComputePipeline(context, p->layout.get(),
+                                           vulkan::compileShader({"cull/write_draws.comp", {}}));
+  slot = p;
+  return p;
+}
+
+}  // namespace
+
+void CullPass::buildPipelines(vulkan::Context& context) {
+  pipelines_ = sharedPipelines(context,
+                               composeKernel(stages_, lanes_, settings_.drawnTriangles,
+                                             displaced() ? &displacedKernel_ : nullptr,
+                                             gpu_.pointsByAddress()),
+                               stages_);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
-  set_ = pool_->allocate(setLayout_.get());
+  set_ = pool_->allocate(pipelines_->setLayout.get());
   vulkan::DescriptorWriter()
-      .buffer(sh::kCullBindingPoints, gpu_.points())
+      .buffer(sh::kCullBindingPoints, gpu_.pointBinding())
       .buffer(sh::kCullBindingCones, *cullData_)
       .buffer(sh::kCullBindingResults, results_)
       .buffer(sh::kCullBindingDrawList, drawList_)
@@ -225,6 +308,7 @@ void CullPass::buildPipelines(vulkan::Context& context) {
       .buffer(sh::kCullBindingCommands, commands_)
       .buffer(sh::kCullBindingTable, table_)
       .buffer(sh::kCullBindingParams, gpu_.params())
+      .buffer(sh::kCullBindingDisplacedView, displacedView_)
       .update(context.device(), set_);
 }
 
@@ -291,7 +375,7 @@ sh::CullConstants CullPass::constants(const Camera& camera,
 
 void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
                       const TessellationOptions& tessellation, VkDescriptorSet stageSet) {
-  if (stageSetLayout_ && stageSet == VK_NULL_HANDLE)
+  if (pipelines_->stageSetLayout && stageSet == VK_NULL_HANDLE)
     throw Error("CullPass::record: the occlusion stage '" + settings_.occlusion +
                 "' needs its descriptor set");
   const sh::CullConstants c = constants(camera, tessellation);
@@ -300,22 +384,29 @@ void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
   // Earlier readers of the outputs (draws, host) and writers of the points come first.
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
   vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+  if (displaced()) {
+    const sh::DisplacedView v = displacedView(camera);
+    vkCmdUpdateBuffer(cmd, displacedView_.handle(), 0, sizeof(v), &v);
+  }
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kComputeReadWrite);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
-                          nullptr);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout.get(), 0, 1,
+                          &set_, 0, nullptr);
   if (stageSet != VK_NULL_HANDLE)
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 1, 1, &stageSet, 0,
-                            nullptr);
-  vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout.get(), 1, 1,
+                            &stageSet, 0, nullptr);
+  vkCmdPushConstants(cmd, pipelines_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPipeline_.get());
-    vkCmdDispatch(cmd, vulkan::groupCount(n, sh::kCullGroupSize / lanes_), 1, 1);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->cull.get());
+    const vulkan::DispatchSize groups =
+        vulkan::checkedGroups2D(context_, vulkan::groupCount(n, sh::kCullGroupSize / lanes_),
+                                "CullPass: the cull dispatch");
+    vkCmdDispatch(cmd, groups.x, groups.y, 1);
   }
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite, vulkan::scope::kComputeReadWrite);
   const uint32_t commandCount =
       maxDraws(gpu_.bezierCount(), chunkBezier_) + maxDraws(gpu_.gregoryCount(), chunkGregory_);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, drawsPipeline_.get());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->draws.get());
   vkCmdDispatch(cmd, std::max(1u, vulkan::groupCount(commandCount, sh::kDrawsGroupSize)), 1, 1);
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, kAfterCull);
 }

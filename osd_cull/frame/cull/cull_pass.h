@@ -50,7 +50,16 @@ struct CullSettings {
   /// the eye. On by default; off gives the surface-exact tests the papers measure, which can
   /// lose single silhouette pixels (docs/algorithms/drawn-triangles.md).
   bool drawnTriangles = true;
+  /// A displaced mesh: its map and PatchExtraction::uvCorners (both borrowed; they must
+  /// outlive the pass). Then the frustum and occlusion stages test the displaced bound
+  /// `displacedKernel` (an occlusion method that is a displaced kernel, e.g. "con-caf",
+  /// chooses its own), and back-patch culling is off (backPatchNote() says why).
+  const bound::DisplacementMap* displacementMap = nullptr;
+  std::span<const glm::dvec2> uvCorners;
+  CullMethod::Displaced displacedKernel;
 };
+
+struct CullPipelines;
 
 /// \brief Survivor and draw counts of the last pass.
 struct CullCounts {
@@ -73,7 +82,8 @@ class CullPass {
  public:
   /// \brief Builds the kernel variant for `settings` and uploads the per-mesh data (cones
   /// of the back-patch method, built on the host in double, rounded toward "visible").
-  /// \throws osd_cull::Error for unknown method names or a method in the wrong stage.
+  /// \throws osd_cull::Error for unknown method names, a method in the wrong stage, or a
+  /// buffer, dispatch or draw count beyond a device limit (named; before anything exists).
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings);
   /// \brief The same, reading the per-patch cull data from `cullData` (kConeVec4s vec4 per
@@ -93,6 +103,11 @@ class CullPass {
   /// \brief Whether the back-patch stage runs; backPatchNote() says why not.
   bool backPatchEnabled() const;
   const std::string& backPatchNote() const { return backPatchNote_; }
+  /// \brief Whether the frustum and occlusion stages test a displaced bound, which one, and
+  /// its per-patch data (Dmin/Dmax and cones, double, as uploaded before rounding).
+  bool displaced() const { return !displaced_.empty(); }
+  const CullMethod::Displaced& displacedKernel() const { return displacedKernel_; }
+  std::span<const bound::DisplacedPatch> displacedPatches() const { return displaced_; }
   /// \brief Host copies (double) of the uploaded cones, empty when none are used.
   std::span<const bound::ConeOfNormals> cones() const { return cones_; }
   /// \brief Whether back-patch culls respect the drawn triangles (CullSettings::
@@ -145,6 +160,7 @@ class CullPass {
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings, const vulkan::Buffer* cullData);
   void buildPipelines(vulkan::Context& context);
+  void checkLimits(uint32_t patchCount) const;
   void uploadHostCones(vulkan::Context& context);
   shader::CullConstants constants(const Camera& camera,
                                   const TessellationOptions& tessellation) const;
@@ -157,6 +173,9 @@ class CullPass {
   std::string backPatchNote_;
   uint32_t lanes_ = 1;
   std::vector<bound::ConeOfNormals> cones_;
+  std::vector<bound::DisplacedPatch> displaced_;
+  CullMethod::Displaced displacedKernel_;
+  vulkan::Buffer displacedView_;
 
   vulkan::Buffer conesBuffer_;                      // host-built cull data (unused if external)
   const vulkan::Buffer* cullData_ = &conesBuffer_;  // what the kernel reads
@@ -165,11 +184,7 @@ class CullPass {
   vulkan::Buffer drawList_;
   vulkan::Buffer counters_;
   vulkan::Buffer commands_;
-  vulkan::UniqueDescriptorSetLayout setLayout_;
-  vulkan::UniqueDescriptorSetLayout stageSetLayout_;
-  vulkan::UniquePipelineLayout layout_;
-  vulkan::UniquePipeline cullPipeline_;
-  vulkan::UniquePipeline drawsPipeline_;
+  std::shared_ptr<const CullPipelines> pipelines_;  // shared by passes with the same kernel
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkDescriptorSet drawSet_ = VK_NULL_HANDLE;  // gpu_'s set with drawList_, made on first draw

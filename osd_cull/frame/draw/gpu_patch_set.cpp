@@ -3,7 +3,10 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/draw/tess_levels.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/transfer.h"
+
+#include <shared/point_source.h>
 
 #include <algorithm>
 #include <numeric>
@@ -17,6 +20,22 @@ std::span<const vulkan::DescriptorBinding> patchSetBindings() {
       {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL}};
   return bindings;
 }
+
+const char* pointsByAddressDefine(const vulkan::Context& context) {
+  return context.info().optional.bufferDeviceAddress ? "1" : "0";
+}
+
+namespace {
+
+// Without device addresses the points are bound as one descriptor.
+void checkPointRange(const vulkan::Context& context, VkDeviceSize bytes, const std::string& what) {
+  if (bytes > context.info().limits.maxStorageBufferRange)
+    vulkan::checkStorageBufferRange(
+        context, bytes,
+        what + " (the device lacks bufferDeviceAddress, which would lift this limit)");
+}
+
+}  // namespace
 
 std::vector<float> packPoints(std::span<const glm::dvec3> points) {
   std::vector<float> out(points.size() * 4);
@@ -33,7 +52,8 @@ GpuPatchSet::GpuPatchSet(vulkan::Context& context, const PatchSet& patches)
     : bezierCount_(patches.bezierCount),
       gregoryCount_(patches.gregoryCount),
       pointCount_(static_cast<uint32_t>(patches.points.size())),
-      transitionEdges_(frame::hasTransitionEdges(patches)) {
+      transitionEdges_(frame::hasTransitionEdges(patches)),
+      pointsByAddress_(context.info().optional.bufferDeviceAddress) {
   const uint32_t n = patches.patchCount();
   const size_t expectedPoints =
       size_t{patches.bezierCount} * kBezierPoints + size_t{patches.gregoryCount} * kGregoryPoints;
@@ -45,18 +65,28 @@ GpuPatchSet::GpuPatchSet(vulkan::Context& context, const PatchSet& patches)
                 std::to_string(patches.gregoryCount) + " Gregory patches (expected " +
                 std::to_string(expectedPoints) + " points)");
   // Buffers are never empty (Vulkan forbids size 0); an empty set draws nothing.
+  const size_t pointBytes =
+      std::max<size_t>(16, patches.points.size() * kOwnPointStride * sizeof(float));
+  const std::string name = "GpuPatchSet '" + patches.source + "': ";
+  if (!pointsByAddress_)
+    checkPointRange(context, pointBytes,
+                    name + "the " + std::to_string(pointCount_) + " control points");
+  vulkan::checkStorageBufferRange(context, size_t{n} * 8, name + "the PatchParams");
+  vulkan::checkStorageBufferRange(context, size_t{n} * 4, name + "the draw list");
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-  points_ = vulkan::Buffer(context, std::max<size_t>(16, patches.points.size() * 16), storage);
+  points_ = vulkan::Buffer(context, pointBytes, storage);
   params_ = vulkan::Buffer(context, std::max<size_t>(8, size_t{n} * 8), storage);
   drawList_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{n} * 4), storage);
+  if (pointsByAddress_) {
+    pointRecord_ =
+        vulkan::Buffer(context, sizeof(shader::PointSource), storage, vulkan::MemoryUse::Upload);
+    writePointRecord();
+  }
   setLayout_ = vulkan::createDescriptorSetLayout(context, patchSetBindings());
-  pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1 + kMaxDrawListSets, patchSetBindings());
+  pool_ =
+      std::make_unique<vulkan::DescriptorPool>(context, 1 + kMaxDrawListSets, patchSetBindings());
   set_ = pool_->allocate(setLayout_.get());
-  vulkan::DescriptorWriter()
-      .buffer(0, points_)
-      .buffer(1, params_)
-      .buffer(2, drawList_)
-      .update(context.device(), set_);
+  writeDescriptorSet(context.device(), set_, drawList_);
   if (n == 0) return;
   updatePoints(context, patches.points);
   std::vector<uint32_t> params(2 * size_t{n});
@@ -77,32 +107,40 @@ VkDescriptorSet GpuPatchSet::descriptorSetWithDrawList(vulkan::Context& context,
                 " draw-list descriptor sets requested");
   const VkDescriptorSet set = pool_->allocate(setLayout_.get());
   ++extraSets_;
-  vulkan::DescriptorWriter()
-      .buffer(0, *pointSource_)
-      .buffer(1, params_)
-      .buffer(2, drawList)
-      .update(context.device(), set);
+  writeDescriptorSet(context.device(), set, drawList);
   return set;
 }
 
-void GpuPatchSet::readPointsFrom(vulkan::Context& context, const vulkan::Buffer& points, uint32_t stride,
-                                 uint32_t offset) {
+void GpuPatchSet::readPointsFrom(vulkan::Context& context, const vulkan::Buffer& points,
+                                 uint32_t stride, uint32_t offset) {
   const uint64_t needed = (uint64_t{offset} + uint64_t{pointCount_} * stride) * sizeof(float);
   if (stride < 3 || points.size() < needed)
     throw Error("GpuPatchSet::readPointsFrom: " + std::to_string(pointCount_) +
                 " points of stride " + std::to_string(stride) + " from float " +
                 std::to_string(offset) + " need " + std::to_string(needed) +
                 " bytes (stride >= 3), the buffer has " + std::to_string(points.size()));
+  if (!pointsByAddress_)
+    checkPointRange(context, points.size(), "GpuPatchSet::readPointsFrom: the point buffer");
   pointSource_ = &points;
   pointStride_ = stride;
   pointOffset_ = offset;
-  vulkan::DescriptorWriter().buffer(0, points).update(context.device(), set_);
+  if (pointsByAddress_)
+    writePointRecord();  // every set bound to the record follows
+  else
+    vulkan::DescriptorWriter().buffer(0, points).update(context.device(), set_);
+}
+
+void GpuPatchSet::writePointRecord() {
+  const VkDeviceAddress address = pointSource_->deviceAddress();
+  const shader::PointSource record{static_cast<uint32_t>(address),
+                                   static_cast<uint32_t>(address >> 32), 0u, 0u};
+  pointRecord_.mappedAs<shader::PointSource>()[0] = record;
 }
 
 void GpuPatchSet::writeDescriptorSet(VkDevice device, VkDescriptorSet set,
                                      const vulkan::Buffer& drawList) const {
   vulkan::DescriptorWriter()
-      .buffer(0, *pointSource_)
+      .buffer(0, pointBinding())
       .buffer(1, params_)
       .buffer(2, drawList)
       .update(device, set);
@@ -115,8 +153,16 @@ void GpuPatchSet::updatePoints(vulkan::Context& context, std::span<const glm::dv
   if (points.size() != pointCount_)
     throw Error("GpuPatchSet::updatePoints: got " + std::to_string(points.size()) +
                 " points, the set has " + std::to_string(pointCount_));
-  const std::vector<float> packed = packPoints(points);
-  vulkan::upload<float>(context, points_, packed);
+  // Converted straight into staging memory, piece by piece (no full-size float copy); a
+  // piece may end inside a point.
+  vulkan::uploadGenerated(
+      context, points_, points.size() * kOwnPointStride * sizeof(float),
+      [&](std::span<std::byte> chunk, VkDeviceSize offset) {
+        auto* out = reinterpret_cast<float*>(chunk.data());
+        size_t f = static_cast<size_t>(offset / sizeof(float));
+        for (size_t i = 0; i < chunk.size() / sizeof(float); ++i, ++f)
+          out[i] = static_cast<float>(points[f / kOwnPointStride][int(f % kOwnPointStride)]);
+      });
 }
 
 }  // namespace osd_cull::frame

@@ -18,17 +18,28 @@ class Context;
 
 namespace osd_cull::frame {
 
+class GpuDisplacement;
+
 /// \brief Device copy of a PatchSet, in the layout the draw and cull shaders read
 /// (shaders/shared/draw_layout.h):
 /// - points(): float array, control point i at floats [pointOffset() + i*pointStride(), +3)
-///   (stride 4 for the set's own buffer: x, y, z, 1); PatchSet point order. An evaluator
+///   (stride kOwnPointStride = 3 for the set's own buffer: x, y, z, 12 bytes a point, 192 a
+///   Bézier patch); PatchSet point order. An evaluator
 ///   may write this buffer directly, or readPointsFrom() makes the set read another buffer
 ///   (e.g. osd::GpuPointUpdate::points(), stride 3 or 4).
 /// - params(): two uints per patch, Far::PatchParam field0 and field1.
 /// - drawList(): patch indices, all Bézier patches then all Gregory (identity order); a
 ///   draw of slots [first, first + n) draws drawList[first .. first + n).
+///
+/// Shaders read points with controlPoint() (shaders/common/control_points.glsl). On a device
+/// with bufferDeviceAddress the points binding holds a PointSource record with the points'
+/// address (pointBinding()), so points() may be larger than maxStorageBufferRange (more
+/// than 524,288 Bézier patches on lavapipe); without it the binding holds points() itself
+/// and a larger buffer is an error that names both.
 class GpuPatchSet {
  public:
+  /// \throws osd_cull::Error when the PatchSet is inconsistent or a buffer exceeds a device
+  /// limit (named) that no address path lifts.
   GpuPatchSet(vulkan::Context& context, const PatchSet& patches);
   GpuPatchSet(const GpuPatchSet&) = delete;
   GpuPatchSet& operator=(const GpuPatchSet&) = delete;
@@ -46,16 +57,29 @@ class GpuPatchSet {
   /// \brief Makes every draw read control points from `points` (borrowed: it must outlive
   /// the set's use) with `stride` floats per point from float `offset` on, instead of the
   /// set's own buffer. Call between frames (not while a draw using the set is pending).
-  /// \throws osd_cull::Error when stride < 3 or the buffer is too small for pointCount().
+  /// \throws osd_cull::Error when stride < 3, the buffer is too small for pointCount(), or
+  /// (without bufferDeviceAddress) it exceeds maxStorageBufferRange.
   void readPointsFrom(vulkan::Context& context, const vulkan::Buffer& points, uint32_t stride,
                       uint32_t offset = 0);
   uint32_t pointStride() const { return pointStride_; }
   uint32_t pointOffset() const { return pointOffset_; }
+  /// \brief Draws of this set displace the surface with `displacement` (borrowed: it must
+  /// outlive the set's use; nullptr: undisplaced, the default). Call between frames.
+  void setDisplacement(const GpuDisplacement* displacement) { displacement_ = displacement; }
+  const GpuDisplacement* displacement() const { return displacement_; }
   /// \brief Draw-list slot of the first Gregory patch (== bezierCount()).
   uint32_t firstGregorySlot() const { return bezierCount_; }
 
   /// \brief The buffer draws read control points from (the set's own, or readPointsFrom's).
   const vulkan::Buffer& points() const { return *pointSource_; }
+  /// \brief Whether shaders read the points through a device address (the variant define
+  /// OSD_CULL_POINTS_BDA of every shader that includes control_points.glsl).
+  bool pointsByAddress() const { return pointsByAddress_; }
+  /// \brief What the points binding holds: the PointSource record (pointsByAddress()) or
+  /// points(). A set bound to it follows readPointsFrom().
+  const vulkan::Buffer& pointBinding() const {
+    return pointsByAddress_ ? pointRecord_ : *pointSource_;
+  }
   const vulkan::Buffer& params() const { return params_; }
   const vulkan::Buffer& drawList() const { return drawList_; }
   /// \brief A descriptor set with points, params and draw list at the bindings of
@@ -65,21 +89,29 @@ class GpuPatchSet {
   /// `drawList` (e.g. survivors a cull pass appended). Up to kMaxDrawListSets per set;
   /// `drawList` must outlive every draw that uses the returned set.
   /// \throws osd_cull::Error when the sets are used up.
-  VkDescriptorSet descriptorSetWithDrawList(vulkan::Context& context, const vulkan::Buffer& drawList);
+  VkDescriptorSet descriptorSetWithDrawList(vulkan::Context& context,
+                                            const vulkan::Buffer& drawList);
   static constexpr uint32_t kMaxDrawListSets = 15;
+  /// \brief Floats per point in the set's own buffer (x, y, z).
+  static constexpr uint32_t kOwnPointStride = 3;
   /// \brief Writes points (the current source, see readPointsFrom()), params and `drawList`
   /// into `set`, a set the caller allocated with a layout of patchSetBindings() (for
   /// callers that own their sets and pools).
-  void writeDescriptorSet(VkDevice device, VkDescriptorSet set, const vulkan::Buffer& drawList) const;
+  void writeDescriptorSet(VkDevice device, VkDescriptorSet set,
+                          const vulkan::Buffer& drawList) const;
 
  private:
+  void writePointRecord();
+
   uint32_t bezierCount_ = 0;
   uint32_t gregoryCount_ = 0;
   uint32_t pointCount_ = 0;
   bool transitionEdges_ = false;
   vulkan::Buffer points_;
   const vulkan::Buffer* pointSource_ = &points_;
-  uint32_t pointStride_ = 4;
+  bool pointsByAddress_ = false;
+  vulkan::Buffer pointRecord_;  // shader::PointSource, host-written
+  uint32_t pointStride_ = kOwnPointStride;
   uint32_t pointOffset_ = 0;
   vulkan::Buffer params_;
   vulkan::Buffer drawList_;
@@ -87,13 +119,18 @@ class GpuPatchSet {
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   uint32_t extraSets_ = 0;
+  const GpuDisplacement* displacement_ = nullptr;
 };
 
 /// \brief The descriptor bindings of a patch set (points, params, draw list), visible
 /// to every stage.
 std::span<const vulkan::DescriptorBinding> patchSetBindings();
 
-/// \brief Packs points as float x, y, z, 1 (the points() layout).
+/// \brief The value of the OSD_CULL_POINTS_BDA define for shaders that read points on this
+/// context ("1" with bufferDeviceAddress, else "0"); matches GpuPatchSet::pointsByAddress().
+const char* pointsByAddressDefine(const vulkan::Context& context);
+
+/// \brief Packs points as float x, y, z, 1 (a vec4 vertex layout, e.g. triangle meshes).
 std::vector<float> packPoints(std::span<const glm::dvec3> points);
 
 }  // namespace osd_cull::frame

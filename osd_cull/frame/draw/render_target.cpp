@@ -6,17 +6,50 @@
 #include "osd_cull/vk/transfer.h"
 
 #include <cstring>
+#include <string>
 
 namespace osd_cull::frame {
 
-vulkan::UniqueRenderPass createTargetRenderPass(vulkan::Context& context, bool clear) {
+namespace {
+
+std::string formatName(VkFormat format) { return std::to_string(static_cast<int>(format)); }
+
+void requireFormat(const vulkan::Context& context, VkFormat format, VkFormatFeatureFlags need,
+                   const char* what) {
+  VkFormatProperties props;
+  vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), format, &props);
+  if ((props.optimalTilingFeatures & need) != need)
+    throw Error(std::string("RenderTarget: the device cannot use format ") + formatName(format) +
+                " as " + what);
+}
+
+void checkSize(const vulkan::Context& context, uint32_t width, uint32_t height) {
+  const auto& limits = context.info().limits;
+  if (width == 0 || height == 0 || width > limits.maxFramebufferWidth ||
+      height > limits.maxFramebufferHeight)
+    throw Error("RenderTarget: size " + std::to_string(width) + "x" + std::to_string(height) +
+                " is not in [1, " + std::to_string(limits.maxFramebufferWidth) + "]x[1, " +
+                std::to_string(limits.maxFramebufferHeight) + "]");
+}
+
+void requireDynamicRendering(const vulkan::Context& context) {
+  if (!context.info().optional.dynamicRendering)
+    throw Error(
+        "RenderTarget: dynamic rendering was asked for but the device has not enabled it "
+        "(Vulkan 1.3 dynamicRendering or VK_KHR_dynamic_rendering)");
+}
+
+}  // namespace
+
+vulkan::UniqueRenderPass createTargetRenderPass(vulkan::Context& context, bool clear,
+                                                const TargetFormat& format) {
   using T = RenderTarget;
   VkAttachmentDescription a[3]{};
-  const VkFormat formats[3] = {T::kColorFormat, T::kItemFormat, T::kDepthFormat};
+  const VkFormat formats[3] = {format.color, format.items, format.depth};
   const VkImageLayout resting[3] = {T::kColorLayout, T::kItemLayout, T::kDepthLayout};
   for (int i = 0; i < 3; ++i) {
     a[i].format = formats[i];
-    a[i].samples = VK_SAMPLE_COUNT_1_BIT;
+    a[i].samples = format.samples;
     a[i].loadOp = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
     a[i].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     a[i].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
@@ -59,22 +92,38 @@ vulkan::UniqueRenderPass createTargetRenderPass(vulkan::Context& context, bool c
   return vulkan::UniqueRenderPass(context.device(), pass);
 }
 
-RenderTarget::RenderTarget(vulkan::Context& context, uint32_t width, uint32_t height) {
-  const auto& limits = context.info().limits;
-  if (width == 0 || height == 0 || width > limits.maxFramebufferWidth ||
-      height > limits.maxFramebufferHeight)
-    throw Error("RenderTarget: size " + std::to_string(width) + "x" + std::to_string(height) +
-                " is not in [1, " + std::to_string(limits.maxFramebufferWidth) + "]x[1, " +
-                std::to_string(limits.maxFramebufferHeight) + "]");
-  color_ = vulkan::Image(context, {width, height, kColorFormat,
-                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-  items_ = vulkan::Image(context, {width, height, kItemFormat,
-                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT});
-  depth_ = vulkan::Image(context,
-                     {width, height, kDepthFormat,
-                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
-  clearPass_ = createTargetRenderPass(context, true);
-  loadPass_ = createTargetRenderPass(context, false);
+RenderTarget::RenderTarget(vulkan::Context& context, uint32_t width, uint32_t height)
+    : RenderTarget(context, width, height, OwnTargetOptions{}) {}
+
+RenderTarget::RenderTarget(vulkan::Context& context, uint32_t width, uint32_t height,
+                           const OwnTargetOptions& options) {
+  checkSize(context, width, height);
+  if (vulkan::aspectOf(options.depth) != VK_IMAGE_ASPECT_DEPTH_BIT)
+    throw Error("RenderTarget: own depth format " + formatName(options.depth) +
+                " is not a depth-only format (D16_UNORM, X8_D24_UNORM_PACK32, D32_SFLOAT)");
+  requireFormat(context, options.color, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT, "color attachment");
+  requireFormat(
+      context, options.depth,
+      VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT,
+      "a sampled depth attachment");
+  if (options.dynamicRendering) requireDynamicRendering(context);
+  format_.color = options.color;
+  format_.depth = options.depth;
+  format_.dynamicRendering = options.dynamicRendering;
+  color_ =
+      vulkan::Image(context, {width, height, options.color,
+                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+  items_ =
+      vulkan::Image(context, {width, height, kItemFormat,
+                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT});
+  depth_ = vulkan::Image(
+      context, {width, height, options.depth,
+                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
+  colorView_ = color_.view();
+  depthView_ = depth_.view();
+  if (options.dynamicRendering) return;
+  clearPass_ = createTargetRenderPass(context, true, format_);
+  loadPass_ = createTargetRenderPass(context, false, format_);
   const VkImageView views[3] = {color_.view(), items_.view(), depth_.view()};
   VkFramebufferCreateInfo info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   info.renderPass = clearPass_.get();
@@ -88,20 +137,76 @@ RenderTarget::RenderTarget(vulkan::Context& context, uint32_t width, uint32_t he
   framebuffer_ = vulkan::UniqueFramebuffer(context.device(), fb);
 }
 
+RenderTarget::RenderTarget(vulkan::Context& context, const ExternalTarget& t) : external_(true) {
+  std::vector<std::string> missing;
+  if (!t.colorImage) missing.push_back("colorImage");
+  if (!t.colorView) missing.push_back("colorView");
+  if (!t.depthImage) missing.push_back("depthImage");
+  if (!t.depthView) missing.push_back("depthView");
+  if (t.colorFormat == VK_FORMAT_UNDEFINED) missing.push_back("colorFormat");
+  if (t.depthFormat == VK_FORMAT_UNDEFINED) missing.push_back("depthFormat");
+  const bool passMode = t.clearPass || t.loadPass || t.framebuffer;
+  if (passMode && !t.clearPass) missing.push_back("clearPass");
+  if (passMode && !t.loadPass) missing.push_back("loadPass (a compatible pass that loads)");
+  if (passMode && !t.framebuffer) missing.push_back("framebuffer");
+  if (!(t.colorUsage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT))
+    missing.push_back("COLOR_ATTACHMENT usage of the color image (colorUsage)");
+  if (!(t.depthUsage & VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT))
+    missing.push_back("DEPTH_STENCIL_ATTACHMENT usage of the depth image (depthUsage)");
+  if (!missing.empty()) {
+    std::string list;
+    for (const std::string& m : missing) list += (list.empty() ? "" : ", ") + m;
+    throw Error("RenderTarget(ExternalTarget): missing " + list);
+  }
+  checkSize(context, t.width, t.height);
+  if (!(vulkan::aspectOf(t.depthFormat) & VK_IMAGE_ASPECT_DEPTH_BIT))
+    throw Error("RenderTarget(ExternalTarget): depthFormat " + formatName(t.depthFormat) +
+                " is not a depth format");
+  if (!passMode) requireDynamicRendering(context);
+  format_.color = t.colorFormat;
+  format_.items = VK_FORMAT_UNDEFINED;
+  format_.depth = t.depthFormat;
+  format_.samples = t.samples;
+  format_.renderPass = t.clearPass;
+  format_.dynamicRendering = !passMode;
+  color_ = vulkan::Image::borrow(context, t.colorImage,
+                                 {t.width, t.height, t.colorFormat, t.colorUsage});
+  depth_ = vulkan::Image::borrow(context, t.depthImage,
+                                 {t.width, t.height, t.depthFormat, t.depthUsage});
+  colorLayout_ = t.colorLayout;
+  depthLayout_ = t.depthLayout;
+  colorView_ = t.colorView;
+  depthView_ = t.depthView;
+  appClearPass_ = t.clearPass;
+  appLoadPass_ = t.loadPass;
+  appFramebuffer_ = t.framebuffer;
+  clearValues_ = t.clearValues;
+}
+
+const vulkan::Image& RenderTarget::items() const {
+  if (!items_)
+    throw Error(
+        "RenderTarget: an application's target has no item buffer (the oracle and "
+        "item counts need osd_cull's own target)");
+  return items_;
+}
+
 void RenderTarget::requireContents() const {
   if (!hasContents_) throw Error("RenderTarget: nothing has been drawn yet");
 }
 
 std::vector<uint8_t> RenderTarget::readColor(vulkan::Context& context) const {
   requireContents();
-  const auto bytes = vulkan::readbackImage(context, color_, kColorLayout);
+  if (!(color_.desc().usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT))
+    throw Error("RenderTarget::readColor: the color image was not created with TRANSFER_SRC usage");
+  const auto bytes = vulkan::readbackImage(context, color_, colorLayout_);
   return std::vector<uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()),
                               reinterpret_cast<const uint8_t*>(bytes.data()) + bytes.size());
 }
 
 std::vector<uint32_t> RenderTarget::readItems(vulkan::Context& context) const {
   requireContents();
-  const auto bytes = vulkan::readbackImage(context, items_, kItemLayout);
+  const auto bytes = vulkan::readbackImage(context, items(), kItemLayout);
   std::vector<uint32_t> out(bytes.size() / 4);
   std::memcpy(out.data(), bytes.data(), out.size() * 4);
   return out;
@@ -109,7 +214,10 @@ std::vector<uint32_t> RenderTarget::readItems(vulkan::Context& context) const {
 
 std::vector<float> RenderTarget::readDepth(vulkan::Context& context) const {
   requireContents();
-  const auto bytes = vulkan::readbackImage(context, depth_, kDepthLayout);
+  if (depth_.format() != VK_FORMAT_D32_SFLOAT)
+    throw Error("RenderTarget::readDepth: reads D32_SFLOAT depth only (format " +
+                formatName(depth_.format()) + ")");
+  const auto bytes = vulkan::readbackImage(context, depth_, depthLayout_);
   std::vector<float> out(bytes.size() / 4);
   std::memcpy(out.data(), bytes.data(), out.size() * 4);
   return out;

@@ -1,7 +1,10 @@
 #include "osd_cull/frame/draw/renderer.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/draw/dynamic_rendering.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 
 #include <osd_cull/shared/draw_layout.h>
@@ -53,7 +56,6 @@ void checkOptions(const vulkan::Context& context, const Camera& camera, const Re
 
 Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(context, 1) {
   if (context.info().timestampValidBits > 0) timestamps_.emplace(context, 2);
-  referencePass_ = createTargetRenderPass(context, true);
   patchSetLayout_ = vulkan::createDescriptorSetLayout(context, patchSetBindings());
   meshSetLayout_ = vulkan::createDescriptorSetLayout(context, triangleMeshBindings());
   const VkDescriptorSetLayout p = patchSetLayout_.get();
@@ -62,14 +64,42 @@ Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(co
                                               kGraphicsStages);
   meshLayout_ = vulkan::createPipelineLayout(context, {&m, 1}, sizeof(shader::DrawConstants),
                                              kGraphicsStages);
+  displacementSetLayout_ = vulkan::createDescriptorSetLayout(context, displacementSetBindings());
+  const VkDescriptorSetLayout displaced[] = {p, displacementSetLayout_.get()};
+  displacedLayout_ = vulkan::createPipelineLayout(context, displaced, sizeof(shader::DrawConstants),
+                                                  kGraphicsStages);
+}
+
+void Renderer::describeTarget(vulkan::GraphicsPipelineDesc& d, const TargetFormat& format) {
+  const bool items = format.items != VK_FORMAT_UNDEFINED;
+  d.colorAttachments = items ? 2 : 1;
+  d.samples = format.samples;
+  d.subpass = format.subpass;
+  if (format.dynamicRendering) {
+    d.colorFormats = {format.color};
+    if (items) d.colorFormats.push_back(format.items);
+    d.depthFormat = format.depth;
+  } else if (format.renderPass) {
+    d.renderPass = format.renderPass;
+  } else {
+    auto& pass = referencePasses_[format];
+    if (!pass) pass = createTargetRenderPass(context_, true, format);
+    d.renderPass = pass.get();
+  }
 }
 
 VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wireframe,
-                                   bool mirrored) {
-  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored}];
+                                   bool mirrored, bool displaced, const TargetFormat& format) {
+  auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored, displaced, format}];
   if (slot) return slot.get();
   const std::string points = type == PatchType::Bezier ? "16" : "20";
-  const std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points}};
+  std::vector<vulkan::ShaderDefine> defines = {
+      {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
+  std::vector<vulkan::ShaderDefine> evalDefines = defines;
+  // Only the displaced variant's evaluation stage has displacement code (displace.glsl).
+  if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
+  const std::vector<vulkan::ShaderDefine> fragment = {
+      {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
   vulkan::GraphicsPipelineDesc d;
   d.stages.push_back(
       {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"patch/patch.vert", defines}), {}});
@@ -77,13 +107,12 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
                       vulkan::compileShader({"patch/patch.tesc", defines}),
                       {}});
   d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
-                      vulkan::compileShader({"patch/patch.tese", defines}),
+                      vulkan::compileShader({"patch/patch.tese", evalDefines}),
                       {}});
   d.stages.push_back(
-      {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"patch/patch.frag", {}}), {}});
-  d.layout = patchLayout_.get();
-  d.renderPass = referencePass_.get();
-  d.colorAttachments = 2;
+      {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"patch/patch.frag", fragment}), {}});
+  d.layout = displaced ? displacedLayout_.get() : patchLayout_.get();
+  describeTarget(d, format);
   d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
   d.patchControlPoints = type == PatchType::Bezier ? kBezierPoints : kGregoryPoints;
   d.cullMode = cullBackFaces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
@@ -100,48 +129,73 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
   return slot.get();
 }
 
-VkPipeline Renderer::trianglePipeline() {
-  if (trianglePipeline_) return trianglePipeline_.get();
+VkPipeline Renderer::trianglePipeline(const TargetFormat& format) {
+  auto& slot = trianglePipelines_[format];
+  if (slot) return slot.get();
+  const std::vector<vulkan::ShaderDefine> fragment = {
+      {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
   vulkan::GraphicsPipelineDesc d;
   d.stages.push_back(
       {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"mesh/triangle.vert", {}}), {}});
   d.stages.push_back(
-      {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"mesh/triangle.frag", {}}), {}});
+      {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"mesh/triangle.frag", fragment}), {}});
   d.layout = meshLayout_.get();
-  d.renderPass = referencePass_.get();
-  d.colorAttachments = 2;
-  trianglePipeline_ = vulkan::createGraphicsPipeline(context_, d);
-  return trianglePipeline_.get();
+  describeTarget(d, format);
+  slot = vulkan::createGraphicsPipeline(context_, d);
+  return slot.get();
 }
 
 void Renderer::beginPass(VkCommandBuffer cmd, RenderTarget& target,
                          const RenderOptions& options) const {
   if (!options.clear && !target.hasContents())
     throw Error("Renderer: RenderOptions::clear is false but the target was never drawn");
+  if (openTarget_) throw Error("Renderer::beginPass: the previous pass was not ended");
   VkClearValue clears[3]{};
   clears[0].color = {{options.background.r, options.background.g, options.background.b, 1.0f}};
-  clears[1].color.uint32[0] = shader::kItemBackground;
-  clears[2].depthStencil = {1.0f, 0};
-  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  begin.renderPass = options.clear ? target.clearPass() : target.loadPass();
-  begin.framebuffer = target.framebuffer();
-  begin.renderArea = {{0, 0}, {target.width(), target.height()}};
-  begin.clearValueCount = options.clear ? 3 : 0;
-  begin.pClearValues = options.clear ? clears : nullptr;
-  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  if (target.hasItems()) {
+    clears[1].color.uint32[0] = shader::kItemBackground;
+    clears[2].depthStencil = {1.0f, 0};
+  } else {
+    clears[1].depthStencil = {1.0f, 0};
+  }
+  if (target.format().dynamicRendering) {
+    beginRendering(context_, cmd, target, options.clear, clears);
+  } else {
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = options.clear ? target.clearPass() : target.loadPass();
+    begin.framebuffer = target.framebuffer();
+    begin.renderArea = {{0, 0}, {target.width(), target.height()}};
+    const bool appClears = !target.clearValues().empty();
+    begin.clearValueCount = !options.clear ? 0
+                            : appClears    ? static_cast<uint32_t>(target.clearValues().size())
+                                           : (target.hasItems() ? 3u : 2u);
+    begin.pClearValues = !options.clear ? nullptr
+                         : appClears    ? target.clearValues().data()
+                                        : clears;
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+  }
   const VkViewport viewport{0.0f, 0.0f, float(target.width()), float(target.height()), 0.0f, 1.0f};
   const VkRect2D scissor{{0, 0}, {target.width(), target.height()}};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   target.markDrawn();
+  openTarget_ = &target;
+  drawFormat_ = target.format();
 }
 
-void Renderer::endPass(VkCommandBuffer cmd) const { vkCmdEndRenderPass(cmd); }
+void Renderer::endPass(VkCommandBuffer cmd) const {
+  if (!openTarget_) throw Error("Renderer::endPass: no pass is open");
+  if (openTarget_->format().dynamicRendering)
+    endRendering(context_, cmd, *openTarget_);
+  else
+    vkCmdEndRenderPass(cmd);
+  openTarget_ = nullptr;
+}
 
 void Renderer::recordOccluders(VkCommandBuffer cmd, const Camera& camera,
                                std::span<const GpuTriangleMesh* const> occluders) {
   if (occluders.empty()) return;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, trianglePipeline());
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, trianglePipeline(drawFormat_));
   shader::DrawConstants c = drawConstants(camera, {});
   c.pointStride = 4;
   c.itemBase = shader::kItemOccluder;
@@ -159,12 +213,15 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
                            PatchType type, const RenderOptions& options) {
   const GpuPatchSet& gpu = *draw.gpu;
   const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
-  vkCmdBindPipeline(
-      cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-      patchPipeline(type, options.cullBackFaces, options.wireframe, isMirrored(camera)));
-  const VkDescriptorSet set = draw.set ? draw.set : gpu.descriptorSet();
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, patchLayout_.get(), 0, 1, &set, 0,
-                          nullptr);
+  const GpuDisplacement* displacement = gpu.displacement();
+  const VkPipelineLayout layout = displacement ? displacedLayout_.get() : patchLayout_.get();
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                    patchPipeline(type, options.cullBackFaces, options.wireframe,
+                                  isMirrored(camera), displacement != nullptr, drawFormat_));
+  const VkDescriptorSet sets[] = {draw.set ? draw.set : gpu.descriptorSet(),
+                                  displacement ? displacement->descriptorSet() : VK_NULL_HANDLE};
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, displacement ? 2 : 1,
+                          sets, 0, nullptr);
   RenderOptions effective = options;
   effective.tessellation = effectiveOptions(options.tessellation, gpu.hasTransitionEdges());
   shader::DrawConstants c = drawConstants(camera, effective);
@@ -172,7 +229,7 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
   c.pointStride = gpu.pointStride();
   c.pointOffset = gpu.pointOffset();
   c.itemBase = draw.itemBase;
-  vkCmdPushConstants(cmd, patchLayout_.get(), kGraphicsStages, 0, sizeof(c), &c);
+  vkCmdPushConstants(cmd, layout, kGraphicsStages, 0, sizeof(c), &c);
 }
 
 void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
@@ -181,6 +238,7 @@ void Renderer::recordIndirect(VkCommandBuffer cmd, const Camera& camera, const P
                               uint32_t maxDraws, const RenderOptions& options) {
   if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
   if (maxDraws == 0) return;
+  vulkan::checkDrawIndirectCount(context_, maxDraws, "Renderer::recordIndirect");
   bindPatches(cmd, camera, draw, type, options);
   vkCmdDrawIndirectCount(cmd, commands.handle(), offset, count.handle(), countOffset, maxDraws,
                          sizeof(VkDrawIndirectCommand));

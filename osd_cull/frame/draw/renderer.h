@@ -9,6 +9,7 @@
 #include "osd_cull/frame/draw/render_target.h"
 #include "osd_cull/frame/draw/tess_levels.h"
 #include "osd_cull/frame/draw/triangle_mesh.h"
+#include "osd_cull/vk/pipeline.h"
 #include "osd_cull/vk/query.h"
 
 #include <glm/vec3.hpp>
@@ -101,9 +102,17 @@ class Renderer {
   FrameStats render(RenderTarget& target, const Camera& camera, const GpuPatchSet& patches,
                     const PatchSet* host, const RenderOptions& options);
 
-  /// \brief Begins the target's clear or load render pass and sets viewport and scissor.
+  /// \brief Begins the target's clear or load render pass (or, with dynamic rendering,
+  /// moves its images to attachment layouts and begins rendering) and sets viewport and
+  /// scissor.
   void beginPass(VkCommandBuffer cmd, RenderTarget& target, const RenderOptions& options) const;
+  /// \brief Ends the pass beginPass() began (and returns dynamic-rendering images to the
+  /// target's resting layouts).
   void endPass(VkCommandBuffer cmd) const;
+  /// \brief For draws the caller records into a pass it began itself (e.g. a subpass of
+  /// the application's render pass): the record* functions use pipelines for `format`
+  /// until the next beginPass(). Default: an own RenderTarget's default formats.
+  void setDrawFormat(const TargetFormat& format) const { drawFormat_ = format; }
   /// \brief Records triangle occluder draws (inside a pass).
   void recordOccluders(VkCommandBuffer cmd, const Camera& camera,
                        std::span<const GpuTriangleMesh* const> occluders);
@@ -127,19 +136,29 @@ class Renderer {
                       const RenderOptions& options);
 
  private:
-  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored);
-  VkPipeline trianglePipeline();
+  VkPipeline patchPipeline(PatchType type, bool cullBackFaces, bool wireframe, bool mirrored,
+                           bool displaced, const TargetFormat& format);
+  VkPipeline trianglePipeline(const TargetFormat& format);
+  // Render pass, subpass and formats of pipelines for `format`.
+  void describeTarget(vulkan::GraphicsPipelineDesc& d, const TargetFormat& format);
   void bindPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw, PatchType type,
                    const RenderOptions& options);
 
   vulkan::Context& context_;
-  vulkan::UniqueRenderPass referencePass_;  // compatible with every RenderTarget's passes
+  // Per own-target format set: a pass compatible with every such RenderTarget's passes.
+  std::map<TargetFormat, vulkan::UniqueRenderPass> referencePasses_;
+  // The target of the pass being recorded (beginPass → endPass).
+  mutable RenderTarget* openTarget_ = nullptr;
+  mutable TargetFormat drawFormat_;  // what record* draws for
   vulkan::UniqueDescriptorSetLayout patchSetLayout_;
   vulkan::UniqueDescriptorSetLayout meshSetLayout_;
   vulkan::UniquePipelineLayout patchLayout_;
+  vulkan::UniqueDescriptorSetLayout displacementSetLayout_;
+  vulkan::UniquePipelineLayout displacedLayout_;  // set 0 patches, set 1 displacement
   vulkan::UniquePipelineLayout meshLayout_;
-  std::map<std::tuple<PatchType, bool, bool, bool>, vulkan::UniquePipeline> patchPipelines_;
-  vulkan::UniquePipeline trianglePipeline_;
+  std::map<std::tuple<PatchType, bool, bool, bool, bool, TargetFormat>, vulkan::UniquePipeline>
+      patchPipelines_;
+  std::map<TargetFormat, vulkan::UniquePipeline> trianglePipelines_;
   vulkan::PipelineStatisticsQuery statistics_;
   std::optional<vulkan::TimestampQuery> timestamps_;  // absent when the queue has no timestamps
 };

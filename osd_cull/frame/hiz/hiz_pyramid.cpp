@@ -94,9 +94,11 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth,
                        const HiZOptions& options)
     : depth_(depth),
       layout_(bound::HiZLayout::make(depth.width(), depth.height(), options.fullResolution)) {
-  if (depth.format() != VK_FORMAT_D32_SFLOAT)
-    throw Error("HiZPyramid: the depth image must be D32_SFLOAT (got format " +
+  if (!(vulkan::aspectOf(depth.format()) & VK_IMAGE_ASPECT_DEPTH_BIT))
+    throw Error("HiZPyramid: the depth image must have a depth format (got format " +
                 std::to_string(static_cast<int>(depth.format())) + ")");
+  if (!(depth.desc().usage & VK_IMAGE_USAGE_SAMPLED_BIT))
+    throw Error("HiZPyramid: the depth image must have SAMPLED usage (the pyramid reads it)");
   const bool minmax = supportsMinmaxReduction(context);
   if (options.reduction == HiZReduction::Sampler && !minmax)
     throw Error("HiZPyramid: min/max sampler reduction requested, but device '" +
@@ -108,7 +110,7 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth,
                 (options.reduction == HiZReduction::Auto && !minmax);
   sampler_ = options.reduction == HiZReduction::Sampler ||
              (options.reduction == HiZReduction::Auto && minmax);
-  depthSampler_ = sampler_ && supportsMinmaxDepthReduction(context);
+  depthSampler_ = sampler_ && formatHasMinmax(context, depth.format());
   lookup_ = options.lookup;
   legacy_ = options.legacyBuild;
   if (singlePass_ && layout_.levelCount > shader::kHiZMaxLevels)

@@ -66,7 +66,8 @@ bool supportsMinmaxDepthReduction(const vulkan::Context& context);
 /// record() leaves it readable by compute shaders (view() with texelFetch) and transfers.
 class HiZPyramid {
  public:
-  /// \brief A pyramid for `depth` (D32_SFLOAT with SAMPLED usage), which must outlive it.
+  /// \brief A pyramid for `depth` (a single-sample depth format with SAMPLED usage, e.g.
+  /// the application's depth attachment through vulkan::Image::borrow), which must outlive it.
   /// \throws osd_cull::Error when HiZReduction::Sampler is asked for and not supported.
   HiZPyramid(vulkan::Context& context, const vulkan::Image& depth, const HiZOptions& options = {});
   ~HiZPyramid();

@@ -1,5 +1,7 @@
 #include "osd_cull/frame/verify/cull_verification.h"
 
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
+
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/error.h"
@@ -46,6 +48,11 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
       renderer_(context),
       oracle_(context),
       cullBackFaces_(options.cullBackFaces.value_or(validity.enabled)) {
+  if (options.displacementMap) {
+    displacement_ = std::make_unique<GpuDisplacement>(context, *options.displacementMap,
+                                                      options.uvCorners, host.patchCount());
+    gpu_.setDisplacement(displacement_.get());
+  }
   if (options.imageCheck && !options.oracle)
     throw Error("CullVerifier: the image check compares with the oracle's full draw; enable it");
   std::vector<const CullMethod*> run;
@@ -55,6 +62,10 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
       skipped_.push_back({name,
                           "occlusion is tested against the depth of the oracle's draw; "
                           "enable the oracle"});
+    } else if (m.stage == CullStage::BackPatch && options.displacementMap) {
+      skipped_.push_back({name, std::string("back-patch culling is off: ") + kDisplacedBackPatchNote});
+    } else if (m.displaced && !options.displacementMap) {
+      skipped_.push_back({name, "a displaced kernel; this mesh has no displacement map"});
     } else if (m.stage == CullStage::BackPatch && !validity.enabled) {
       skipped_.push_back({name, "back-patch culling is off for this mesh: " + validity.reason});
     } else {
@@ -71,13 +82,15 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
     if (run[i]->stage == CullStage::Occlusion) settings.occlusion = run[i]->name;
     settings.backPatchValidity = validity;
     settings.drawnTriangles = options.drawnTriangles;
+    settings.displacementMap = options.displacementMap;
+    settings.uvCorners = options.uvCorners;
     m->pass = std::make_unique<CullPass>(context, gpu_, host, settings);
     m->totals = &totals_[i];
     totals_[i].name = run[i]->name;
     totals_[i].stage = run[i]->stage;
     methods_.push_back(std::move(m));
   }
-  if (options.samplingGrid > 0) {
+  if (options.samplingGrid > 0 && !options.displacementMap) {
     samples_.reserve(host.patchCount());
     for (uint32_t p = 0; p < host.patchCount(); ++p)
       samples_.push_back(bound::samplePatch(host.controlPoints(p), options.samplingGrid));
@@ -160,7 +173,10 @@ void CullVerifier::verifyView(const Camera& camera) {
     }
     if (reference) {
       std::vector<uint32_t> codes;
-      if (hiz) {
+      if (m->pass->displaced()) {
+        codes = displacedReferenceCull(host_, *m->pass, camera,
+                                       hiz ? &hizReference : nullptr, options_.hiz.lookup);
+      } else if (hiz) {
         codes.resize(n, shader::kStageNone);
         for (uint32_t p = 0; p < n; ++p)
           if (bound::hizOcclusionTest(host_.controlPoints(p), view.viewProj, hizReference,

@@ -18,6 +18,7 @@
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/bound/sampling.h"
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
@@ -50,6 +51,12 @@ struct VerifyOptions {
   /// mesh. Then a patch culled with the drawn-triangle bound has no triangle that is drawn
   /// at all, so it can own no pixel, even through a pinhole of the tessellated surface.
   std::optional<bool> cullBackFaces;
+  /// A displaced mesh (CullSettings::displacementMap, uvCorners; borrowed): the oracle and
+  /// image draws draw the displaced surface, every method tests displaced bounds, the
+  /// displaced kernels (full-oobb ... con-caf) can run, back-patch methods are skipped, and
+  /// the dense sampling check (undisplaced samples) is off.
+  const bound::DisplacementMap* displacementMap = nullptr;
+  std::span<const glm::dvec2> uvCorners;
 };
 
 /// \brief Totals of one method over all views so far.
@@ -133,6 +140,7 @@ class CullVerifier {
   GpuPatchSet gpu_;
   Renderer renderer_;
   VisibilityOracle oracle_;
+  std::unique_ptr<GpuDisplacement> displacement_;  // on gpu_, for displaced meshes
   std::unique_ptr<RenderTarget> target_;
   std::unique_ptr<HiZPyramid> pyramid_;  // over target_'s depth, with occlusion methods
   std::unique_ptr<HiZCullStage> hizStage_;

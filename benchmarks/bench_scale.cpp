@@ -1,0 +1,222 @@
+// bench-scale: how set-up, memory, culling and drawing grow with the patch count, on the
+// closed quad-grid torus of osd_cull/scene/procedural.h (one Bezier patch per cage face).
+// Prints a Markdown table; see docs/results/scale.md.
+//
+//   bench-scale [--grids 100,316,700,1000] [--level 1] [--method tcone] [--views 3]
+//               [--repeats 3] [--tess 4] [--width 256] [--height 256] [--matrix]
+//               [--setup-only] [--device X]
+//
+// Each grid size runs in its own child process (one after the other), so that its peak RSS
+// (VmHWM of /proc/self/status) is its own. Per size:
+// - set-up (alone with --setup-only, which prints only these columns and the peak RSS in
+//   MB): the stages of extractPatches
+// (topology, refinement, patch table, stencils, and
+//   the points — with --matrix the cage -> point matrix too), the GpuPatchSet upload and the
+//   CullPass construction (kernel, cones), wall clock, and the CPU time of extractPatches;
+// - memory: peak RSS, per patch, and per patch above the RSS before extraction (Vulkan
+//   instance, device and driver; on lavapipe device memory is process memory and counts),
+//   and what each stage added to the RSS (extraction, GpuPatchSet upload, CullPass, the
+//   cull and draw runs);
+// - cull: one pass (frustum + --method) per submission, wall clock median over views x
+//   repeats, per patch;
+// - draw: all patches at uniform tessellation --tess, median wall ms over the views, and the
+//   tessellation-evaluation invocations of the first view (exact).
+#include "bench_support.h"
+#include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/verify/view_sets.h"
+#include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/procedural.h"
+#include "osd_cull/vk/context.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace osd_cull;
+using osd_cull::bench::median;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::vector<uint32_t> grids = {100, 316, 700, 1000};
+  int level = 1;
+  std::string method = "tcone";
+  uint32_t views = 3, repeats = 3, tess = 4, width = 256, height = 256;
+  bool matrix = false;
+  bool setupOnly = false;
+  std::string device;
+};
+
+// Options as flag -> what to do with its value (--matrix takes none).
+Options parse(int argc, char** argv) {
+  Options o;
+  auto first = [](const std::string& v) { return bench::numberList(v).at(0); };
+  const std::map<std::string, std::function<void(const std::string&)>> valued = {
+      {"--grids", [&](const std::string& v) { o.grids = bench::numberList(v); }},
+      {"--level", [&](const std::string& v) { o.level = static_cast<int>(first(v)); }},
+      {"--method", [&](const std::string& v) { o.method = v; }},
+      {"--views", [&](const std::string& v) { o.views = std::max(1u, first(v)); }},
+      {"--repeats", [&](const std::string& v) { o.repeats = std::max(1u, first(v)); }},
+      {"--tess", [&](const std::string& v) { o.tess = first(v); }},
+      {"--width", [&](const std::string& v) { o.width = first(v); }},
+      {"--height", [&](const std::string& v) { o.height = first(v); }},
+      {"--device", [&](const std::string& v) { o.device = v; }}};
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--matrix" || a == "--setup-only") {
+      (a == "--matrix" ? o.matrix : o.setupOnly) = true;
+      continue;
+    }
+    const auto it = valued.find(a);
+    if (it == valued.end())
+      throw Error("unknown option " + a + " (see the comment at the top of bench_scale.cpp)");
+    if (i + 1 >= argc) throw Error(a + " needs a value");
+    it->second(argv[++i]);
+  }
+  return o;
+}
+
+// A field of /proc/self/status in bytes (VmRSS: now, VmHWM: peak).
+double statusBytes(const char* field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(field, 0) == 0)
+      return 1024.0 * std::stod(line.substr(std::string(field).size()));
+  return 0.0;
+}
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+void runGrid(const Options& o, uint32_t grid) {
+  vulkan::ContextOptions co;
+  co.device = o.device;
+  vulkan::Context context(co);
+  const double baseline = statusBytes("VmRSS:");
+
+  PatchOptions po;
+  po.isolationLevel = o.level;
+  po.pointMatrix = o.matrix;
+  std::optional<CageMesh> cage = scene::torus(int(grid), int(grid), 1.0, 0.4);
+  const std::clock_t cpuStart = std::clock();
+  const PatchExtraction ex = extractPatches(*cage, po);
+  cage.reset();  // a static mesh needs its cage no more
+  // CPU time of the set-up (all threads): less disturbed than wall time on a shared machine.
+  const double setupCpuMs = 1000.0 * double(std::clock() - cpuStart) / CLOCKS_PER_SEC;
+  const PatchSet& set = ex.patches;
+  const uint32_t n = set.patchCount();
+  if (o.setupOnly) {
+    const ExtractionStats& st = ex.stats;
+    std::printf("| %u | %u | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** | %.0f | %.0f |\n", grid,
+                n, st.topologyMs, st.refineMs, st.patchTableMs, st.stencilMs, st.matrixMs,
+                st.totalMs, setupCpuMs, statusBytes("VmHWM:") / 1048576.0);
+    std::fflush(stdout);
+    return;
+  }
+  std::vector<double> rss = {statusBytes("VmRSS:")};  // after each stage
+
+  auto start = Clock::now();
+  frame::GpuPatchSet gpu(context, set);
+  const double uploadMs = msSince(start);
+  rss.push_back(statusBytes("VmRSS:"));
+  frame::CullSettings settings;
+  settings.backPatch = o.method;
+  settings.backPatchValidity = {true, "closed torus"};
+  start = Clock::now();
+  frame::CullPass pass(context, gpu, set, settings);
+  const double passMs = msSince(start);
+  rss.push_back(statusBytes("VmRSS:"));
+
+  frame::ViewSetOptions vo;
+  vo.count = o.views;
+  vo.width = o.width;
+  vo.height = o.height;
+  const auto cameras = frame::randomViews(frame::boundsOf(set.points), vo);
+  pass.run(cameras[0]);  // warm-up
+  std::vector<double> cullMs;
+  for (const auto& camera : cameras)
+    for (uint32_t r = 0; r < o.repeats; ++r) cullMs.push_back(pass.run(camera));
+
+  frame::Renderer renderer(context);
+  frame::RenderTarget target(context, o.width, o.height);
+  frame::RenderOptions ro;
+  ro.tessellation.uniformLevel = o.tess;
+  std::vector<double> drawMs;
+  uint64_t tes = 0;
+  renderer.render(target, cameras[0], gpu, nullptr, ro);  // warm-up
+  for (const auto& camera : cameras) {
+    const frame::FrameStats s = renderer.render(target, camera, gpu, nullptr, ro);
+    drawMs.push_back(s.wallMs);
+    if (tes == 0) tes = s.statistics.tessEvaluationInvocations;
+  }
+
+  rss.push_back(statusBytes("VmRSS:"));
+  const ExtractionStats& st = ex.stats;
+  const double setupMs = st.totalMs;  // topology included
+  const double peak = statusBytes("VmHWM:");
+  std::printf(
+      "| %u | %u | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** | %.0f | %.0f | %.0f | %.0f | "
+      "**%.0f** | "
+      "%.0f | **%.0f** | %.0f | %llu | %.0f / %.0f / %.0f / %.0f |\n",
+      grid, n, st.topologyMs, st.refineMs, st.patchTableMs, st.stencilMs, st.matrixMs, setupMs,
+      setupCpuMs, uploadMs, passMs, peak / 1048576.0, peak / n, (peak - baseline) / n,
+      median(cullMs) * 1e6 / n, median(drawMs), static_cast<unsigned long long>(tes),
+      (rss[0] - baseline) / n, (rss[1] - rss[0]) / n, (rss[2] - rss[1]) / n, (rss[3] - rss[2]) / n);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    std::printf(
+        "bench-scale: torus grids at isolation level %d, frustum + %s, %u views x %u repeats, "
+        "draw at uniform tess %u in %ux%u, matrix %s\n\n",
+        o.level, o.method.c_str(), o.views, o.repeats, o.tess, o.width, o.height,
+        o.matrix ? "built" : "not built");
+    std::printf(
+        "| grid | patches | topology ms | refine ms | patch table ms | stencils ms | points ms | "
+        "set-up ms | set-up CPU ms | upload ms | cull pass ms | peak RSS MB | bytes/patch | above "
+        "baseline "
+        "B/patch | cull ns/patch | draw ms | TES invocations | RSS B/patch added by extraction / "
+        "upload / cull pass / runs |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::fflush(stdout);
+    int failures = 0;
+    for (uint32_t grid : o.grids) {
+      const pid_t child = fork();
+      if (child < 0) throw Error("bench-scale: fork failed");
+      if (child == 0) {
+        try {
+          runGrid(o, grid);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "bench-scale: grid %u: %s\n", grid, e.what());
+          std::fflush(stderr);
+          _exit(1);
+        }
+        _exit(0);
+      }
+      int status = 0;
+      waitpid(child, &status, 0);
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) ++failures;
+    }
+    return failures == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench-scale: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,16 @@
+#pragma once
+/// \file displacement_test_maps.h
+/// \brief The extreme displacement maps every displaced-bound test runs: a single spike, a
+/// step, all-max, all-min and scale 0 (issue 11).
+
+#include "osd_cull/bound/displaced_map.h"
+
+#include <vector>
+
+namespace osd_cull::test {
+
+/// \brief spike (one texel at 1 in 0.5, scale `scale`), step (0 | 1 halves), all-max,
+/// all-min, scale-0 (the step with scale 0); midlevel 0.5.
+std::vector<bound::DisplacementMap> extremeDisplacementMaps(double scale);
+
+}  // namespace osd_cull::test

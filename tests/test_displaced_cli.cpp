@@ -1,0 +1,72 @@
+// `osd-cull render` and `verify` with --displacement: the six kernels as methods, the
+// displaced draw, and clear errors.
+#include "support/run_command.h"
+#include "support/temp_dir.h"
+#include "support/test_data.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace osd_cull {
+namespace {
+
+std::string program() { return test::osdCullProgram().string(); }
+
+TEST(DisplacedCommands, VerifyReportsAllSixKernelsWithoutFalseCulls) {
+  OSD_CULL_REQUIRE_DATA();
+  test::TempDir dir("osd_cull_disp_cli_");
+  const auto json = dir.path() / "v.json";
+  const auto r = test::runCommand(
+      program() + " verify " + (test::dataDir() / "shapes/catmark_single_crease.obj").string() +
+      " --displacement procedural --displacement-scale 0.4 --displaced-bound all --views 3" +
+      " --view-set whole-object --width 64 --height 64 --json " + json.string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("back-patch culling off"), std::string::npos) << r.output;
+  std::ifstream in(json);
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  std::vector<std::string> names;
+  for (const auto& m : doc["methods"]) {
+    names.push_back(m["name"]);
+    EXPECT_EQ(m["false_culls"], 0) << m["name"];
+    EXPECT_EQ(m["culled_not_in_reference"], 0) << m["name"];
+  }
+  for (const char* k : {"full-oobb", "acon-oobb", "con-oobb", "full-caf", "acon-caf", "con-caf"})
+    EXPECT_NE(std::find(names.begin(), names.end(), k), names.end()) << k;
+  EXPECT_EQ(std::find(names.begin(), names.end(), "tcone"), names.end());
+}
+
+TEST(DisplacedCommands, RenderDrawsTheDisplacedSurfaceAndCountsSeams) {
+  OSD_CULL_REQUIRE_DATA();
+  test::TempDir dir("osd_cull_disp_cli_");
+  const auto r = test::runCommand(
+      program() + " render " + (test::dataDir() / "shapes/catmark_cube.obj").string() +
+      " --displacement procedural --displacement-scale 0.2 --displaced-bound con" +
+      " --displaced-box oobb --cull all --width 64 --height 64 --out " +
+      (dir.path() / "c.png").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("bound con-oobb; UV seam edges 28"), std::string::npos) << r.output;
+}
+
+TEST(DisplacedCommands, BadDisplacementOptionsAreNamed) {
+  OSD_CULL_REQUIRE_DATA();
+  const std::string pole = (test::dataDir() / "shapes/catmark_pole8.obj").string();
+  auto r = test::runCommand(program() + " render " + pole +
+                            " --displacement procedural --out /tmp/never.png");
+  EXPECT_NE(r.exitCode(), 0);
+  EXPECT_NE(r.output.find("texture coordinates"), std::string::npos) << r.output;
+  r = test::runCommand(program() + " render --displaced-bound con --out /tmp/never.png");
+  EXPECT_NE(r.exitCode(), 0);
+  EXPECT_NE(r.output.find("--displacement"), std::string::npos) << r.output;
+  r = test::runCommand(program() + " render " + pole +
+                       " --displacement procedural --displaced-bound all --out /tmp/never.png");
+  EXPECT_NE(r.exitCode(), 0);
+  EXPECT_NE(r.output.find("--displaced-bound"), std::string::npos) << r.output;
+  r = test::runCommand(program() + " verify " + pole + " --displacement nosuch.png");
+  EXPECT_NE(r.exitCode(), 0);
+  EXPECT_NE(r.output.find("nosuch.png"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace osd_cull
