@@ -83,8 +83,8 @@ TEST(MeshLimits, TextureCoordinateAndNormalIndicesAreChecked) {
   expectLoadError(dir.write("f.obj", kQuad + "vn 0 0 1\nf 1//-2 2//1 3//1\n"), 6,
                   {"relative normal index -2"});
   // Normals defined after use are accepted (as vertices are): only the final count matters.
-  const CageMesh ok = adapters::loadCage(
-      dir.write("e.obj", kQuad + "f 1//1 2//1 3//1 4//1\nvn 0 0 1\n"));
+  const CageMesh ok =
+      adapters::loadCage(dir.write("e.obj", kQuad + "f 1//1 2//1 3//1 4//1\nvn 0 0 1\n"));
   EXPECT_EQ(ok.faceCount(), 1);
 }
 

@@ -11,8 +11,8 @@
 #include "osd_cull/patch/face_varying_uv.h"
 #include "osd_cull/patch/patch_eval.h"
 #include "osd_cull/scene/procedural_displacement.h"
-#include "support/temp_dir.h"
 #include "support/displacement_test_maps.h"
+#include "support/temp_dir.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>

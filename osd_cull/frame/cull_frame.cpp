@@ -99,10 +99,10 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
         std::make_unique<VisibilityBuffer>(context, *programs_, *m.gpu, options.firstFrame));
     CullSettings settings = cull;
     if (m.backPatchValidity) settings.backPatchValidity = *m.backPatchValidity;
-    passes_.push_back(!anyStage ? nullptr
-                      : m.cullData
-                          ? std::make_unique<CullPass>(context, *m.gpu, *m.host, settings, *m.cullData)
-                          : std::make_unique<CullPass>(context, *m.gpu, *m.host, settings));
+    passes_.push_back(
+        !anyStage    ? nullptr
+        : m.cullData ? std::make_unique<CullPass>(context, *m.gpu, *m.host, settings, *m.cullData)
+                     : std::make_unique<CullPass>(context, *m.gpu, *m.host, settings));
   }
   if (!anyStage) {
     survivedResults_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
@@ -288,9 +288,8 @@ CullFrameStats CullFrame::render(const Camera& camera,
     pass1Ms = timedSubmit(
         context_, [&](VkCommandBuffer cmd) { recordFirstPass(cmd, camera, occluders, slot); });
     if (pyramid_)
-      pyramidMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {
-        pyramid_->record(cmd, target_.depthLayout());
-      });
+      pyramidMs = timedSubmit(
+          context_, [&](VkCommandBuffer cmd) { pyramid_->record(cmd, target_.depthLayout()); });
     cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) { recordCull(cmd, camera, slot); });
     pass2Ms =
         timedSubmit(context_, [&](VkCommandBuffer cmd) { recordSecondPass(cmd, camera, slot); });

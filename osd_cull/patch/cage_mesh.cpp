@@ -9,15 +9,19 @@ namespace osd_cull {
 
 std::string_view toString(Scheme scheme) {
   switch (scheme) {
-    case Scheme::CatmullClark: return "catmark";
-    case Scheme::Loop: return "loop";
-    case Scheme::Bilinear: return "bilinear";
+    case Scheme::CatmullClark:
+      return "catmark";
+    case Scheme::Loop:
+      return "loop";
+    case Scheme::Bilinear:
+      return "bilinear";
   }
   return "unknown";
 }
 
 std::optional<Scheme> schemeFromString(std::string_view text) {
-  if (text == "catmark" || text == "catmull-clark" || text == "catmullclark") return Scheme::CatmullClark;
+  if (text == "catmark" || text == "catmull-clark" || text == "catmullclark")
+    return Scheme::CatmullClark;
   if (text == "loop") return Scheme::Loop;
   if (text == "bilinear") return Scheme::Bilinear;
   return std::nullopt;
@@ -53,8 +57,8 @@ void validate(const CageMesh& mesh) {
       const int v = mesh.faceVertices[offset + static_cast<size_t>(k)];
       if (v < 0 || v >= mesh.vertexCount())
         throw Error(where + ": face " + std::to_string(f) + " uses vertex index " +
-                    std::to_string(v) + ", out of range [0, " +
-                    std::to_string(mesh.vertexCount()) + ")");
+                    std::to_string(v) + ", out of range [0, " + std::to_string(mesh.vertexCount()) +
+                    ")");
     }
     offset += static_cast<size_t>(n);
   }
@@ -70,7 +74,8 @@ void validate(const CageMesh& mesh) {
     if (c.v0 < 0 || c.v0 >= mesh.vertexCount() || c.v1 < 0 || c.v1 >= mesh.vertexCount())
       throw Error(where + ": crease (" + std::to_string(c.v0) + ", " + std::to_string(c.v1) +
                   ") names a vertex out of range");
-    checkSharpness(c.sharpness, "crease (" + std::to_string(c.v0) + ", " + std::to_string(c.v1) + ")");
+    checkSharpness(c.sharpness,
+                   "crease (" + std::to_string(c.v0) + ", " + std::to_string(c.v1) + ")");
   }
   for (const CornerVertex& c : mesh.corners) {
     if (c.vertex < 0 || c.vertex >= mesh.vertexCount())
@@ -90,8 +95,8 @@ void validate(const CageMesh& mesh) {
       throw Error(where + ": texture coordinate " + std::to_string(i) + " is NaN or Inf");
   for (int t : mesh.faceUVs)
     if (t < 0 || static_cast<size_t>(t) >= mesh.uvs.size())
-      throw Error(where + ": texture-coordinate index " + std::to_string(t) +
-                  " is out of range (" + std::to_string(mesh.uvs.size()) + " defined)");
+      throw Error(where + ": texture-coordinate index " + std::to_string(t) + " is out of range (" +
+                  std::to_string(mesh.uvs.size()) + " defined)");
 }
 
 }  // namespace osd_cull

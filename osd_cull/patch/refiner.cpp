@@ -25,9 +25,12 @@ void collectOsdError(Far::ErrorType, const char* message) {
 
 Sdc::SchemeType sdcScheme(Scheme s) {
   switch (s) {
-    case Scheme::Loop: return Sdc::SCHEME_LOOP;
-    case Scheme::Bilinear: return Sdc::SCHEME_BILINEAR;
-    case Scheme::CatmullClark: break;
+    case Scheme::Loop:
+      return Sdc::SCHEME_LOOP;
+    case Scheme::Bilinear:
+      return Sdc::SCHEME_BILINEAR;
+    case Scheme::CatmullClark:
+      break;
   }
   return Sdc::SCHEME_CATMARK;
 }
@@ -35,22 +38,41 @@ Sdc::SchemeType sdcScheme(Scheme s) {
 Sdc::Options sdcOptions(const CageMesh& mesh) {
   Sdc::Options o;
   switch (mesh.boundary) {
-    case BoundaryInterpolation::None: o.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_NONE); break;
-    case BoundaryInterpolation::EdgeOnly: o.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY); break;
-    case BoundaryInterpolation::EdgeAndCorner: o.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER); break;
+    case BoundaryInterpolation::None:
+      o.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_NONE);
+      break;
+    case BoundaryInterpolation::EdgeOnly:
+      o.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+      break;
+    case BoundaryInterpolation::EdgeAndCorner:
+      o.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+      break;
   }
   switch (mesh.fvarBoundary) {
-    case FVarInterpolation::None: o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_NONE); break;
-    case FVarInterpolation::CornersOnly: o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_CORNERS_ONLY); break;
-    case FVarInterpolation::CornersPlus1: o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1); break;
-    case FVarInterpolation::CornersPlus2: o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_CORNERS_PLUS2); break;
-    case FVarInterpolation::Boundaries: o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_BOUNDARIES); break;
-    case FVarInterpolation::All: o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_ALL); break;
+    case FVarInterpolation::None:
+      o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_NONE);
+      break;
+    case FVarInterpolation::CornersOnly:
+      o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_CORNERS_ONLY);
+      break;
+    case FVarInterpolation::CornersPlus1:
+      o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1);
+      break;
+    case FVarInterpolation::CornersPlus2:
+      o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_CORNERS_PLUS2);
+      break;
+    case FVarInterpolation::Boundaries:
+      o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_BOUNDARIES);
+      break;
+    case FVarInterpolation::All:
+      o.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_ALL);
+      break;
   }
   o.SetCreasingMethod(mesh.creasing == CreasingMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
                                                                : Sdc::Options::CREASE_UNIFORM);
-  o.SetTriangleSubdivision(mesh.triangles == TriangleSubdivision::Smooth ? Sdc::Options::TRI_SUB_SMOOTH
-                                                                         : Sdc::Options::TRI_SUB_CATMARK);
+  o.SetTriangleSubdivision(mesh.triangles == TriangleSubdivision::Smooth
+                               ? Sdc::Options::TRI_SUB_SMOOTH
+                               : Sdc::Options::TRI_SUB_CATMARK);
   return o;
 }
 
@@ -128,27 +150,34 @@ TopologySummary summarize(const Far::TopologyRefiner& refiner) {
   for (int f = 0; f < s.faces; ++f) {
     const auto fv = level.GetFaceVertices(f);
     const int n = fv.size();
-    if (n == 4) ++s.quads;
-    else if (n == 3) ++s.triangles;
-    else ++s.otherFaces;
+    if (n == 4)
+      ++s.quads;
+    else if (n == 3)
+      ++s.triangles;
+    else
+      ++s.otherFaces;
     if (level.IsFaceHole(f)) ++s.holes;
     std::vector<int> sorted(fv.begin(), fv.end());
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) ++s.degenerateFaces;
   }
   for (int e = 0; e < s.edges; ++e) {
-    if (level.IsEdgeNonManifold(e)) ++s.nonManifoldEdges;
-    else if (level.GetEdgeFaces(e).size() == 1) ++s.boundaryEdges;
+    if (level.IsEdgeNonManifold(e))
+      ++s.nonManifoldEdges;
+    else if (level.GetEdgeFaces(e).size() == 1)
+      ++s.boundaryEdges;
     // OpenSubdiv makes boundary and non-manifold edges infinitely sharp; count only the
     // interior edges that a tag made sharp.
-    else if (level.GetEdgeSharpness(e) > 0.0f) ++s.creasedEdges;
+    else if (level.GetEdgeSharpness(e) > 0.0f)
+      ++s.creasedEdges;
   }
   for (int v = 0; v < s.vertices; ++v) {
     if (level.IsVertexNonManifold(v)) ++s.nonManifoldVertices;
     if (level.GetVertexFaces(v).size() == 0) ++s.unusedVertices;
     if (level.GetVertexSharpness(v) > 0.0f) ++s.cornerVertices;
     s.maxValence = std::max(s.maxValence, static_cast<int>(level.GetVertexEdges(v).size()));
-    if (level.GetVertexFaces(v).size() > 0 && !level.IsVertexValenceRegular(v)) ++s.extraordinaryVertices;
+    if (level.GetVertexFaces(v).size() > 0 && !level.IsVertexValenceRegular(v))
+      ++s.extraordinaryVertices;
   }
   s.closed = s.boundaryEdges == 0 && s.nonManifoldEdges == 0 && s.holes == 0 && s.faces > 0;
   return s;

@@ -193,8 +193,7 @@ void Context::createInstance(const ContextOptions& options) {
       for (const auto& p : present) found |= e == p.extensionName;
       if (!found) missing += (missing.empty() ? "" : ", ") + e;
     }
-    if (!missing.empty())
-      throw Error("the Vulkan instance lacks required extensions: " + missing);
+    if (!missing.empty()) throw Error("the Vulkan instance lacks required extensions: " + missing);
   }
   VkValidationFeatureEnableEXT enables[] = {
       VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};

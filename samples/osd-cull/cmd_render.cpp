@@ -55,7 +55,7 @@ struct Scene {
   glm::dvec3 up{0, 0, 1};
   glm::dvec3 viewDirection{0.55, -1.0, 0.45};
   bound::BackPatchValidity backPatch;
-  std::vector<std::string> notes;  ///< the loader's notes on the mesh
+  std::vector<std::string> notes;     ///< the loader's notes on the mesh
   std::vector<glm::dvec2> uvCorners;  ///< 4 per patch, empty without texture coordinates
 };
 

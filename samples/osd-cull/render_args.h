@@ -19,7 +19,7 @@ namespace osd_cull::cli {
 struct RenderArgs {
   MeshSource source;
   PatchOptions patchOptions;
-  CullArgs cull;  ///< cull.mode empty: not given (mesh: none; scene: all)
+  CullArgs cull;                  ///< cull.mode empty: not given (mesh: none; scene: all)
   DisplacementArgs displacement;  ///< the mesh form only
   vulkan::ContextOptions device;
   std::string out;                 ///< required by the mesh form

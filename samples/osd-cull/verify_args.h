@@ -19,7 +19,7 @@ struct VerifyArgs {
   MeshSource source;
   PatchOptions patchOptions;
   vulkan::ContextOptions device;
-  DisplacementArgs displacement;  ///< the mesh form only
+  DisplacementArgs displacement;   ///< the mesh form only
   std::optional<uint32_t> views;   ///< mesh: 100; scene: 4 per frame
   std::optional<uint32_t> frames;  ///< scene only: 2
   uint64_t seed = 1;

@@ -20,7 +20,7 @@ OSD_CULL_CONST uint kCullBindingParams = 7u;    // uint params[]: GpuPatchSet::p
                                                 // for transition edges (drawn-triangle bound)
 OSD_CULL_CONST uint kCullBindingDisplacedView = 8u;  // DisplacedView: per-view matrices of
                                                      // the displaced bounds (CULL_DISPLACED)
-OSD_CULL_CONST uint kCullBindingTable = 6u;     // uvec2 table[]: the method's constant table
+OSD_CULL_CONST uint kCullBindingTable = 6u;          // uvec2 table[]: the method's constant table
 // (CullMethod::table). The tangent-plane table: per term (target | j << 8 | k << 16 | l << 24,
 // floatBitsToUint(weight)). A buffer, not GLSL constants: lavapipe's LLVM backend needs
 // 150-190 s to compile the kernel with 516-entry constant arrays, 0.4 s with this buffer.

@@ -14,8 +14,8 @@ OSD_CULL_CONST uint kDisplaceBindingUVs = 1u;     // vec4 patchUVs[2 * patch]: t
 OSD_CULL_CONST uint kDisplaceBindingParams = 2u;  // DisplacementParams
 
 struct DisplacementParams {
-  vec4 map;  // x: scale, y: midlevel, z: level of detail sampled, w: 1 / width (texels)
-  vec4 size; // x: 1 / height, y: max |D| of the map, zw: unused
+  vec4 map;   // x: scale, y: midlevel, z: level of detail sampled, w: 1 / width (texels)
+  vec4 size;  // x: 1 / height, y: max |D| of the map, zw: unused
 };
 
 OSD_CULL_SHARED_END

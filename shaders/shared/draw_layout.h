@@ -16,9 +16,9 @@ OSD_CULL_CONST uint kTessUniform = 0u;
 OSD_CULL_CONST uint kTessAdaptive = 1u;
 
 // DrawConstants.flags
-OSD_CULL_CONST uint kFlagDebugColors = 1u;    // color each patch by a hash of its index
-OSD_CULL_CONST uint kFlagStatusColors = 2u;   // color each patch by its draw-list status field
-OSD_CULL_CONST uint kFlagFrontWinsTies = 4u;  // push back-facing fragments back (patch.frag)
+OSD_CULL_CONST uint kFlagDebugColors = 1u;      // color each patch by a hash of its index
+OSD_CULL_CONST uint kFlagStatusColors = 2u;     // color each patch by its draw-list status field
+OSD_CULL_CONST uint kFlagFrontWinsTies = 4u;    // push back-facing fragments back (patch.frag)
 OSD_CULL_CONST uint kFlagPatchTypeColors = 8u;  // regular/boundary/corner/Gregory (patch.tese)
 
 // A draw-list entry: the patch index in the low 28 bits, a status for the debug view in

@@ -292,11 +292,11 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
 }  // namespace
 
 void CullPass::buildPipelines(vulkan::Context& context) {
-  pipelines_ = sharedPipelines(context,
-                               composeKernel(stages_, lanes_, settings_.drawnTriangles,
-                                             displaced() ? &displacedKernel_ : nullptr,
-                                             gpu_.pointsByAddress()),
-                               stages_);
+  pipelines_ = sharedPipelines(
+      context,
+      composeKernel(stages_, lanes_, settings_.drawnTriangles,
+                    displaced() ? &displacedKernel_ : nullptr, gpu_.pointsByAddress()),
+      stages_);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(pipelines_->setLayout.get());
   vulkan::DescriptorWriter()

@@ -63,7 +63,8 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
                           "occlusion is tested against the depth of the oracle's draw; "
                           "enable the oracle"});
     } else if (m.stage == CullStage::BackPatch && options.displacementMap) {
-      skipped_.push_back({name, std::string("back-patch culling is off: ") + kDisplacedBackPatchNote});
+      skipped_.push_back(
+          {name, std::string("back-patch culling is off: ") + kDisplacedBackPatchNote});
     } else if (m.displaced && !options.displacementMap) {
       skipped_.push_back({name, "a displaced kernel; this mesh has no displacement map"});
     } else if (m.stage == CullStage::BackPatch && !validity.enabled) {
@@ -174,8 +175,8 @@ void CullVerifier::verifyView(const Camera& camera) {
     if (reference) {
       std::vector<uint32_t> codes;
       if (m->pass->displaced()) {
-        codes = displacedReferenceCull(host_, *m->pass, camera,
-                                       hiz ? &hizReference : nullptr, options_.hiz.lookup);
+        codes = displacedReferenceCull(host_, *m->pass, camera, hiz ? &hizReference : nullptr,
+                                       options_.hiz.lookup);
       } else if (hiz) {
         codes.resize(n, shader::kStageNone);
         for (uint32_t p = 0; p < n; ++p)

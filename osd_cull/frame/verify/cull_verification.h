@@ -116,8 +116,9 @@ class CullVerifier {
  public:
   /// \brief `methods` are registry names (cull_methods.h). Back-patch methods are skipped
   /// (see skipped()) when `validity` disallows back-patch culling.
-  CullVerifier(vulkan::Context& context, const PatchSet& host, const std::vector<std::string>& methods,
-               const bound::BackPatchValidity& validity, const VerifyOptions& options);
+  CullVerifier(vulkan::Context& context, const PatchSet& host,
+               const std::vector<std::string>& methods, const bound::BackPatchValidity& validity,
+               const VerifyOptions& options);
   ~CullVerifier();
 
   /// \brief Runs every method on `camera` and adds to the totals.
