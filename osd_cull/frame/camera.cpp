@@ -74,6 +74,10 @@ Bounds boundsOf(std::span<const glm::dvec3> points) {
   return b;
 }
 
+Bounds unite(const Bounds& a, const Bounds& b) {
+  return {glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
+}
+
 Camera frameBounds(const Bounds& bounds, const glm::dvec3& fromDirection, const glm::dvec3& up,
                    double fovyDegrees, uint32_t width, uint32_t height) {
   const double r = std::max(bounds.radius(), 1e-9);

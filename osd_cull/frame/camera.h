@@ -52,6 +52,8 @@ struct Bounds {
   double radius() const;  ///< half the diagonal
 };
 Bounds boundsOf(std::span<const glm::dvec3> points);
+/// \brief The bounds of both (componentwise min of lo, max of hi).
+Bounds unite(const Bounds& a, const Bounds& b);
 
 /// \brief A perspective camera looking at the bounds' center from direction `fromDirection`
 /// (pointing from the center towards the eye), far enough that the bounding sphere fits

@@ -168,11 +168,7 @@ int run(const RenderArgs& args) {
   for (const auto& m : occluderMeshes) occluders.push_back(&m);
 
   frame::Bounds bounds = frame::boundsOf(scene.patches.points);
-  for (const auto& m : scene.occluders) {
-    const frame::Bounds b = frame::boundsOf(m.positions);
-    bounds.lo = glm::min(bounds.lo, b.lo);
-    bounds.hi = glm::max(bounds.hi, b.hi);
-  }
+  for (const auto& m : scene.occluders) bounds = frame::unite(bounds, frame::boundsOf(m.positions));
   frame::Camera camera;
   glm::dvec3 pivot = bounds.center(), up = scene.up;
   if (!cameraNumbers.empty()) {

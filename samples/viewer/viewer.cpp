@@ -112,11 +112,7 @@ int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
   std::vector<const frame::GpuTriangleMesh*> occluders;
   for (const auto& m : occluderMeshes) occluders.push_back(&m);
   frame::Bounds bounds = frame::boundsOf(scene.patches.points);
-  for (const auto& m : scene.occluders) {
-    const frame::Bounds b = frame::boundsOf(m.positions);
-    bounds.lo = glm::min(bounds.lo, b.lo);
-    bounds.hi = glm::max(bounds.hi, b.hi);
-  }
+  for (const auto& m : scene.occluders) bounds = frame::unite(bounds, frame::boundsOf(m.positions));
   frame::Renderer renderer(context);
   const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
