@@ -89,6 +89,21 @@ class Node {
     for (const Node& n : array()) out.push_back(n.number());
     return out;
   }
+  // A string naming one of `names`: its value. The error lists them ("unknown `what` 'x'
+  // (expected a, b or c)").
+  template <class T>
+  T choice(const std::string& what, std::initializer_list<std::pair<const char*, T>> names) const {
+    const std::string s = string();
+    std::string list;
+    size_t k = 0;
+    for (const auto& [name, value] : names) {
+      if (s == name) return value;
+      if (k > 0) list += k + 1 == names.size() ? " or " : ", ";
+      list += name;
+      ++k;
+    }
+    fail("unknown " + what + " '" + s + "' (expected " + list + ")");
+  }
   glm::dvec3 vec3() const {
     const auto v = numbers(3);
     return {v[0], v[1], v[2]};
@@ -165,15 +180,9 @@ AnimationSource readAnimation(const Node& n, const Context& c) {
   if (name == "skin") {
     n.object({"deformer", "joints", "swingDegrees", "frequency", "rig"});
     a.kind = AnimationSource::Kind::Skin;
-    if (n.has("rig")) {
-      const std::string rig = n["rig"].string();
-      if (rig == "chain")
-        a.skinning.rig = SkinningRig::Chain;
-      else if (rig == "limbs")
-        a.skinning.rig = SkinningRig::Limbs;
-      else
-        n["rig"].fail("unknown rig '" + rig + "' (expected chain or limbs)");
-    }
+    if (n.has("rig"))
+      a.skinning.rig = n["rig"].choice<SkinningRig>(
+          "rig", {{"chain", SkinningRig::Chain}, {"limbs", SkinningRig::Limbs}});
     if (n.has("joints")) a.skinning.joints = int(n["joints"].integer(1, 64));
     if (n.has("swingDegrees")) a.skinning.swingDegrees = n["swingDegrees"].number(0, 180);
     if (n.has("frequency")) a.skinning.frequency = n["frequency"].number(0, 1e3);
@@ -202,33 +211,20 @@ DisplacementDescription readDisplacement(const Node& n, const Context& c) {
   d.source = map == "procedural" ? map : resolve(c, map);
   if (n.has("scale")) d.scale = n["scale"].number(-1e30, 1e30);
   if (n.has("midlevel")) d.midlevel = n["midlevel"].number(-1e30, 1e30);
-  if (n.has("channel")) {
-    const std::string ch = n["channel"].string();
-    if (ch.size() != 1 || std::string("rgba").find(ch[0]) == std::string::npos)
-      n["channel"].fail("unknown channel '" + ch + "' (expected r, g, b or a)");
-    d.channel = ch[0];
-  }
+  if (n.has("channel"))
+    d.channel =
+        n["channel"].choice<char>("channel", {{"r", 'r'}, {"g", 'g'}, {"b", 'b'}, {"a", 'a'}});
   if (n.has("lod")) d.maxLod = uint32_t(n["lod"].integer(0, 15));
-  if (n.has("bound")) {
-    const std::string b = n["bound"].string();
-    if (b == "full")
-      d.extension = bound::DisplacedExtension::Full;
-    else if (b == "acon")
-      d.extension = bound::DisplacedExtension::ACoN;
-    else if (b == "con")
-      d.extension = bound::DisplacedExtension::CoN;
-    else
-      n["bound"].fail("unknown displaced bound '" + b + "' (expected full, acon or con)");
-  }
-  if (n.has("box")) {
-    const std::string b = n["box"].string();
-    if (b == "oobb")
-      d.box = bound::DisplacedBox::OOBB;
-    else if (b == "caf")
-      d.box = bound::DisplacedBox::CAF;
-    else
-      n["box"].fail("unknown displaced box '" + b + "' (expected oobb or caf)");
-  }
+  using bound::DisplacedBox;
+  using bound::DisplacedExtension;
+  if (n.has("bound"))
+    d.extension = n["bound"].choice<DisplacedExtension>("displaced bound",
+                                                        {{"full", DisplacedExtension::Full},
+                                                         {"acon", DisplacedExtension::ACoN},
+                                                         {"con", DisplacedExtension::CoN}});
+  if (n.has("box"))
+    d.box = n["box"].choice<DisplacedBox>(
+        "displaced box", {{"oobb", DisplacedBox::OOBB}, {"caf", DisplacedBox::CAF}});
   return d;
 }
 
@@ -254,15 +250,9 @@ MeshDescription readMesh(const Node& n, const Context& c) {
       n["scheme"].fail("unknown scheme '" + s + "' (expected catmark, loop, bilinear)");
   }
   if (n.has("level")) m.patches.isolationLevel = int(n["level"].integer(0, 10));
-  if (n.has("endCaps")) {
-    const std::string e = n["endCaps"].string();
-    if (e == "gregory")
-      m.patches.endCaps = EndCap::GregoryBasis;
-    else if (e == "bspline")
-      m.patches.endCaps = EndCap::BSplineBasis;
-    else
-      n["endCaps"].fail("unknown end caps '" + e + "' (expected gregory or bspline)");
-  }
+  if (n.has("endCaps"))
+    m.patches.endCaps = n["endCaps"].choice<EndCap>(
+        "end caps", {{"gregory", EndCap::GregoryBasis}, {"bspline", EndCap::BSplineBasis}});
   if (n.has("recentre")) m.recentre = n["recentre"].boolean();
   if (n.has("animation")) m.animation = readAnimation(n["animation"], c);
   if (n.has("displacement")) {

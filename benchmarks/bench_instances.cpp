@@ -117,10 +117,6 @@ int run(const Args& a) {
 }  // namespace osd_cull
 
 int main(int argc, char** argv) {
-  try {
-    return osd_cull::run(osd_cull::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench-instances: %s\n", e.what());
-    return 2;
-  }
+  return osd_cull::bench::guardedMain("bench-instances",
+                                      [&] { return osd_cull::run(osd_cull::parse(argc, argv)); });
 }

@@ -112,17 +112,18 @@ int run(const Args& a) {
     bool failed = false;
     for (size_t v = 0; v < views.size(); ++v) {
       // Each culled frame is followed by its unculled draw: the two are interleaved.
-      const scene::UnculledComparison c = player.compareWithUnculled(v, *plain[v]);
+      const scene::UnculledComparison u = player.compareWithUnculled(v, *plain[v]);
+      const frame::ItemComparison& c = u.items;
       const frame::CullFrameStats& st = views[v].stats;
-      const double differing = double(c.differing) / double(c.pixels);
+      const double differing = c.differingShare();
       const uint64_t culledTes =
                          st.pass1.tessEvaluationInvocations + st.pass2.tessEvaluationInvocations,
-                     plainTes = c.unculled.statistics.tessEvaluationInvocations;
+                     plainTes = u.unculled.statistics.tessEvaluationInvocations;
       const double ratio = plainTes ? double(culledTes) / double(plainTes) : 1.0;
       culledShare[v].push_back(double(st.culled()) / double(st.patchesTotal));
       tesRatio[v].push_back(ratio);
       culledMs[v].push_back(st.totalMs());
-      plainMs[v].push_back(c.unculled.wallMs);
+      plainMs[v].push_back(u.unculled.wallMs);
       if (c.lost > worst[v].lost || differing > worst[v].differing)
         worst[v] = {std::max(worst[v].lost, c.lost), std::max(worst[v].differing, differing), f};
       const bool bad = c.lost > 0 || differing >= 1e-4;
@@ -132,7 +133,7 @@ int run(const Args& a) {
                     views[v].view.c_str(), 100.0 * culledShare[v].back(),
                     static_cast<unsigned long long>(c.covered),
                     static_cast<unsigned long long>(c.lost), 100.0 * differing, ratio, st.totalMs(),
-                    c.unculled.wallMs, bad ? "  <-- FAILS" : "");
+                    u.unculled.wallMs, bad ? "  <-- FAILS" : "");
     }
     failedFrames += failed;
   }
@@ -164,10 +165,6 @@ int run(const Args& a) {
 }  // namespace osd_cull
 
 int main(int argc, char** argv) {
-  try {
-    return osd_cull::run(osd_cull::parse(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench-scene-image: %s\n", e.what());
-    return 2;
-  }
+  return osd_cull::bench::guardedMain("bench-scene-image",
+                                      [&] { return osd_cull::run(osd_cull::parse(argc, argv)); });
 }

@@ -11,6 +11,7 @@
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/frame/cull/cull_methods.h"
 #include "osd_cull/frame/cull_frame.h"
+#include "osd_cull/frame/verify/item_comparison.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
@@ -50,6 +51,16 @@ std::vector<glm::dmat4> models() {
           scene::composeTransform({3, 0, 3}, {0, 0, 0}, {0.7, 0.7, 0.7})};
 }
 
+// An instance of `mesh` (drawn from `gpu`) per model.
+std::vector<frame::CullMesh> instancesOf(frame::GpuPatchSet& gpu, const Mesh& mesh,
+                                         const std::vector<glm::dmat4>& placed) {
+  std::vector<frame::CullMesh> out;
+  for (const glm::dmat4& m : placed)
+    out.push_back(
+        {.gpu = &gpu, .host = &mesh.patches, .model = m, .backPatchValidity = mesh.validity});
+  return out;
+}
+
 frame::Camera orbitCamera(int step, uint32_t width, uint32_t height) {
   const frame::Bounds bounds{{-5, -2, -2}, {5, 2, 5}};
   return frame::orbit(frame::frameBounds(bounds, {0.3, -1.0, 0.6}, {0, 0, 1}, 40.0, width, height),
@@ -72,13 +83,9 @@ Played play(vulkan::Context& context, const Mesh& mesh, bool batch, int frames) 
   frame::Renderer renderer(context);
   frame::RenderTarget target(context, 128, 96), plain(context, 128, 96);
   const std::vector<glm::dmat4> placed = models();
-  std::vector<frame::CullMesh> meshes;
-  for (const glm::dmat4& m : placed)
-    meshes.push_back(
-        {.gpu = &gpu, .host = &mesh.patches, .model = m, .backPatchValidity = mesh.validity});
-  const glm::dmat4 apart = scene::composeTransform({0, 3, 1}, {0, 0, 45}, {1, 1, 1});
+  std::vector<frame::CullMesh> meshes = instancesOf(gpu, mesh, placed);
   meshes.push_back(
-      {.gpu = &other, .host = &mesh.patches, .model = apart, .backPatchValidity = mesh.validity});
+      instancesOf(other, mesh, {scene::composeTransform({0, 3, 1}, {0, 0, 45}, {1, 1, 1})})[0]);
   frame::CullFrameOptions options;
   options.render.tessellation.uniformLevel = 3;
   options.render.cullBackFaces = true;
@@ -101,17 +108,10 @@ Played play(vulkan::Context& context, const Mesh& mesh, bool batch, int frames) 
       draws.back().model = &meshes[i].model;
     }
     renderer.render(plain, camera, draws, {}, options.render);
-    const std::vector<uint32_t> b = plain.readItems(context);
-    const std::vector<uint32_t>& a = out.items.back();
-    uint32_t covered = 0, lost = 0, differing = 0;
-    for (size_t p = 0; p < a.size(); ++p) {
-      covered += b[p] != 0;
-      lost += b[p] != 0 && a[p] == 0;
-      differing += a[p] != b[p];
-    }
-    EXPECT_GT(covered, a.size() / 20) << "frame " << f;  // the instances are in view
-    EXPECT_EQ(lost, 0u) << "frame " << f;
-    EXPECT_LE(differing, a.size() / 10000) << "frame " << f;
+    const frame::ItemComparison c = frame::compareItems(out.items.back(), plain.readItems(context));
+    EXPECT_GT(c.covered, c.pixels / 20) << "frame " << f;  // the instances are in view
+    EXPECT_EQ(c.lost, 0u) << "frame " << f;
+    EXPECT_LE(c.differing, c.pixels / 10000) << "frame " << f;
   }
   for (size_t i = 0; i < meshes.size(); ++i)
     out.status.push_back(cull.visibility(i).readStatus(context));
@@ -176,10 +176,7 @@ TEST_F(InstancedCullTest, MirroredAndNonUniformInstancesInOneDispatchCullNothing
   frame::RenderTarget target(context(), 128, 96), solo(context(), 128, 96);
   frame::VisibilityOracle oracle(context());
   const std::vector<glm::dmat4> placed = models();
-  std::vector<frame::CullMesh> meshes;
-  for (const glm::dmat4& m : placed)
-    meshes.push_back(
-        {.gpu = &gpu, .host = &cube.patches, .model = m, .backPatchValidity = cube.validity});
+  const std::vector<frame::CullMesh> meshes = instancesOf(gpu, cube, placed);
   for (const std::string method : {"tcone", "tangent-plane"}) {
     frame::CullFrameOptions options;
     options.render.tessellation.uniformLevel = 3;

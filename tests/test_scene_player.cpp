@@ -60,7 +60,7 @@ void ScenePlayerTest::playAndCompare(const std::string& backPatchMethod) {
     for (size_t v = 0; v < 2; ++v) {
       culled[v] += views[v].stats.culled();
       frame::RenderTarget& plain = v == 0 ? plain128 : plain96;
-      const scene::UnculledComparison c = player.compareWithUnculled(v, plain);
+      const frame::ItemComparison c = player.compareWithUnculled(v, plain).items;
       const uint64_t covered = c.covered, differing = c.differing;
       EXPECT_GT(covered, c.pixels / 4) << views[v].view << " frame " << f;
       EXPECT_EQ(c.lost, 0u) << views[v].view << " frame " << f;

@@ -191,14 +191,7 @@ UnculledComparison ScenePlayer::compareWithUnculled(size_t view, frame::RenderTa
                 "x" + std::to_string(culled.height()));
   UnculledComparison c;
   c.unculled = renderUnculled(view, scratch);
-  const std::vector<uint32_t> a = culled.readItems(context_);
-  const std::vector<uint32_t> b = scratch.readItems(context_);
-  c.pixels = a.size();
-  for (size_t p = 0; p < a.size(); ++p) {
-    c.covered += b[p] != 0;
-    c.lost += b[p] != 0 && a[p] == 0;
-    c.differing += a[p] != b[p];
-  }
+  c.items = frame::compareItems(culled.readItems(context_), scratch.readItems(context_));
   return c;
 }
 

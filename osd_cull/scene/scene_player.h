@@ -9,6 +9,7 @@
 
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
+#include "osd_cull/frame/verify/item_comparison.h"
 #include "osd_cull/scene/loaded_scene.h"
 
 #include <memory>
@@ -35,13 +36,10 @@ struct MeshWork {
   uint64_t boundsDispatches = 0;  ///< bounds pass dispatches (frame/cull/bounds_pass.h)
 };
 
-/// \brief A culled frame's item image against the same frame drawn without culling.
+/// \brief A view's culled frame against the same frame drawn without culling.
 struct UnculledComparison {
-  uint64_t pixels = 0;         ///< of the image
-  uint64_t covered = 0;        ///< covered by a patch or occluder in the unculled draw
-  uint64_t lost = 0;           ///< covered unculled, background culled: must be 0
-  uint64_t differing = 0;      ///< another item (depth ties between neighbours), or lost
-  frame::FrameStats unculled;  ///< the unculled draw
+  frame::ItemComparison items;  ///< of the item images
+  frame::FrameStats unculled;   ///< the unculled draw
 };
 
 /// \brief The player. The scene and the context must outlive it.

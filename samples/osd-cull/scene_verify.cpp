@@ -24,7 +24,9 @@ const char* const kSceneVerifyUsage =
 On each of N frames (animations and instance motion evaluated), checks every method on every
 instance (culled in its own coordinates with view · model, each alone, as the mesh form)
 from the scene's own views at that frame and V random whole-scene views. Totals are summed
-over instances and frames; the JSON has the mesh form's fields plus "frames".)";
+over instances and frames; the JSON has the mesh form's fields plus "frames". A deforming
+mesh's tcone and ncone use the cones the GPU bounds pass computed for the frame; a displaced
+mesh is also checked with its displaced kernel (e.g. acon-caf).)";
 
 int verifyScene(const VerifyArgs& args) {
   const uint32_t frames = args.frames.value_or(2);

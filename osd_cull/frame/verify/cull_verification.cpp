@@ -17,6 +17,7 @@ struct CullVerifier::Method {
   const CullMethod* method = nullptr;
   std::unique_ptr<CullPass> pass;
   MethodTotals* totals = nullptr;
+  std::vector<bound::ConeOfNormals> referenceCones;  // with GPU cull data, built once
 };
 
 double MethodTotals::referenceCullRate() const {
@@ -189,9 +190,16 @@ void CullVerifier::verifyView(const Camera& camera) {
             codes[p] = shader::kStageOcclusion;
       } else {
         std::vector<bound::TriangleShape> shapes;
-        codes = bound::referenceCull(host_, view,
-                                     m->pass->referenceTests(camera, options_.tessellation, shapes),
-                                     m->pass->cones());
+        const bound::CullTests tests =
+            m->pass->referenceTests(camera, options_.tessellation, shapes);
+        // A pass reading GPU-computed cull data (VerifyOptions::cullData) keeps no host
+        // cones: the reference builds them from the same points in double.
+        if (m->pass->backPatchEnabled() && m->pass->cones().empty() && m->referenceCones.empty())
+          m->referenceCones = bound::buildPatchCones(host_, tests.backPatch);
+        codes = bound::referenceCull(host_, view, tests,
+                                     m->pass->cones().empty()
+                                         ? std::span<const bound::ConeOfNormals>(m->referenceCones)
+                                         : m->pass->cones());
       }
       ++t.referenceViews;
       t.referencePatchViews += n;
