@@ -73,6 +73,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
       frame::frameBounds(bounds, {0.3, 0.4, 1.0}, {0, 1, 0}, 40.0, width, height);
   const frame::Camera smallCamera =
       frame::frameBounds(bounds, {0.3, 0.4, 1.0}, {0, 1, 0}, 40.0, width / 2, height / 2);
+  // From the centre: every patch faces away (the rasterizer discards its triangles).
+  const frame::Camera inside =
+      frame::Camera::lookAt({0, 0, 0}, {0.3, 0.4, 1.0}, {0, 1, 0}, 90.0, width, height, 0.01, 10.0);
   // Looking away: every patch is culled by the frustum (for RT0).
   const frame::Camera away = frame::Camera::lookAt(camera.eye(), camera.eye() * 2.0, {0, 1, 0},
                                                    40.0, width, height, 0.1, 100.0);
@@ -134,6 +137,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
       const frame::FrameStats st = renderer.render(target, camera, {&draw, 1}, {}, render);
       one["draw " + std::to_string(level)].push_back(
           st.wallMs - renderer.render(target, camera, {}, {}, render).wallMs);
+      one["back " + std::to_string(level)].push_back(
+          renderer.render(target, inside, {&draw, 1}, {}, render).wallMs -
+          renderer.render(target, inside, {}, {}, render).wallMs);
       if (r == 0) tes.push_back({level, double(st.statistics.tessEvaluationInvocations) / n});
     }
     render.tessellation.uniformLevel = 8;
@@ -175,7 +181,8 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   auto m = [&](const std::string& name) { return std::max(0.0, median(s.at(name))); };
   c.submitMs = m("frame");
   for (const auto& [level, tesPerPatch] : tes)
-    c.draw.push_back({level, m("draw " + std::to_string(level)) / n, tesPerPatch});
+    c.draw.push_back({level, m("draw " + std::to_string(level)) / n, tesPerPatch,
+                      m("back " + std::to_string(level)) / n});
   c.gregoryDrawFactor = m("gregory 8");
   // Each frame looking away draws every patch twice (both passes) with factor 0.
   c.drawZeroMsPerPatch = m("away tf0") / (2.0 * nMany);

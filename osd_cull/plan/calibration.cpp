@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kMagic = "osd_cull-calibration 1";
+constexpr const char* kMagic = "osd_cull-calibration 2";
 
 std::string number(double v) {
   char text[64];
@@ -37,11 +37,23 @@ double interpolate(const std::vector<std::pair<double, double>>& s, double x) {
 
 }  // namespace
 
-double Calibration::drawMs(double tess) const {
+namespace {
+
+double drawCost(const std::vector<DrawCost>& draw, double tess, double DrawCost::*cost) {
   if (draw.empty()) throw Error("calibration: no draw costs RT(tf) measured");
   std::vector<std::pair<double, double>> s;
-  for (const DrawCost& d : draw) s.push_back({(d.tess + 1.0) * (d.tess + 1.0), d.msPerPatch});
+  for (const DrawCost& d : draw) s.push_back({(d.tess + 1.0) * (d.tess + 1.0), d.*cost});
   return interpolate(s, (tess + 1.0) * (tess + 1.0));
+}
+
+}  // namespace
+
+double Calibration::drawMs(double tess) const {
+  return drawCost(draw, tess, &DrawCost::msPerPatch);
+}
+
+double Calibration::backDrawMs(double tess) const {
+  return drawCost(draw, tess, &DrawCost::backMsPerPatch);
 }
 
 double Calibration::cullMs(const std::string& stage) const {
@@ -69,7 +81,8 @@ std::string toText(const Calibration& c) {
   out << "repeats " << c.repeats << "\n";
   out << "patches " << c.patches << "\n";
   for (const DrawCost& d : c.draw)
-    out << "draw " << d.tess << " " << number(d.msPerPatch) << " " << number(d.tesPerPatch) << "\n";
+    out << "draw " << d.tess << " " << number(d.msPerPatch) << " " << number(d.tesPerPatch) << " "
+        << number(d.backMsPerPatch) << "\n";
   out << "gregory-draw-factor " << number(c.gregoryDrawFactor) << "\n";
   out << "draw-zero " << number(c.drawZeroMsPerPatch) << "\n";
   out << "submit " << number(c.submitMs) << "\n";
@@ -128,6 +141,7 @@ Calibration fromText(const std::string& text, const std::string& source) {
       read(d.tess, "a tessellation level");
       read(d.msPerPatch, "ms per patch");
       read(d.tesPerPatch, "TES invocations per patch");
+      read(d.backMsPerPatch, "ms per back-facing patch");
       if (!c.draw.empty() && d.tess <= c.draw.back().tess) throw fail("'draw' levels must ascend");
       c.draw.push_back(d);
     } else if (name == "gregory-draw-factor")

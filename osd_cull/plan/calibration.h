@@ -35,8 +35,11 @@ struct CalibrationKey {
 /// invocations (pipeline statistics: exact work, (tf + 1)² for a uniform quad).
 struct DrawCost {
   uint32_t tess = 1;
-  double msPerPatch = 0.0;
+  double msPerPatch = 0.0;  ///< a closed mesh seen from outside (about half faces away)
   double tesPerPatch = 0.0;
+  /// A patch whose triangles all face away (the rasterizer culls them): what culling a
+  /// back-facing or off-screen patch saves; it is tessellated, never shaded.
+  double backMsPerPatch = 0.0;
 };
 
 /// \brief A cost against a size (the Hi-Z build against the depth image's pixel count).
@@ -72,6 +75,8 @@ struct Calibration {
   /// levels (the work is (tf + 1)² evaluations), extrapolated with the last two.
   /// \throws osd_cull::Error without draw samples.
   double drawMs(double tess) const;
+  /// \brief The same for DrawCost::backMsPerPatch.
+  double backDrawMs(double tess) const;
   /// \brief CT of a stage. \throws osd_cull::Error naming the stage when it is not measured.
   double cullMs(const std::string& stage) const;
   /// \brief The Hi-Z build of a depth image of `pixels`: linear between the samples,

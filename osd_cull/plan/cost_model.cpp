@@ -28,6 +28,13 @@ double drawMsPerPatch(const Calibration& calibration, const CostCase& c) {
   return weight * calibration.drawMs(c.tess);
 }
 
+double backDrawMsPerPatch(const Calibration& calibration, const CostCase& c) {
+  const double n = c.patches();
+  if (n == 0) return 0.0;
+  const double weight = (c.bezier + calibration.gregoryDrawFactor * c.gregory) / n;
+  return weight * calibration.backDrawMs(c.tess);
+}
+
 double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages) {
   double ct = 0.0;
   // A back-patch or occlusion stage's calibrated cost is what it adds to a frustum kernel,
@@ -44,16 +51,22 @@ Prediction predict(const Calibration& calibration, const CostCase& c, const Stag
   const double n = c.patches();
   const double rt = drawMsPerPatch(calibration, c);
   const double rt0 = c.tessFactorZero ? calibration.drawZeroMsPerPatch : 0.0;
-  double culled = 0.0;
-  if (stages.frustum) culled += rates.frustum;
-  if (!stages.backPatch.empty()) culled += rates.backPatch;
-  if (!stages.occlusion.empty()) culled += rates.occlusion;
-  p.culled = std::clamp(culled, 0.0, 1.0);
+  const double rtBack = std::min(rt, backDrawMsPerPatch(calibration, c));
+  double facingAway = 0.0, hidden = 0.0;  // culled by frustum or back-patch; by occlusion
+  if (stages.frustum) facingAway += rates.frustum;
+  if (!stages.backPatch.empty()) facingAway += rates.backPatch;
+  if (!stages.occlusion.empty()) hidden += rates.occlusion;
+  if (facingAway + hidden > 1.0) {  // shares of one set of patches: at most all of them
+    const double scale = 1.0 / (facingAway + hidden);
+    facingAway *= scale;
+    hidden *= scale;
+  }
+  p.culled = facingAway + hidden;
   p.fixedMs = calibration.submitMs;
   if (stages.any()) {
     // Zachmann: T = t + (1 - P)·R, with the factor-0 draws of the culled patches (§5).
     p.cullMs = n * cullMsPerPatch(calibration, stages) + calibration.cullDispatchMs;
-    p.drawMs = (1.0 - p.culled) * n * rt + p.culled * n * rt0;
+    p.drawMs = std::max(0.0, n * rt - facingAway * n * (rtBack - rt0) - hidden * n * (rt - rt0));
   } else {
     p.drawMs = n * rt;
   }

@@ -6,7 +6,9 @@
 /// Zachmann's cost model of a culling test (zachmann-culling-lecture, clustered back-face
 /// culling): T = t + (1 - P)·R, with t the test's cost, P the probability that it culls and
 /// R the cost of rendering what it would cull. Per patch, with the terms of Niessner & Loop
-/// §6.3: t = CT (the stages' kernel cost), R = RT(tf), and a culled patch still costs RT0
+/// §6.3: t = CT (the stages' kernel cost), R = RT(tf) — for a patch that faces away or lies
+/// off screen the cheaper RT of a patch the rasterizer discards unshaded, since back faces
+/// are culled in the draws either way — and a culled patch still costs RT0
 /// when it is drawn with tessellation factor 0 (their §5 variant; our default compact draw
 /// lists do not draw it: RT0 = 0). Their break-even cull rate follows from T = R:
 ///   x = (RT0 + CT) / (RT - RT0).
@@ -57,7 +59,9 @@ struct CostCase {
 
 /// \brief A predicted frame, in ms.
 struct Prediction {
-  double drawMs = 0.0;    ///< (1 - P)·N·RT + P·N·RT0
+  /// N·RT less what the culled patches would have cost (RT of a back-facing patch for
+  /// the frustum and back-patch stages, RT for occlusion), plus P·N·RT0.
+  double drawMs = 0.0;
   double cullMs = 0.0;    ///< N·CT + the dispatch
   double hizMs = 0.0;     ///< the Hi-Z build and the second pass's fixed cost
   double updateMs = 0.0;  ///< point update and bounds pass
@@ -72,6 +76,10 @@ uint64_t hizPixels(uint64_t pixels, bool fullResolution);
 /// \brief RT(tf) averaged over the mesh's patch types (Gregory patches cost
 /// Calibration::gregoryDrawFactor times a Bézier patch).
 double drawMsPerPatch(const Calibration& calibration, const CostCase& c);
+
+/// \brief RT of a patch whose triangles all face away (Calibration::backDrawMs), averaged
+/// over the patch types: what a patch culled by the frustum or back-patch stage saves.
+double backDrawMsPerPatch(const Calibration& calibration, const CostCase& c);
 
 /// \brief CT of `stages` per patch (the sum of the stages' calibrated costs).
 double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages);

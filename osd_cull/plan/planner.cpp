@@ -211,6 +211,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
   const CostCase base = costCase(input, p.stages);
   const double n = std::max(1u, base.patches());
   const double rt = drawMsPerPatch(calibration_, base);
+  const double rtBack = std::min(rt, backDrawMsPerPatch(calibration_, base));
   const double rt0 = options_.tessFactorZero ? calibration_.drawZeroMsPerPatch : 0.0;
   auto total = [&](const StageChoice& c) {
     return predict(calibration_, costCase(input, c), c, ratesFor(s, c, p.box)).totalMs();
@@ -219,16 +220,18 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
   auto source = [&](const std::string& stage) {
     return s.rates.count(stage) ? "measured" : "prior";
   };
-  // The break-even rate of adding `with` to `without` (§6.3), fixed costs spread per patch.
-  auto breakEven = [&](const StageChoice& with, const StageChoice& without) {
+  // The break-even rate of adding `with` to `without` (§6.3), fixed costs spread per patch;
+  // a patch the stage culls would have cost `saved` (RT, or RT of a back-facing patch).
+  auto breakEven = [&](const StageChoice& with, const StageChoice& without, double saved) {
     const Prediction a = predict(calibration_, costCase(input, with), with, {});
     const Prediction b = predict(calibration_, costCase(input, without), without, {});
     const double ct = (a.cullMs + a.hizMs + a.updateMs - b.cullMs - b.hizMs - b.updateMs) / n;
-    return breakEvenRate(rt, rt0, ct);
+    return breakEvenRate(saved, rt0, ct);
   };
   auto stageReason = [&](const std::string& stage, double rate, const StageChoice& with,
                          const StageChoice& without) {
-    const double x = breakEven(with, without);
+    const bool occlusion = with.occlusion != without.occlusion;
+    const double x = breakEven(with, without, occlusion ? rt : rtBack);
     return std::string(source(stage)) + " rate " + percent(rate) +
            (rate > x ? " above" : " below") + " break-even " +
            (std::isfinite(x) ? percent(x) : std::string("(never)")) + " at tess " +

@@ -42,17 +42,20 @@ void print(const plan::Calibration& c) {
               c.submitMs, c.cullDispatchMs);
   std::printf("RT0 (factor-0 patch): %.3f us; Gregory patches draw %.2fx a Bezier patch\n",
               1e3 * c.drawZeroMsPerPatch, c.gregoryDrawFactor);
-  std::printf("\n| tess | RT us/patch | TES/patch |");
+  std::printf("\n| tess | RT us/patch | RT back-facing us/patch | TES/patch |");
   for (const auto& [stage, ms] : c.cullMsPerPatch)
     if (stage != "frustum") std::printf(" break-even %s |", stage.c_str());
-  std::printf("\n|---:|---:|---:|");
+  std::printf("\n|---:|---:|---:|---:|");
   for (size_t i = 1; i < c.cullMsPerPatch.size(); ++i) std::printf("---:|");
   std::printf("\n");
   for (const plan::DrawCost& d : c.draw) {
-    std::printf("| %u | %.3f | %.0f |", d.tess, 1e3 * d.msPerPatch, d.tesPerPatch);
+    std::printf("| %u | %.3f | %.3f | %.0f |", d.tess, 1e3 * d.msPerPatch, 1e3 * d.backMsPerPatch,
+                d.tesPerPatch);
     for (const auto& [stage, ms] : c.cullMsPerPatch)
       if (stage != "frustum") {
-        const double x = plan::breakEvenRate(d.msPerPatch, 0.0, ms + c.cullMs("frustum"));
+        // A back-patch cull saves a back-facing patch's draw, an occlusion cull a shaded one.
+        const double saved = stage == "hiz" ? d.msPerPatch : d.backMsPerPatch;
+        const double x = plan::breakEvenRate(saved, 0.0, ms + c.cullMs("frustum"));
         if (x > 1.0)
           std::printf(" never |");
         else
