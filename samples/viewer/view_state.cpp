@@ -208,9 +208,11 @@ void PassTiming::record(uint32_t frame, double pass1Ms, double pyramidMs, double
 std::string PassTiming::describe(uint32_t frame) const {
   if (interval_ == 0) return "per-pass timing off (--time-passes 0)";
   if (!last_) return "no timed frame yet";
-  return "timed frame " + std::to_string(*last_) + " (" + std::to_string(frame - *last_) +
-         " frames ago; wall clock of each pass submitted alone, every " +
-         std::to_string(interval_) + " frames)";
+  const uint32_t age = frame - *last_;
+  return "timed frame " + std::to_string(*last_) + " (" + std::to_string(age) +
+         (age == 1 ? " frame" : " frames") +
+         " ago; wall clock of each pass submitted alone, every " + std::to_string(interval_) +
+         " frames)";
 }
 
 void advanceAnimation(ViewState& state, uint32_t frameCount) {

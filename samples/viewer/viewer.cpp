@@ -273,11 +273,12 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
     figures.tessellation =
         state.adaptive ? "adaptive, " + std::to_string(state.pixelsPerSegment) + " px/segment"
                        : "uniform " + std::to_string(render.tessellation.uniformLevel);
-    figures.animation = frameCount < 2 ? "no animation (one frame)"
-                                       : "frame " + std::to_string(sceneFrame) + " (" +
-                                             std::to_string(state.sceneFrame + 1) + " of " +
-                                             std::to_string(frameCount) + "), " +
-                                             (state.playing ? "playing" : "paused");
+    figures.animation = frameCount < 2
+                            ? "no animation (one frame)"
+                            : "frame " + std::to_string(sceneFrame) + " (frames " +
+                                  std::to_string(description.settings.frameStart) + "-" +
+                                  std::to_string(description.settings.frameStart + frameCount - 1) +
+                                  "), " + (state.playing ? "playing" : "paused");
     figures.camera = state.sceneCamera
                          ? "scene camera '" + description.views.front().name + "'"
                          : std::string("orbit") + (state.turntable ? " (turntable)" : "");
