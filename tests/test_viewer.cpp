@@ -6,6 +6,7 @@
 #include "osd_cull/frame/draw/png_io.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -354,6 +355,45 @@ TEST_F(ViewerWindow, OpensASceneFileAndPlaysItsInstanceMotion) {
   EXPECT_GT(differingPixels(frame::readPng(out / "scene_file-frame2.png"),
                             frame::readPng(out / "scene_file-frame3.png")),
             50u);  // the cube spins
+}
+
+TEST_F(ViewerWindow, SceneCameraFollowsItsPathOnlyWhilePlaying) {
+  test::TempDir dir("viewer_camera_");
+  const fs::path scene = dir.write("scene.json", R"({
+  "version": 1,
+  "settings": {"frameCount": 8, "framesPerSecond": 24},
+  "meshes": [{"name": "cube", "builtIn": "creased-cube", "level": 1}],
+  "instances": [{"name": "cube", "mesh": "cube"}],
+  "views": [{"name": "main", "camera": {"eye": [4, -6, 3], "target": [0, 0, 0]},
+             "path": {"orbit": {"degreesPerFrame": 10}}}]
+})");
+  // v: look through the scene's camera; paused it stands still, playing it orbits.
+  const ViewRun run = view("camera_path", 7, "@1 v @2 shot @3 shot @4 space @5 shot @6 shot",
+                           "--no-hud --cull all " + scene.string());
+  ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;
+  const fs::path out = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer";
+  auto shot = [&](int f) {
+    return frame::readPng(out / ("camera_path-frame" + std::to_string(f) + ".png"));
+  };
+  const frame::PngImage last = run.image;  // frame 6: the path has turned 30 degrees
+  EXPECT_EQ(differingPixels(shot(2), shot(3)), 0u);
+  EXPECT_GT(differingPixels(shot(5), shot(6)), 50u);
+  EXPECT_GT(differingPixels(last, shot(2)), 50u);
+}
+
+TEST_F(ViewerWindow, OpensAMeshFile) {
+  const fs::path mesh = test::dataDir() / "shapes" / "catmark_cube.obj";
+  if (!fs::exists(mesh)) GTEST_SKIP() << mesh << " not found";
+  const ViewRun run = view("mesh_file", 3, "@1 space", "--no-hud --cull all " + mesh.string());
+  ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;
+  const std::vector<FrameClock> clocks = frameClocks(run.result.output);
+  ASSERT_EQ(clocks.size(), 3u) << run.result.output;
+  EXPECT_GT(clocks[2].total, 0u);
+  EXPECT_GT(clocks[2].drawn, 0u);
+  EXPECT_EQ(clocks[2].frameCount, 1u);  // a mesh file is one static frame
+  EXPECT_EQ(clocks[2].sceneFrame, 0u);  // playing moves nothing
+  EXPECT_GT(clocks[2].culled, 0u);      // back patches of the closed cube
+  EXPECT_EQ(run.image.width, 320u);
 }
 
 TEST_F(ViewerWindow, BadScriptIsAUsageErrorBeforeAnyWindow) {
