@@ -12,6 +12,7 @@
 
 #if OSD_CULL_HAVE_VIEWER
 #include "viewer/view_state.h"
+#include "viewer/viewer.h"
 #endif
 
 #include <algorithm>
@@ -108,6 +109,44 @@ TEST(ViewerPassTiming, TimesTheFirstFrameThenEveryInterval) {
   viewer::PassTiming never(0);
   EXPECT_FALSE(never.due(0));
   EXPECT_FALSE(never.due(1000));
+}
+
+TEST(ViewerScenes, ASceneWithoutInstancesOrPerspectiveViewIsRefusedByName) {
+  auto message = [](scene::LoadedScene loaded) -> std::string {
+    try {
+      viewer::playedScene(std::move(loaded));
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  scene::LoadedScene empty;
+  empty.description.source = "empty.json";
+  EXPECT_EQ(message(std::move(empty)), "scene empty.json: no instances to view");
+  scene::LoadedScene shadowOnly;
+  shadowOnly.description.source = "shadow.json";
+  shadowOnly.description.instances.emplace_back();
+  shadowOnly.description.views.emplace_back();
+  shadowOnly.description.views.back().kind = scene::ViewDescription::Kind::Shadow;
+  EXPECT_EQ(message(std::move(shadowOnly)),
+            "scene shadow.json: no perspective view to start the viewer from");
+}
+
+TEST(ViewerScenes, PlayedSceneKeepsItsFirstPerspectiveViewForTheSceneCamera) {
+  scene::LoadedScene loaded;
+  loaded.description.instances.emplace_back();
+  loaded.description.views.resize(3);
+  loaded.description.views[0].kind = scene::ViewDescription::Kind::Shadow;
+  loaded.description.views[1].name = "main";
+  loaded.description.views[1].eye = {0, -5, 0};
+  loaded.description.views[1].target = {0, 0, 0};
+  loaded.description.views[1].up = {0, 0, 1};
+  loaded.description.views[2].name = "second";
+  const viewer::ViewerScene v = viewer::playedScene(std::move(loaded));
+  ASSERT_EQ(v.scene.description.views.size(), 1u);
+  EXPECT_EQ(v.scene.description.views[0].name, "main");
+  EXPECT_EQ(v.viewDirection, glm::dvec3(0, -5, 0));  // from the target towards the eye
+  EXPECT_EQ(v.up, glm::dvec3(0, 0, 1));
 }
 
 TEST(ViewerScript, ShotStepsAreNamedAfterTheScreenshot) {
