@@ -332,6 +332,12 @@ size_t differingPixels(const frame::PngImage& a, const frame::PngImage& b) {
   return n;
 }
 
+// The images a view() run's `shot` steps wrote.
+frame::PngImage shotOf(const std::string& run, int frame) {
+  return frame::readPng(fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer" /
+                        (run + "-frame" + std::to_string(frame) + ".png"));
+}
+
 TEST_F(ViewerWindow, AnimatedSceneMovesWhilePlayingAndStandsStillWhenPaused) {
   // Culling on from the start; shots of two paused frames, then of two playing ones; a
   // timed diagnostic frame every 3 frames.
@@ -339,13 +345,8 @@ TEST_F(ViewerWindow, AnimatedSceneMovesWhilePlayingAndStandsStillWhenPaused) {
                            "--no-hud --cull all --time-passes 3 built-in:scene");
   ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;  // 1 on validation messages
   EXPECT_EQ(run.result.output.find("validation"), std::string::npos) << run.result.output;
-  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer";
   std::vector<frame::PngImage> shots;
-  for (int f : {2, 3, 5, 6}) {
-    const fs::path shot = dir / ("anim-frame" + std::to_string(f) + ".png");
-    ASSERT_TRUE(fs::exists(shot)) << shot << "\n" << run.result.output;
-    shots.push_back(frame::readPng(shot));
-  }
+  for (int f : {2, 3, 5, 6}) shots.push_back(shotOf("anim", f));
   EXPECT_EQ(differingPixels(shots[0], shots[1]), 0u);   // paused: the same image
   EXPECT_GT(differingPixels(shots[2], shots[3]), 50u);  // playing: the character moves
 
@@ -372,16 +373,24 @@ TEST_F(ViewerWindow, AnimatedSceneMovesWhilePlayingAndStandsStillWhenPaused) {
   }
 }
 
+// A scene file of one creased cube seen from (4, -6, 3) with `frames` frames; `extra`
+// is added to the instance (an animation) and `path` to the view (a camera path).
+fs::path cubeScene(const test::TempDir& dir, uint32_t frames, const std::string& extra,
+                   const std::string& path) {
+  return dir.write("scene.json", R"({"version": 1,
+  "settings": {"frameCount": )" + std::to_string(frames) +
+                                     R"(, "framesPerSecond": 24},
+  "meshes": [{"name": "cube", "builtIn": "creased-cube", "level": 1}],
+  "instances": [{"name": "cube", "mesh": "cube")" +
+                                     extra + R"(}],
+  "views": [{"name": "main", "camera": {"eye": [4, -6, 3], "target": [0, 0, 0]})" +
+                                     path + "}]}");
+}
+
 TEST_F(ViewerWindow, OpensASceneFileAndPlaysItsInstanceMotion) {
   test::TempDir dir("viewer_scene_");
-  const fs::path scene = dir.write("scene.json", R"({
-  "version": 1,
-  "settings": {"frameCount": 4, "framesPerSecond": 24},
-  "meshes": [{"name": "cube", "builtIn": "creased-cube", "level": 1}],
-  "instances": [{"name": "cube", "mesh": "cube",
-                 "animation": {"spin": {"axis": [0, 0, 1], "degreesPerSecond": 240}}}],
-  "views": [{"name": "main", "camera": {"eye": [4, -6, 3], "target": [0, 0, 0]}}]
-})");
+  const fs::path scene = cubeScene(
+      dir, 4, R"(, "animation": {"spin": {"axis": [0, 0, 1], "degreesPerSecond": 240}})", "");
   const ViewRun run =
       view("scene_file", 4, "@1 space @2 shot @3 shot", "--no-hud " + scene.string());
   ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;
@@ -390,34 +399,20 @@ TEST_F(ViewerWindow, OpensASceneFileAndPlaysItsInstanceMotion) {
   EXPECT_EQ(clocks[3].sceneFrame, 3u);
   EXPECT_EQ(clocks[3].frameCount, 4u);
   EXPECT_EQ(clocks[3].drawn, clocks[3].total);  // no culling asked for
-  const fs::path out = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer";
-  EXPECT_GT(differingPixels(frame::readPng(out / "scene_file-frame2.png"),
-                            frame::readPng(out / "scene_file-frame3.png")),
-            50u);  // the cube spins
+  EXPECT_GT(differingPixels(shotOf("scene_file", 2), shotOf("scene_file", 3)), 50u);  // it spins
 }
 
 TEST_F(ViewerWindow, SceneCameraFollowsItsPathOnlyWhilePlaying) {
   test::TempDir dir("viewer_camera_");
-  const fs::path scene = dir.write("scene.json", R"({
-  "version": 1,
-  "settings": {"frameCount": 8, "framesPerSecond": 24},
-  "meshes": [{"name": "cube", "builtIn": "creased-cube", "level": 1}],
-  "instances": [{"name": "cube", "mesh": "cube"}],
-  "views": [{"name": "main", "camera": {"eye": [4, -6, 3], "target": [0, 0, 0]},
-             "path": {"orbit": {"degreesPerFrame": 10}}}]
-})");
+  const fs::path scene = cubeScene(dir, 8, "", R"(, "path": {"orbit": {"degreesPerFrame": 10}})");
   // v: look through the scene's camera; paused it stands still, playing it orbits.
   const ViewRun run = view("camera_path", 7, "@1 v @2 shot @3 shot @4 space @5 shot @6 shot",
                            "--no-hud --cull all " + scene.string());
   ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;
-  const fs::path out = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer";
-  auto shot = [&](int f) {
-    return frame::readPng(out / ("camera_path-frame" + std::to_string(f) + ".png"));
-  };
-  const frame::PngImage last = run.image;  // frame 6: the path has turned 30 degrees
-  EXPECT_EQ(differingPixels(shot(2), shot(3)), 0u);
-  EXPECT_GT(differingPixels(shot(5), shot(6)), 50u);
-  EXPECT_GT(differingPixels(last, shot(2)), 50u);
+  EXPECT_EQ(differingPixels(shotOf("camera_path", 2), shotOf("camera_path", 3)), 0u);
+  EXPECT_GT(differingPixels(shotOf("camera_path", 5), shotOf("camera_path", 6)), 50u);
+  // frame 6 (the last image): the path has turned 30 degrees since frame 2
+  EXPECT_GT(differingPixels(run.image, shotOf("camera_path", 2)), 50u);
 }
 
 TEST_F(ViewerWindow, OpensAMeshFile) {
