@@ -286,9 +286,9 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
     frame::CullFrame& cullFrame = player->cullFrame(0);
     frame::CullFrameOptions fo = cullFrame.options();
     fo.render = render;
-    bool timed = false;
     if (!state.freezeCull || !state.anyCull()) {
-      timed = timing.due(f);
+      // Most frames are one submission; a timed one splits the passes (PassTiming).
+      const bool timed = timing.due(f);
       fo.timePasses = timed;
       cullFrame.setOptions(fo);
       const frame::CullFrameStats s = cullFrame.render(camera, player->occluders());
