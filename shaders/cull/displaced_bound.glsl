@@ -4,8 +4,8 @@
 // boundPointCount() / boundPoint() / boundClipPoint() / boundAbsClipPoint(): 8 corners of
 // the OOBB (world space, DISPLACED_BOX 0) or of the camera-aligned frustum (camera space,
 // DISPLACED_BOX 1), computed once per patch by prepareBound().
-// Per patch (cones[], shared/cull_layout.h kConeVec4s, filled by the host for displaced
-// kernels): cones[4p] = (Dmin, Dmax rounded outward, cos α, sin α), cones[4p + 1] =
+// Per patch (cones[], shared/cull_layout.h kConeVec4s, filled by the host for a static
+// displaced mesh, by the bounds pass, shaders/bounds/, for a deforming one): cones[4p] = (Dmin, Dmax rounded outward, cos α, sin α), cones[4p + 1] =
 // (axis.xyz, 1 with a cone, 0 without: Full, or a cone that could not be built).
 #ifndef OSD_CULL_CULL_DISPLACED_BOUND_GLSL
 #define OSD_CULL_CULL_DISPLACED_BOUND_GLSL

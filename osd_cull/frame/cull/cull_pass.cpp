@@ -196,7 +196,9 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
                     " has no displacement map");
       displacedKernel_ = *m->displaced;
     }
-  if (displacedMesh)
+  // With external cull data (the bounds pass's displaced output of an animated mesh) the
+  // per-patch data is the GPU's; the host copy would be stale after one frame.
+  if (displacedMesh && cullData_ == &conesBuffer_)
     displaced_ = bound::buildDisplacedPatches(host, settings.uvCorners, *settings.displacementMap,
                                               displacedKernel_.extension);
 
@@ -205,10 +207,6 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
   checkLimits(n);
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-  if (displacedMesh && cullData_ != &conesBuffer_)
-    throw Error("CullPass: " + host.source +
-                " is displaced; displaced bounds are built on the host for static meshes "
-                "(per-frame displaced bounds of animated meshes are not implemented)");
   if (cullData_ == &conesBuffer_) uploadHostCones(context);
   const size_t instances = settings.instanceCount;
   displacedView_ = vulkan::Buffer(context, instances * sizeof(sh::DisplacedView), storage);

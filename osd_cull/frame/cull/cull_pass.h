@@ -94,7 +94,9 @@ class CullPass {
   /// patch, e.g. BoundsPass::cullData() of the same method, recomputed on the GPU when the
   /// points move) instead of building cones on the host. `cullData` is borrowed and must
   /// outlive the pass; cones() is then empty (the reference builds cones from the frame's
-  /// points: bound::buildPatchCones).
+  /// points: bound::buildPatchCones). A displaced mesh (settings.displacementMap) reads its
+  /// displaced data from `cullData` the same way (DynamicPatchMesh::displacedCullData() of
+  /// the kernel's extension); displacedPatches() is then empty.
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings, const vulkan::Buffer& cullData);
   ~CullPass();
@@ -108,8 +110,9 @@ class CullPass {
   bool backPatchEnabled() const;
   const std::string& backPatchNote() const { return backPatchNote_; }
   /// \brief Whether the frustum and occlusion stages test a displaced bound, which one, and
-  /// its per-patch data (Dmin/Dmax and cones, double, as uploaded before rounding).
-  bool displaced() const { return !displaced_.empty(); }
+  /// its per-patch data (Dmin/Dmax and cones, double, as uploaded before rounding; empty
+  /// with external cull data: the bounds pass's, BoundsPass::readDisplaced()).
+  bool displaced() const { return settings_.displacementMap != nullptr; }
   const CullMethod::Displaced& displacedKernel() const { return displacedKernel_; }
   std::span<const bound::DisplacedPatch> displacedPatches() const { return displaced_; }
   /// \brief Host copies (double) of the uploaded cones, empty when none are used.
