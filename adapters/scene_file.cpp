@@ -255,14 +255,7 @@ MeshDescription readMesh(const Node& n, const Context& c) {
         "end caps", {{"gregory", EndCap::GregoryBasis}, {"bspline", EndCap::BSplineBasis}});
   if (n.has("recentre")) m.recentre = n["recentre"].boolean();
   if (n.has("animation")) m.animation = readAnimation(n["animation"], c);
-  if (n.has("displacement")) {
-    const Node d = n["displacement"];
-    if (m.animation.kind != AnimationSource::Kind::None)
-      d.fail(
-          "a deforming mesh cannot be displaced yet (its per-frame bounds pass has no "
-          "displaced bounds); drop 'animation' or 'displacement'");
-    m.displacement = readDisplacement(d, c);
-  }
+  if (n.has("displacement")) m.displacement = readDisplacement(n["displacement"], c);
   return m;
 }
 

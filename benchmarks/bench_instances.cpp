@@ -28,24 +28,6 @@ struct Args {
   uint32_t tess = 2;
 };
 
-Args parse(int argc, char** argv) {
-  Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (i + 1 >= argc) throw Error(arg + ": needs a value");
-    const std::string v = argv[++i];
-    if (arg == "--counts")
-      a.counts = bench::numberList(v);
-    else if (arg == "--frames")
-      a.frames = uint32_t(std::stoul(v));
-    else if (arg == "--tess")
-      a.tess = uint32_t(std::stoul(v));
-    else
-      throw Error("unknown argument '" + arg + "'");
-  }
-  return a;
-}
-
 int run(const Args& a) {
   vulkan::Context context;
   const CageMesh cage = scene::creasedCube();
@@ -117,6 +99,13 @@ int run(const Args& a) {
 }  // namespace osd_cull
 
 int main(int argc, char** argv) {
-  return osd_cull::bench::guardedMain("bench-instances",
-                                      [&] { return osd_cull::run(osd_cull::parse(argc, argv)); });
+  return osd_cull::bench::run("bench-instances", [&] {
+    osd_cull::Args a;
+    const bool go = osd_cull::bench::CommandLine("bench-instances", "bench_instances.cpp")
+                        .numbers("--counts", a.counts)
+                        .number("--frames", a.frames, 1)
+                        .number("--tess", a.tess, 1)
+                        .parse(argc, argv);
+    return go ? osd_cull::run(a) : 0;
+  });
 }

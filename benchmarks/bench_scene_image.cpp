@@ -7,8 +7,8 @@
 // (covered unculled, background culled), fewer than 0.01% differing (depth ties between
 // neighbouring patches).
 //
-// Usage: bench-scene-image [--frames N] [--size WxH] [--tess L] [--back-patch METHOD]
-//                          [--gpu-points] [--every K]
+// Usage: bench-scene-image [--frames N] [--width W] [--height H] [--tess L]
+//                          [--back-patch METHOD] [--gpu-points] [--every K]
 //   prints every K-th frame (default 10) and the frames with a lost pixel or over 0.01%
 //   differing, then the worst figures and medians over all frames and views; exits 1 when
 //   a pixel was lost or a frame differed by 0.01% or more.
@@ -20,7 +20,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -29,42 +28,13 @@ namespace {
 
 struct Args {
   uint32_t frames = 300;
-  uint32_t width = 160, height = 120;
+  uint32_t width = 160;
+  uint32_t height = 120;
   uint32_t tess = 4;
   std::string backPatch = "ncone";
   bool gpuPoints = false;
   uint32_t every = 10;
 };
-
-Args parse(int argc, char** argv) {
-  Args a;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error(arg + ": needs a value");
-      return argv[++i];
-    };
-    if (arg == "--frames") {
-      a.frames = uint32_t(std::stoul(value()));
-    } else if (arg == "--size") {
-      const std::string v = value();
-      if (std::sscanf(v.c_str(), "%ux%u", &a.width, &a.height) != 2 || !a.width || !a.height)
-        throw Error("--size: expected WxH, got '" + v + "'");
-    } else if (arg == "--tess") {
-      a.tess = uint32_t(std::stoul(value()));
-    } else if (arg == "--back-patch") {
-      a.backPatch = value();
-    } else if (arg == "--gpu-points") {
-      a.gpuPoints = true;
-    } else if (arg == "--every") {
-      a.every = std::max(1u, uint32_t(std::stoul(value())));
-    } else {
-      throw Error("unknown argument '" + arg + "' (see the comment at the top of the file)");
-    }
-  }
-  if (a.frames == 0) throw Error("--frames: at least 1");
-  return a;
-}
 
 int run(const Args& a) {
   scene::LoadedScene s = scene::builtInScene(a.frames);
@@ -165,6 +135,17 @@ int run(const Args& a) {
 }  // namespace osd_cull
 
 int main(int argc, char** argv) {
-  return osd_cull::bench::guardedMain("bench-scene-image",
-                                      [&] { return osd_cull::run(osd_cull::parse(argc, argv)); });
+  return osd_cull::bench::run("bench-scene-image", [&] {
+    osd_cull::Args a;
+    const bool go = osd_cull::bench::CommandLine("bench-scene-image", "bench_scene_image.cpp")
+                        .number("--frames", a.frames, 1)
+                        .number("--width", a.width, 1)
+                        .number("--height", a.height, 1)
+                        .number("--tess", a.tess, 1)
+                        .text("--back-patch", a.backPatch)
+                        .flag("--gpu-points", a.gpuPoints)
+                        .number("--every", a.every, 1)
+                        .parse(argc, argv);
+    return go ? osd_cull::run(a) : 0;
+  });
 }

@@ -33,18 +33,6 @@ inline double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-/// \brief The body of a benchmark's main(): runs `body` and returns its exit code; an
-/// exception is printed as "NAME: what" and gives exit code 2.
-template <class Body>
-int guardedMain(const char* name, Body&& body) {
-  try {
-    return body();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", name, e.what());
-    return 2;
-  }
-}
-
 /// \brief A comma-separated list of unsigned numbers ("4,8,16").
 /// \throws std::invalid_argument or std::out_of_range for an item that is not a number.
 inline std::vector<uint32_t> numberList(const std::string& text) {

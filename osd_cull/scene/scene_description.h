@@ -64,8 +64,8 @@ struct MeshDescription {
   std::optional<Scheme> scheme;
   PatchOptions patches;  ///< isolation level, end caps
   AnimationSource animation;
-  /// Displaced meshes are static (a deforming mesh's per-frame bounds pass has no displaced
-  /// bounds yet); back-patch culling is off for them.
+  /// Back-patch culling is off for displaced meshes; a deforming one's displaced bounds are
+  /// recomputed by its per-frame bounds pass.
   std::optional<DisplacementDescription> displacement;
   /// Move the cage's bounding-box centre to the origin at load and put the offset into
   /// every instance's transform, so control points stay small (large coordinates).

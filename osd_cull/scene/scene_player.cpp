@@ -16,10 +16,10 @@ namespace osd_cull::scene {
 struct ScenePlayer::Points {
   size_t mesh = 0;
   double timeOffset = 0.0;
-  // A static mesh: its rest pose, and its displacement when it has a map (destroyed after
-  // the patch set that draws with it).
-  PatchSet rest;
+  // A displaced mesh's map on the GPU (destroyed after the patch set that draws with it).
   std::unique_ptr<frame::GpuDisplacement> displacement;
+  // A static mesh: its rest pose.
+  PatchSet rest;
   std::unique_ptr<frame::GpuPatchSet> restGpu;
   // A deforming mesh: the cage input, control points and GPU bounds passes of
   // frame/dynamic_patch_mesh.h.
@@ -54,11 +54,12 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
       } else {
         p->rest = mesh.extraction.patches;
         p->restGpu = std::make_unique<frame::GpuPatchSet>(context, p->rest);
-        if (mesh.displacementMap) {
-          p->displacement = std::make_unique<frame::GpuDisplacement>(
-              context, *mesh.displacementMap, mesh.extraction.uvCorners, p->rest.patchCount());
-          p->restGpu->setDisplacement(p->displacement.get());
-        }
+      }
+      if (mesh.displacementMap) {
+        p->displacement = std::make_unique<frame::GpuDisplacement>(
+            context, *mesh.displacementMap, mesh.extraction.uvCorners,
+            mesh.extraction.patches.patchCount());
+        p->gpu().setDisplacement(p->displacement.get());
       }
       p->bounds = mesh.restBounds;
       points_.push_back(std::move(p));
@@ -68,13 +69,13 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
   for (const frame::TriangleMesh& m : scene.occluders) occluderMeshes_.emplace_back(context, m);
   for (const auto& m : occluderMeshes_) occluderPtrs_.push_back(&m);
 
-  // A deforming mesh gets its cones from the GPU bounds pass of the cone method in use; the
-  // tangent plane's drawn-triangle data is built on the host only, so it stays off there.
-  std::optional<bound::BackPatchMethod> coneMethod;
+  // A deforming mesh gets the cull data of the back-patch method in use (TCONE, NCONE, the
+  // tangent plane's drawn-triangle bound) from the GPU bounds pass, recomputed on every frame
+  // it moves (frame/cull/bounds_pass.h); a displaced one its displaced bound's cones.
+  std::optional<bound::BackPatchMethod> backPatch;
   if (!options.cull.backPatch.empty()) {
     const bound::BackPatchMethod ref = frame::cullMethod(options.cull.backPatch).reference;
-    if (ref == bound::BackPatchMethod::TCone || ref == bound::BackPatchMethod::NCone)
-      coneMethod = ref;
+    if (frame::BoundsPass::hasCullData(ref)) backPatch = ref;
   }
   std::vector<frame::CullMesh> meshes;
   for (const Instance& inst : instances_) {
@@ -89,13 +90,16 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
       m.uvCorners = mesh.extraction.uvCorners;
       m.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
     }
-    if (p.dynamic && mesh.validity.enabled) {
-      if (coneMethod)
-        m.cullData = &p.dynamic->cullData(*coneMethod);
+    if (p.dynamic && mesh.displacementMap) {
+      m.cullData = &p.dynamic->displacedCullData(*mesh.displacementMap, mesh.extraction.uvCorners,
+                                                 mesh.displacedExtension);
+    } else if (p.dynamic && mesh.validity.enabled) {
+      if (backPatch)
+        m.cullData = &p.dynamic->cullData(*backPatch);
       else if (!options.cull.backPatch.empty())
         m.backPatchValidity = bound::BackPatchValidity{
-            false, "mesh '" + mesh.name + "' deforms; its bounds are recomputed per frame for " +
-                       "tcone and ncone only"};
+            false, "mesh '" + mesh.name + "' deforms; the bounds pass recomputes cull data for " +
+                       "tcone, ncone and the tangent plane only"};
     }
     meshes.push_back(std::move(m));
   }

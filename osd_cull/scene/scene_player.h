@@ -48,9 +48,9 @@ class ScenePlayer {
   /// \brief Uploads the meshes and occluders, makes a render target and a CullFrame per
   /// view with `options` (each mesh's back-patch validity replaces options.cull's). A
   /// deforming mesh moves its control points through a frame::DynamicPatchMesh on
-  /// `pointUpdate`'s path and, with tcone or ncone, is back-patch culled with the cones the
-  /// GPU bounds pass recomputes on every frame it moves; the tangent plane's drawn-triangle
-  /// data is built on the host once, so that method stays off for it.
+  /// `pointUpdate`'s path and is back-patch culled (tcone, ncone, tangent plane) with the
+  /// cull data the GPU bounds pass recomputes on every frame it moves; a deforming
+  /// displaced mesh with its displaced bound's cones, recomputed the same way.
   ScenePlayer(vulkan::Context& context, LoadedScene& scene, const frame::CullFrameOptions& options,
               frame::PointUpdatePath pointUpdate = frame::PointUpdatePath::Cpu);
   ~ScenePlayer();
