@@ -248,7 +248,7 @@ void runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Op
       const double allMs = all.render(cam, occluders).frameMs;
       const plan::Plan p = planner.plan(c.name, in, frameNumber);
       const Measured m = planned(p, cam);
-      planner.observe(c.name, p, m.frustum, m.backPatch, m.occlusion, c.host().patchCount());
+      planner.observe(c.name, p, m.frustum, m.backPatch, m.occlusion, c.host().patchCount(), m.ms);
       if (f < 0) continue;
       row.none.push_back(none);
       row.all.push_back(allMs);
