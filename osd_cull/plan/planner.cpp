@@ -338,7 +338,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     p.hiz.deltaMs =
         p.occlusion.on ? calibration_.hizBuildMs(hizPixels(pixels, p.stages.hizFull)) : 0.0;
     p.hiz.reason = p.occlusion.on
-                       ? "level 0 at half resolution (paper §4): build " +
+                       ? "level 0 at half resolution (Niessner & Loop §4.1): build " +
                              ms(calibration_.hizBuildMs(hizPixels(pixels, false))) + ", full " +
                              ms(calibration_.hizBuildMs(hizPixels(pixels, true)))
                        : "no occlusion: no pyramid";

@@ -7,7 +7,8 @@
 /// the cull rates measured on the mesh's recent frames.
 ///
 /// Each frame the planner
-///  1. tests the object's box against the view first (Sathe §4, the per-object pre-test):
+///  1. tests the object's box against the view first (Sathe, last paragraph of the results: the
+///  per-object pre-test):
 ///     a box outside the view is culled whole by the frustum stage; a box inside it makes
 ///     the frustum stage useless;
 ///  2. predicts every candidate stage choice with the cost model (cost_model.h: Zachmann's
