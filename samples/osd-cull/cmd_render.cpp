@@ -349,7 +349,7 @@ int run(const RenderArgs& args) {
                        {"scene", scene.patches.source},
                        {"width", width},
                        {"height", height},
-                       {"cull", cull.mode},
+                       {"cull", planner ? std::string("plan") : cull.mode},
                        {"frames", jsonFrames}};
     if (cullFrame)
       doc["options"] = {
