@@ -30,6 +30,9 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
             (options.statusColors ? shader::kFlagStatusColors : 0u) |
             (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
             (options.patchTypeColors && !options.statusColors ? shader::kFlagPatchTypeColors : 0u);
+  if (t.displaced == DisplacedTessellation::Ignore) c.flags |= shader::kFlagTessIgnoreDisplacement;
+  if (t.displaced == DisplacedTessellation::PerPatch)
+    c.flags |= shader::kFlagTessPerPatchDisplacement;
   return c;
 }
 
@@ -96,7 +99,8 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
   std::vector<vulkan::ShaderDefine> defines = {
       {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
   std::vector<vulkan::ShaderDefine> evalDefines = defines;
-  // Only the displaced variant's evaluation stage has displacement code (displace.glsl).
+  // Only the displaced variant's control and evaluation stages have displacement code
+  // (the edge levels' displacement term, displace.glsl).
   if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
   const std::vector<vulkan::ShaderDefine> fragment = {
       {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
@@ -104,7 +108,7 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
   d.stages.push_back(
       {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"patch/patch.vert", defines}), {}});
   d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
-                      vulkan::compileShader({"patch/patch.tesc", defines}),
+                      vulkan::compileShader({"patch/patch.tesc", evalDefines}),
                       {}});
   d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
                       vulkan::compileShader({"patch/patch.tese", evalDefines}),
@@ -278,8 +282,11 @@ uint32_t Renderer::recordPatches(VkCommandBuffer cmd, const Camera& camera, cons
     if (draw.host->patchCount() != gpu.patchCount())
       throw Error("Renderer: host PatchSet has " + std::to_string(draw.host->patchCount()) +
                   " patches, the GpuPatchSet " + std::to_string(gpu.patchCount()));
-    bounds = tessVertexBounds(*draw.host, camera.viewProjection(),
-                              glm::dvec2(camera.width, camera.height), options.tessellation);
+    const GpuDisplacement* displacement = gpu.displacement();
+    bounds = tessVertexBounds(
+        *draw.host, camera.viewProjection(), glm::dvec2(camera.width, camera.height),
+        options.tessellation,
+        displacement ? displacement->edgeDisplacements() : std::span<const EdgeDisplacement>{});
   }
   const std::span<const uint32_t> all(bounds);
   const uint32_t nb = gpu.bezierCount();
