@@ -6,10 +6,9 @@
 // Markdown table; docs/results/displacement.md section 4.
 //
 //   bench-displaced-tess [--mesh FILE] [--level 2] [--views 8] [--repeats 5] [--scale 0.64]
-//                        [--pixels 4,8] [--size 512]
+//                        [--pixels 4,8] [--size 512] [--device X]
 #include "adapters/load_mesh.h"
 #include "bench_support.h"
-#include "osd_cull/error.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/draw/gpu_patch_set.h"
 #include "osd_cull/frame/draw/renderer.h"
@@ -36,35 +35,10 @@ struct Figures {
   uint64_t cracks = 0;
 };
 
-}  // namespace
-
-int main(int argc, char** argv) try {
-  std::string mesh = (bench::dataDir() / "characters" / "bigguy.obj").string();
-  uint32_t level = 2, views = 8, repeats = 5, size = 512;
-  double scale = 0.64;
-  std::vector<uint32_t> pixels = {4, 8};
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) throw Error(a + " needs a value");
-    const std::string v = argv[++i];
-    if (a == "--mesh")
-      mesh = v;
-    else if (a == "--level")
-      level = bench::numberList(v).at(0);
-    else if (a == "--views")
-      views = std::max(1u, bench::numberList(v).at(0));
-    else if (a == "--repeats")
-      repeats = std::max(1u, bench::numberList(v).at(0));
-    else if (a == "--size")
-      size = std::max(16u, bench::numberList(v).at(0));
-    else if (a == "--pixels")
-      pixels = bench::numberList(v);
-    else if (a == "--scale")
-      scale = std::stod(v);
-    else
-      throw Error("unknown option " + a + " (see the top of bench_displaced_tess.cpp)");
-  }
-  vulkan::Context context;
+int measure(const std::string& mesh, uint32_t level, uint32_t views, uint32_t repeats,
+            uint32_t size, double scale, const std::vector<uint32_t>& pixels,
+            const std::string& device) {
+  vulkan::Context context(bench::contextOptions(device));
   PatchOptions patchOptions;
   patchOptions.isolationLevel = static_cast<int>(level);
   const PatchExtraction ex = extractPatches(adapters::loadCage(mesh), patchOptions);
@@ -142,7 +116,26 @@ int main(int argc, char** argv) try {
     return 1;
   }
   return 0;
-} catch (const std::exception& e) {
-  std::fprintf(stderr, "bench-displaced-tess: %s\n", e.what());
-  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return bench::run("bench-displaced-tess", [&] {
+    std::string mesh = (bench::dataDir() / "characters" / "bigguy.obj").string(), device;
+    uint32_t level = 2, views = 8, repeats = 5, size = 512;
+    double scale = 0.64;
+    std::vector<uint32_t> pixels = {4, 8};
+    bench::CommandLine options("bench-displaced-tess", "bench_displaced_tess.cpp");
+    options.text("--mesh", mesh)
+        .number("--level", level)
+        .number("--views", views, 1)
+        .number("--repeats", repeats, 1)
+        .number("--size", size, 16)
+        .numbers("--pixels", pixels)
+        .real("--scale", scale, -1e30)
+        .text("--device", device);
+    if (!options.parse(argc, argv)) return 0;
+    return measure(mesh, level, views, repeats, size, scale, pixels, device);
+  });
 }
