@@ -29,6 +29,7 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
   c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
             (options.statusColors ? shader::kFlagStatusColors : 0u) |
             (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
+            (options.clampDepthToControlPoints ? 0u : shader::kFlagNoDepthClamp) |
             (options.patchTypeColors && !options.statusColors ? shader::kFlagPatchTypeColors : 0u);
   if (t.displaced == DisplacedTessellation::Ignore) c.flags |= shader::kFlagTessIgnoreDisplacement;
   if (t.displaced == DisplacedTessellation::PerPatch)
@@ -100,7 +101,8 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
       {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
   std::vector<vulkan::ShaderDefine> evalDefines = defines;
   // Only the displaced variant's control and evaluation stages have displacement code
-  // (the edge levels' displacement term, displace.glsl).
+  // (the edge levels' displacement term, displace.glsl); its control stage leaves fragment
+  // depth unclamped (patch.tesc).
   if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
   const std::vector<vulkan::ShaderDefine> fragment = {
       {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
