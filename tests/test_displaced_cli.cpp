@@ -49,6 +49,51 @@ TEST(DisplacedCommands, RenderDrawsTheDisplacedSurfaceAndCountsSeams) {
   EXPECT_NE(r.output.find("bound con-oobb; UV seam edges 28"), std::string::npos) << r.output;
 }
 
+// The number in "cracks: N pixels" of render's output (-1 when missing).
+long crackPixels(const std::string& output) {
+  const auto at = output.find("cracks: ");
+  return at == std::string::npos ? -1 : std::stol(output.substr(at + 8));
+}
+
+TEST(DisplacedCommands, SeamCracksAreCountedAndNeverFalselyCulled) {
+  OSD_CULL_REQUIRE_DATA();
+  // catmark_cube's texture coordinates are an unfolded cross: its 28 seam edges join
+  // different places of the procedural map, so the displacement is discontinuous there and
+  // the surface opens. verify counts those pixels and still finds no false cull: the oracle
+  // draws back faces, so the inside seen through a seam counts as visible.
+  test::TempDir dir("osd_cull_disp_cli_");
+  const std::string cube = (test::dataDir() / "shapes/catmark_cube.obj").string();
+  const std::string map = " --displacement procedural --displacement-scale 0.3";
+  const auto json = dir.path() / "v.json";
+  const auto v = test::runCommand(
+      program() + " verify " + cube + map +
+      " --displaced-bound all --views 6 --width 96 --height 96 --json " + json.string());
+  ASSERT_EQ(v.exitCode(), 0) << v.output;
+  EXPECT_NE(v.output.find("cracks (displaced surface open at UV seams"), std::string::npos)
+      << v.output;
+  std::ifstream in(json);
+  const nlohmann::json doc = nlohmann::json::parse(in);
+  EXPECT_EQ(doc["cracks"]["views"], 6);
+  EXPECT_GT(doc["cracks"]["pixels"].get<long>(), 0) << "seams should open the surface";
+  EXPECT_GT(doc["cracks"]["views_with_cracks"].get<long>(), 0);
+  ASSERT_GE(doc["methods"].size(), 7u);  // frustum, hiz and the six kernels
+  for (const auto& m : doc["methods"]) {
+    EXPECT_EQ(m["false_culls"], 0) << m["name"];
+    EXPECT_EQ(m["culled_not_in_reference"], 0) << m["name"];
+    if (m["name"] != "frustum") {
+      EXPECT_GT(m["culled_per_view"].get<double>(), 0.0) << m["name"];
+    }
+  }
+  // render reports the last view's crack pixels, with displacement-aware levels or not.
+  for (const char* tess : {"edge", "none"}) {
+    const auto r = test::runCommand(program() + " render " + cube + map + " --adaptive 4" +
+                                    " --displaced-tess " + tess + " --width 96 --height 96" +
+                                    " --out " + (dir.path() / "c.png").string());
+    ASSERT_EQ(r.exitCode(), 0) << r.output;
+    EXPECT_GT(crackPixels(r.output), 0) << tess << "\n" << r.output;
+  }
+}
+
 TEST(DisplacedCommands, BadDisplacementOptionsAreNamed) {
   OSD_CULL_REQUIRE_DATA();
   const std::string pole = (test::dataDir() / "shapes/catmark_pole8.obj").string();
@@ -63,6 +108,10 @@ TEST(DisplacedCommands, BadDisplacementOptionsAreNamed) {
                        " --displacement procedural --displaced-bound all --out /tmp/never.png");
   EXPECT_NE(r.exitCode(), 0);
   EXPECT_NE(r.output.find("--displaced-bound"), std::string::npos) << r.output;
+  r = test::runCommand(program() + " render " + pole +
+                       " --displacement procedural --displaced-tess most --out /tmp/never.png");
+  EXPECT_NE(r.exitCode(), 0);
+  EXPECT_NE(r.output.find("--displaced-tess"), std::string::npos) << r.output;
   r = test::runCommand(program() + " verify " + pole + " --displacement nosuch.png");
   EXPECT_NE(r.exitCode(), 0);
   EXPECT_NE(r.output.find("nosuch.png"), std::string::npos) << r.output;

@@ -4,6 +4,7 @@
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/draw/png_io.h"
 #include "osd_cull/frame/draw/renderer.h"
+#include "osd_cull/frame/verify/crack_count.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
 #include "support/test_data.h"
@@ -50,7 +51,7 @@ class CrackTest : public test::VkTest {
 
   // Draws a closed set from many directions with back faces culled; returns the largest
   // number of holes found in any view: background pixels enclosed by the silhouette (for
-  // convex sets), or else cracks (test::countCracks, which also draws without culling).
+  // convex sets), or else cracks (frame::countCracks, which also draws without culling).
   uint32_t worstHoles(const PatchSet& set, uint32_t size, int views, bool convex = true) {
     frame::GpuPatchSet gpu(context(), set);
     frame::RenderTarget target(context(), size, size);
@@ -71,7 +72,7 @@ class CrackTest : public test::VkTest {
           RenderOptions unculled = options;
           unculled.cullBackFaces = false;
           renderer.render(target, camera, gpu, &set, unculled);
-          holes = test::countCracks(items, depth, target.readItems(context()), size, size);
+          holes = frame::countCracks(items, depth, target.readItems(context()), size, size);
           if (holes > worst) renderer.render(target, camera, gpu, &set, options);  // for the PNG
         }
         if (holes > worst) {

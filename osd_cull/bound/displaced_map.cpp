@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 namespace osd_cull::bound {
 namespace {
@@ -205,6 +206,73 @@ DisplacementRange DisplacementMap::displacementOver(const UvRegion& region) cons
 
 DisplacementRange DisplacementMap::displacementRange() const {
   return toDisplacement(texelRange(0, width_ - 1, 0, height_ - 1));
+}
+
+double DisplacementMap::variationAlong(glm::dvec2 a, glm::dvec2 b) const {
+  const int64_t w = levelWidth(maxLod_), h = levelHeight(maxLod_);
+  const std::vector<float>& texels = levels_[maxLod_];
+  const auto at = [&](int64_t i, int64_t j) {
+    return static_cast<double>(texels[static_cast<size_t>(wrapIndex(j, h) * w + wrapIndex(i, w))]);
+  };
+  const double absScale = std::abs(scale_);
+  const auto wholeMap = [&](double cells) {
+    const TexelRange r = texelRange(0, width_ - 1, 0, height_ - 1);
+    return absScale * 2.0 * (r.hi - r.lo) * cells;
+  };
+  const bool finite = std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(b.x) &&
+                      std::isfinite(b.y) &&
+                      std::max({std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y)}) < 1e6;
+  if (!finite) return wholeMap(static_cast<double>(std::max(w, h)));
+  // The same walk from either end: start at the lexicographically smaller one.
+  if (b.x < a.x || (b.x == a.x && b.y < a.y)) std::swap(a, b);
+  // Texel-centre grid of the level: cell (i, j) spans centres i..i+1, j..j+1.
+  const glm::dvec2 p(a.x * static_cast<double>(w) - 0.5, a.y * static_cast<double>(h) - 0.5);
+  const glm::dvec2 q(b.x * static_cast<double>(w) - 0.5, b.y * static_cast<double>(h) - 0.5);
+  const glm::dvec2 d = q - p;
+  auto ix = static_cast<int64_t>(std::floor(p.x)), iy = static_cast<int64_t>(std::floor(p.y));
+  const auto ex = static_cast<int64_t>(std::floor(q.x)), ey = static_cast<int64_t>(std::floor(q.y));
+  const int64_t cells = std::abs(ex - ix) + std::abs(ey - iy) + 1;
+  if (cells > (int64_t{1} << 22)) return wholeMap(static_cast<double>(cells));
+  const int64_t sx = ex >= ix ? 1 : -1, sy = ey >= iy ? 1 : -1;
+  const double inf = std::numeric_limits<double>::infinity();
+  // Segment parameter of the next cell boundary crossed in x and in y.
+  double tx = d.x != 0.0 ? (static_cast<double>(sx > 0 ? ix + 1 : ix) - p.x) / d.x : inf;
+  double ty = d.y != 0.0 ? (static_cast<double>(sy > 0 ? iy + 1 : iy) - p.y) / d.y : inf;
+  const double dtx = d.x != 0.0 ? static_cast<double>(sx) / d.x : inf;
+  const double dty = d.y != 0.0 ? static_cast<double>(sy) / d.y : inf;
+  double t0 = 0.0, total = 0.0;
+  for (int64_t c = 0; c < cells; ++c) {
+    const bool last = c + 1 == cells;
+    const bool stepX = iy == ey || (ix != ex && tx < ty);
+    const double t1 = last ? 1.0 : std::clamp(stepX ? tx : ty, t0, 1.0);
+    // Bilinear in the cell: f = c00 + gx ax + gy ay + k ax ay; along the segment a
+    // quadratic in t whose variation is read at its ends and its extremum.
+    const double c00 = at(ix, iy), c10 = at(ix + 1, iy), c01 = at(ix, iy + 1),
+                 c11 = at(ix + 1, iy + 1);
+    const double gx = c10 - c00, gy = c01 - c00, k = c00 - c10 - c01 + c11;
+    const auto f = [&](double t) {
+      const double ax = std::clamp(p.x + t * d.x - static_cast<double>(ix), 0.0, 1.0);
+      const double ay = std::clamp(p.y + t * d.y - static_cast<double>(iy), 0.0, 1.0);
+      return c00 + gx * ax + gy * ay + k * ax * ay;
+    };
+    const double quadratic = k * d.x * d.y;
+    const double linear =
+        gx * d.x + gy * d.y +
+        k * ((p.x - static_cast<double>(ix)) * d.y + (p.y - static_cast<double>(iy)) * d.x);
+    const double tm = quadratic != 0.0 ? -linear / (2.0 * quadratic) : inf;
+    total += tm > t0 && tm < t1 ? std::abs(f(tm) - f(t0)) + std::abs(f(t1) - f(tm))
+                                : std::abs(f(t1) - f(t0));
+    if (last) break;
+    t0 = t1;
+    if (stepX) {
+      ix += sx;
+      tx += dtx;
+    } else {
+      iy += sy;
+      ty += dty;
+    }
+  }
+  return absScale * total;
 }
 
 }  // namespace osd_cull::bound

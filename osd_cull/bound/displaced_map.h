@@ -89,6 +89,17 @@ class DisplacementMap {
   /// \brief The extremes of the whole map in displacement units (as displacementOver()).
   DisplacementRange displacementRange() const;
 
+  /// \brief The total variation, in displacement units (|scale| times texel values), of the
+  /// draw's sample at level maxLod along the straight texture-space segment from `a` to `b`:
+  /// the length of the path the displacement D travels while (s, t) runs along the segment.
+  /// Exact for the bilinear interpolation of that level (per texel cell the restriction to
+  /// a line is a quadratic: its ends and its extremum); the fixed-point texel snapping of
+  /// the sampler is not modelled (a tessellation estimate, not a culling bound). Symmetric
+  /// bit for bit: the segment is walked from its lexicographically smaller end, so the two
+  /// patches sharing an edge get the same value (docs/algorithms/displacement.md,
+  /// "Tessellation"). Non-finite ends: twice the map's range per texel of its larger side.
+  double variationAlong(glm::dvec2 a, glm::dvec2 b) const;
+
  private:
   TexelRange texelRange(int64_t x0, int64_t x1, int64_t y0, int64_t y1) const;
   TexelRange pyramidRange(uint32_t x0, uint32_t x1, uint32_t y0, uint32_t y1) const;

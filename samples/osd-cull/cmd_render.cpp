@@ -13,6 +13,7 @@
 #include "scene_render.h"
 #include "scene_source.h"
 
+#include "osd_cull/frame/verify/crack_count.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/face_varying_uv.h"
 #include "osd_cull/scene/default_scene.h"
@@ -193,6 +194,7 @@ int run(const RenderArgs& args) {
     options.tessellation.uniformLevel = args.tess;
   }
   options.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
+  options.tessellation.displaced = displacement.tessellation;
 
   frame::RenderTarget target(context, width, height);
   frame::Renderer renderer(context);
@@ -344,6 +346,18 @@ int run(const RenderArgs& args) {
       }
     }
   }
+  // Displaced: the pixels where the surface opens in the last view (UV seams; edges
+  // elsewhere get equal levels on both sides), drawn unculled with back faces culled and not.
+  std::optional<uint32_t> crackPixels;
+  if (displacementMap) {
+    frame::RenderTarget crackTarget(context, width, height);  // leaves the frame's target alone
+    crackPixels = frame::countCracks(context, renderer, crackTarget, view, draw, options,
+                                     frame::kSeamCrackWidth);
+    std::printf(
+        "cracks: %u pixels in the last view (displaced surface open at UV seams, back "
+        "faces culled; --displaced-tess %s)\n",
+        *crackPixels, frame::toString(options.tessellation.displaced));
+  }
   if (!args.stats.empty()) {
     nlohmann::json doc{{"device", context.info().name},
                        {"scene", scene.patches.source},
@@ -351,6 +365,7 @@ int run(const RenderArgs& args) {
                        {"height", height},
                        {"cull", planner ? std::string("plan") : cull.mode},
                        {"frames", jsonFrames}};
+    if (crackPixels) doc["crack_pixels"] = *crackPixels;
     if (cullFrame)
       doc["options"] = {
           {"aggressive", frameOptions.aggressive},

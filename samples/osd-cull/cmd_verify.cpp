@@ -15,6 +15,7 @@
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/verify/cull_verification.h"
 #include "osd_cull/frame/verify/view_sets.h"
+#include "osd_cull/patch/face_varying_uv.h"
 #include "osd_cull/vk/context.h"
 
 #include <nlohmann/json.hpp>
@@ -103,6 +104,8 @@ int run(const VerifyArgs& args) {
   if (displacementMap) {
     options.displacementMap = &*displacementMap;
     options.uvCorners = mesh.uvCorners;
+    options.countCracks = true;  // UV seams open the displaced surface: report them
+    options.tessellation.displaced = displacement.tessellation;
   }
   frame::CullVerifier verifier(context, patches, methods, mesh.backPatch, options);
 
@@ -151,6 +154,18 @@ int run(const VerifyArgs& args) {
     }
   }
 
+  const frame::CrackTotals& cracks = verifier.cracks();
+  if (cracks.views > 0)
+    std::printf(
+        "cracks (displaced surface open at UV seams, back faces culled): %llu pixels "
+        "over %llu views, %llu views with cracks, at most %llu in one view; %u UV seam "
+        "edges\n",
+        static_cast<unsigned long long>(cracks.pixels),
+        static_cast<unsigned long long>(cracks.views),
+        static_cast<unsigned long long>(cracks.viewsWithCracks),
+        static_cast<unsigned long long>(cracks.worstView),
+        countUVSeamEdges(patches, mesh.uvCorners));
+
   const VerifyVerdict verdict =
       printVerifyTables(verifier.totals(), patches.patchCount(), options.oracle, surfaceExact,
                         sample > 0 || imageCheck);
@@ -178,6 +193,11 @@ int run(const VerifyArgs& args) {
     out["methods"] = nlohmann::ordered_json::array();
     for (const auto& t : verifier.totals())
       out["methods"].push_back(methodJson(t, patches.patchCount(), options.oracle));
+    if (cracks.views > 0)
+      out["cracks"] = {{"views", cracks.views},
+                       {"pixels", cracks.pixels},
+                       {"views_with_cracks", cracks.viewsWithCracks},
+                       {"worst_view", cracks.worstView}};
     out["skipped"] = nlohmann::ordered_json::array();
     for (const auto& [name, why] : verifier.skipped())
       out["skipped"].push_back({{"name", name}, {"reason", why}});

@@ -43,13 +43,19 @@ void addDisplacementOptions(CLI::App& app, DisplacementArgs& args, bool allowAll
       ->type_name("X")
       ->group(group)
       ->check(oneOf(boxes));
+  app.add_option("--displaced-tess", args.tess,
+                 "adaptive levels: edge (add each edge's displacement variation, default),\n"
+                 "none (undisplaced levels), per-patch (the patch's largest: cracks)")
+      ->type_name("T")
+      ->group(group)
+      ->check(oneOf({"edge", "none", "per-patch"}));
 }
 
 DisplacementChoice displacementChoice(const DisplacementArgs& args, bool allowAll) {
   DisplacementChoice out;
   if (args.source.empty()) {
     if (args.scale || args.midlevel || !args.channel.empty() || args.lod || !args.bound.empty() ||
-        !args.box.empty())
+        !args.box.empty() || !args.tess.empty())
       throw UsageError(
           "--displacement-* and --displaced-* options need --displacement MAP|procedural");
     return out;
@@ -90,6 +96,8 @@ DisplacementChoice displacementChoice(const DisplacementArgs& args, bool allowAl
                      (allowAll ? ", all" : ""));
   for (DisplacedBox box : boxes)
     for (DisplacedExtension e : extensions) out.kernels.push_back({e, box});
+  if (args.tess == "none") out.tessellation = frame::DisplacedTessellation::Ignore;
+  if (args.tess == "per-patch") out.tessellation = frame::DisplacedTessellation::PerPatch;
   return out;
 }
 

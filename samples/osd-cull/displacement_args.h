@@ -7,6 +7,7 @@
 
 #include "adapters/image_displacement.h"
 #include "osd_cull/frame/cull/cull_methods.h"
+#include "osd_cull/frame/draw/tess_levels.h"
 
 #include <optional>
 #include <string>
@@ -21,6 +22,7 @@ struct DisplacementArgs {
   std::string channel;
   std::optional<uint32_t> lod;
   std::string bound, box;  ///< empty: acon, caf ("all" with verify)
+  std::string tess;        ///< --displaced-tess edge|none|per-patch; empty: edge
 };
 
 /// \brief What the options chose.
@@ -28,6 +30,8 @@ struct DisplacementChoice {
   std::optional<adapters::DisplacementOptions> map;  ///< --displacement given
   /// --displaced-bound x --displaced-box ("all" expands): the kernels, in Table 1 order.
   std::vector<frame::CullMethod::Displaced> kernels;
+  /// --displaced-tess: how adaptive levels account for the displacement.
+  frame::DisplacedTessellation tessellation = frame::DisplacedTessellation::EdgeVariation;
 };
 
 /// \brief Declares --displacement, --displacement-scale, --displacement-midlevel,

@@ -2,8 +2,35 @@
 // Passes the control points through and sets the tessellation levels (tess_levels.glsl).
 // A draw-list entry flagged kDrawListCulled gets levels 0: the patch is discarded before
 // evaluation and its levels are never computed (Niessner & Loop §5).
+// The displaced variant (PATCH_DISPLACED) adds the displacement's variation along each
+// edge to its adaptive level (docs/algorithms/displacement.md, "Tessellation").
 #include "patch_common.glsl"
 #include "tess_levels.glsl"
+#if defined(PATCH_DISPLACED)
+#include <shared/displacement_layout.h>
+layout(std430, set = kDisplaceSet, binding = kDisplaceBindingEdges) readonly buffer
+    EdgeDisplacementBuffer {
+  vec4 edgeDisplacement[];
+};
+
+// The displacement length each edge (Lo and Hi halves) adds, as frame::edgeDisplacementTerms.
+void displacementOffsets(uint patchIndex, uint transition, out vec4 offsetLo, out vec4 offsetHi) {
+  offsetLo = offsetHi = vec4(0.0);
+  if ((pc.flags & kFlagTessIgnoreDisplacement) != 0u) return;
+  vec4 whole = edgeDisplacement[3u * patchIndex];
+  if ((pc.flags & kFlagTessPerPatchDisplacement) != 0u) {
+    offsetLo = offsetHi = vec4(max(max(whole.x, whole.y), max(whole.z, whole.w)));
+    return;
+  }
+  vec4 first = edgeDisplacement[3u * patchIndex + 1u];
+  vec4 second = edgeDisplacement[3u * patchIndex + 2u];
+  for (int e = 0; e < 4; ++e) {
+    bool split = (transition & kEdgeTransitionBit[e]) != 0u;
+    offsetLo[e] = split ? first[e] : whole[e];
+    offsetHi[e] = split ? second[e] : 0.0;
+  }
+}
+#endif
 
 layout(vertices = PATCH_POINTS) out;
 
@@ -61,8 +88,14 @@ void main() {
     vec3 cp[PATCH_POINTS];
     for (int i = 0; i < PATCH_POINTS; ++i) cp[i] = vPoint[i];
     uint patchIndex = vPatch[0] & kDrawListPatchMask;
+    uint transition = transitionMask(patchIndex);
+    vec4 offsetLo = vec4(0.0), offsetHi = vec4(0.0);
+#if defined(PATCH_DISPLACED)
+    if (tessMode() == kTessAdaptive)
+      displacementOffsets(patchIndex, transition, offsetLo, offsetHi);
+#endif
     vec4 lo, hi;
-    edgeLevels(cp, transitionMask(patchIndex), lo, hi);
+    edgeLevels(cp, transition, offsetLo, offsetHi, lo, hi);
     vec4 outer = lo + hi;
     gl_TessLevelOuter[0] = outer[0];
     gl_TessLevelOuter[1] = outer[1];

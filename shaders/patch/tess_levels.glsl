@@ -18,11 +18,27 @@ bool toPixels(vec3 p, out vec2 pixel) {
   return c.w > 1e-6;
 }
 
+// Pixels per world unit of a short vector at p in any direction, to first order: the
+// projection's Jacobian 0.5 v (r_i - (c_i / w) r_3) / w bounded by the norms of the rows
+// r_i of its linear part (host mirror: tess_levels.cpp). Only called with w > 1e-6.
+float pixelScale(vec3 p) {
+  mat4 m = tessViewProjection();
+  vec4 c = m * vec4(p, 1.0);
+  vec2 v = tessViewportSize();
+  float r0 = length(vec3(m[0][0], m[1][0], m[2][0]));
+  float r1 = length(vec3(m[0][1], m[1][1], m[2][1]));
+  float r3 = length(vec3(m[0][3], m[1][3], m[2][3]));
+  return 0.5 * max(v.x * (r0 + abs(c.x / c.w) * r3), v.y * (r1 + abs(c.y / c.w) * r3)) / c.w;
+}
+
 // Segments for one cubic curve: its screen-space control-polygon length over the target
 // segment length, rounded up, in [1, maxLevel]. The sum is ordered so that the reversed
 // curve gives the bit-identical result (neighbours traverse shared edges oppositely).
-// A curve reaching behind the eye gets maxLevel.
-float curveLevel(vec3 b0, vec3 b1, vec3 b2, vec3 b3, float maxLevel) {
+// A curve reaching behind the eye gets maxLevel. `offset` (world units, >= 0): the
+// displacement's variation along the curve (displaced draws, docs/algorithms/
+// displacement.md "Tessellation"), added at the curve's largest pixel scale; max is
+// order-free, so the reversed curve still gives the same level.
+float curveLevel(vec3 b0, vec3 b1, vec3 b2, vec3 b3, float offset, float maxLevel) {
   vec2 s0, s1, s2, s3;
   bool ok = toPixels(b0, s0);
   ok = toPixels(b1, s1) && ok;
@@ -30,6 +46,8 @@ float curveLevel(vec3 b0, vec3 b1, vec3 b2, vec3 b3, float maxLevel) {
   ok = toPixels(b3, s3) && ok;
   if (!ok) return maxLevel;
   float len = (distance(s0, s1) + distance(s2, s3)) + distance(s1, s2);
+  if (offset > 0.0)
+    len += offset * max(max(pixelScale(b0), pixelScale(b1)), max(pixelScale(b2), pixelScale(b3)));
   float level = ceil(len / tessPixelsPerSegment());
   // NaN or Inf coordinates: keep the patch drawn at the finest level.
   if (!(level >= 1.0)) return level < 1.0 ? 1.0 : maxLevel;
@@ -37,8 +55,11 @@ float curveLevel(vec3 b0, vec3 b1, vec3 b2, vec3 b3, float maxLevel) {
 }
 
 // Outer levels split into Lo and Hi halves (Hi is 0 on non-transition edges), from the
-// four boundary curves (curves[4e + k]: point k of edge e's curve, see edge_curves.glsl).
-void curveEdgeLevels(vec3 curves[16], uint transition, out vec4 lo, out vec4 hi) {
+// four boundary curves (curves[4e + k]: point k of edge e's curve, see edge_curves.glsl)
+// and the displacement's variation along each edge or half (offsetLo, offsetHi; zero for
+// undisplaced patches).
+void curveEdgeLevels(vec3 curves[16], uint transition, vec4 offsetLo, vec4 offsetHi,
+                     out vec4 lo, out vec4 hi) {
   float maxLevel = tessMaxLevel();
   for (int e = 0; e < 4; ++e) {
     vec3 b0 = curves[4 * e + 0];
@@ -53,24 +74,29 @@ void curveEdgeLevels(vec3 curves[16], uint transition, out vec4 lo, out vec4 hi)
       hi[e] = split ? level : 0.0;
     } else if (!split) {
       // Half the maximum, so that a neighbour's transition edge can hold two of these.
-      lo[e] = curveLevel(b0, b1, b2, b3, floor(maxLevel * 0.5));
+      lo[e] = curveLevel(b0, b1, b2, b3, offsetLo[e], floor(maxLevel * 0.5));
       hi[e] = 0.0;
     } else {
       // de Casteljau at 1/2: the halves are the finer neighbours' edges.
       vec3 b01 = 0.5 * (b0 + b1), b12 = 0.5 * (b1 + b2), b23 = 0.5 * (b2 + b3);
       vec3 b012 = 0.5 * (b01 + b12), b123 = 0.5 * (b12 + b23);
       vec3 m = 0.5 * (b012 + b123);
-      lo[e] = curveLevel(b0, b01, b012, m, floor(maxLevel * 0.5));
-      hi[e] = curveLevel(m, b123, b23, b3, floor(maxLevel * 0.5));
+      lo[e] = curveLevel(b0, b01, b012, m, offsetLo[e], floor(maxLevel * 0.5));
+      hi[e] = curveLevel(m, b123, b23, b3, offsetHi[e], floor(maxLevel * 0.5));
     }
   }
 }
 
+void curveEdgeLevels(vec3 curves[16], uint transition, out vec4 lo, out vec4 hi) {
+  curveEdgeLevels(curves, transition, vec4(0.0), vec4(0.0), lo, hi);
+}
+
 #if defined(PATCH_POINTS)
-void edgeLevels(vec3 cp[PATCH_POINTS], uint transition, out vec4 lo, out vec4 hi) {
+void edgeLevels(vec3 cp[PATCH_POINTS], uint transition, vec4 offsetLo, vec4 offsetHi,
+                out vec4 lo, out vec4 hi) {
   vec3 curves[16];
   for (int k = 0; k < 16; ++k) curves[k] = cp[kEdgeCurve[k]];
-  curveEdgeLevels(curves, transition, lo, hi);
+  curveEdgeLevels(curves, transition, offsetLo, offsetHi, lo, hi);
 }
 #endif
 #endif

@@ -12,6 +12,11 @@ OSD_CULL_CONST uint kDisplaceBindingUVs = 1u;     // vec4 patchUVs[2 * patch]: t
                                                   // coordinates of corners (0,0), (1,0) and
                                                   // (1,1), (0,1), bilinear over the patch
 OSD_CULL_CONST uint kDisplaceBindingParams = 2u;  // DisplacementParams
+OSD_CULL_CONST uint kDisplaceBindingEdges = 3u;   // vec4 edgeDisplacement[3 * patch]: the
+                                                  // displacement's variation along each edge
+                                                  // (world units, gl_TessLevelOuter order):
+                                                  // whole edge, first half, second half
+                                                  // (frame::EdgeDisplacement; patch.tesc)
 
 struct DisplacementParams {
   vec4 map;   // x: scale, y: midlevel, z: level of detail sampled, w: 1 / width (texels)

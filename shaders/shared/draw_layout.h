@@ -23,6 +23,11 @@ OSD_CULL_CONST uint kFlagPatchTypeColors = 8u;  // regular/boundary/corner/Grego
 // No clamp of fragment depth to the control points (patch.tesc): for measuring what the clamp
 // costs only; Hi-Z occlusion culls of such a draw are not proven (docs/algorithms/occlusion.md).
 OSD_CULL_CONST uint kFlagNoDepthClamp = 16u;
+// Displaced draws, adaptive levels (frame::DisplacedTessellation; patch.tesc): neither
+// bit adds each edge's own displacement variation; kFlagTessIgnoreDisplacement adds none;
+// kFlagTessPerPatchDisplacement adds the patch's largest to every edge (cracks: tests).
+OSD_CULL_CONST uint kFlagTessIgnoreDisplacement = 32u;
+OSD_CULL_CONST uint kFlagTessPerPatchDisplacement = 64u;
 
 // A draw-list entry: the patch index in the low 28 bits, a status for the debug view in
 // bits 28-30 (kDrawStatus*) and, in bit 31, "culled": the control shader sets every

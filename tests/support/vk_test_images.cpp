@@ -11,24 +11,6 @@ std::map<uint32_t, uint32_t> itemHistogram(std::span<const uint32_t> items) {
   return h;
 }
 
-uint32_t countCracks(std::span<const uint32_t> items, std::span<const float> depth,
-                     std::span<const uint32_t> unculledItems, uint32_t width, uint32_t height,
-                     float maxDepthSpread) {
-  uint32_t gaps = 0;
-  auto covered = [&](uint32_t x, uint32_t y) { return items[y * width + x] != 0; };
-  auto d = [&](uint32_t x, uint32_t y) { return depth[y * width + x]; };
-  for (uint32_t y = 1; y + 1 < height; ++y)
-    for (uint32_t x = 1; x + 1 < width; ++x) {
-      if (covered(x, y) || unculledItems[y * width + x] == 0) continue;
-      const bool horizontal = covered(x - 1, y) && covered(x + 1, y) &&
-                              std::abs(d(x - 1, y) - d(x + 1, y)) < maxDepthSpread;
-      const bool vertical = covered(x, y - 1) && covered(x, y + 1) &&
-                            std::abs(d(x, y - 1) - d(x, y + 1)) < maxDepthSpread;
-      gaps += horizontal || vertical;
-    }
-  return gaps;
-}
-
 uint32_t countEnclosedBackground(std::span<const uint32_t> items, uint32_t width, uint32_t height) {
   std::vector<uint32_t> left(height, width), right(height, 0), top(width, height), bottom(width, 0);
   for (uint32_t y = 0; y < height; ++y)

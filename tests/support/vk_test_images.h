@@ -14,15 +14,6 @@ namespace osd_cull::test {
 /// \brief Pixels per item value (0 background, patch p -> p + 1, occluders 0xFFFFFFFF).
 std::map<uint32_t, uint32_t> itemHistogram(std::span<const uint32_t> items);
 
-/// \brief Cracks in a closed surface drawn with back faces culled (`items`, `depth`):
-/// background pixels between two covered pixels (left and right, or above and below)
-/// whose depths differ by less than `maxDepthSpread`, and that are covered in the same view
-/// drawn without culling (`unculledItems`). Through a crack one sees the inside of a closed
-/// surface; a gap between two parts of the mesh shows background either way.
-uint32_t countCracks(std::span<const uint32_t> items, std::span<const float> depth,
-                     std::span<const uint32_t> unculledItems, uint32_t width, uint32_t height,
-                     float maxDepthSpread = 0.01f);
-
 /// \brief Background pixels with covered pixels somewhere to the left, right, above and
 /// below: holes and cracks inside the silhouette of a convex object.
 uint32_t countEnclosedBackground(std::span<const uint32_t> items, uint32_t width, uint32_t height);

@@ -23,7 +23,9 @@ std::span<const vulkan::DescriptorBinding> displacementSetBindings() {
       {sh::kDisplaceBindingUVs, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
        VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT},
       {sh::kDisplaceBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-       VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT}};
+       VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT},
+      {sh::kDisplaceBindingEdges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+       VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT}};
   return bindings;
 }
 
@@ -104,6 +106,19 @@ GpuDisplacement::GpuDisplacement(vulkan::Context& context, const bound::Displace
   params_ = vulkan::Buffer(context, sizeof(params), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   vulkan::uploadBytes(context, params_, std::as_bytes(std::span(&params, 1)));
 
+  edges_ = frame::edgeDisplacements(map, uvCorners, patchCount);
+  std::vector<float> edgeFloats(std::max<size_t>(12, 12 * edges_.size()));
+  for (size_t p = 0; p < edges_.size(); ++p) {
+    std::copy(edges_[p].whole.begin(), edges_[p].whole.end(), edgeFloats.begin() + 12 * p);
+    std::copy(edges_[p].firstHalf.begin(), edges_[p].firstHalf.end(),
+              edgeFloats.begin() + 12 * p + 4);
+    std::copy(edges_[p].secondHalf.begin(), edges_[p].secondHalf.end(),
+              edgeFloats.begin() + 12 * p + 8);
+  }
+  edgeBuffer_ = vulkan::Buffer(context, edgeFloats.size() * sizeof(float),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<float>(context, edgeBuffer_, edgeFloats);
+
   setLayout_ = vulkan::createDescriptorSetLayout(context, displacementSetBindings());
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, displacementSetBindings());
   set_ = pool_->allocate(setLayout_.get());
@@ -111,6 +126,7 @@ GpuDisplacement::GpuDisplacement(vulkan::Context& context, const bound::Displace
       .sampledImage(sh::kDisplaceBindingMap, image_.view(), sampler_.get())
       .buffer(sh::kDisplaceBindingUVs, uvs_)
       .buffer(sh::kDisplaceBindingParams, params_)
+      .buffer(sh::kDisplaceBindingEdges, edgeBuffer_)
       .update(context.device(), set_);
 }
 

@@ -9,6 +9,7 @@
 /// surface; sets without one keep the undisplaced pipelines.
 
 #include "osd_cull/bound/displaced_map.h"
+#include "osd_cull/frame/draw/tess_levels.h"
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/descriptors.h"
 #include "osd_cull/vk/handle.h"
@@ -18,6 +19,7 @@
 
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace osd_cull::frame {
 
@@ -41,6 +43,9 @@ class GpuDisplacement {
   /// \brief Descriptor set 1 of the displaced draw pipelines.
   VkDescriptorSet descriptorSet() const { return set_; }
   const bound::DisplacementMap& map() const { return map_; }
+  /// \brief The displacement's variation along every patch edge (edgeDisplacements()), as
+  /// the adaptive levels of the draw use it (binding kDisplaceBindingEdges).
+  std::span<const EdgeDisplacement> edgeDisplacements() const { return edges_; }
 
  private:
   const bound::DisplacementMap& map_;
@@ -48,6 +53,8 @@ class GpuDisplacement {
   vulkan::UniqueSampler sampler_;
   vulkan::Buffer uvs_;
   vulkan::Buffer params_;
+  std::vector<EdgeDisplacement> edges_;
+  vulkan::Buffer edgeBuffer_;
   vulkan::UniqueDescriptorSetLayout setLayout_;
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;

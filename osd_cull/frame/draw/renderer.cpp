@@ -31,6 +31,9 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
             (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
             (options.clampDepthToControlPoints ? 0u : shader::kFlagNoDepthClamp) |
             (options.patchTypeColors && !options.statusColors ? shader::kFlagPatchTypeColors : 0u);
+  if (t.displaced == DisplacedTessellation::Ignore) c.flags |= shader::kFlagTessIgnoreDisplacement;
+  if (t.displaced == DisplacedTessellation::PerPatch)
+    c.flags |= shader::kFlagTessPerPatchDisplacement;
   return c;
 }
 
@@ -97,8 +100,9 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
   std::vector<vulkan::ShaderDefine> defines = {
       {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
   std::vector<vulkan::ShaderDefine> evalDefines = defines;
-  // Only the displaced variant's evaluation stage has displacement code (displace.glsl);
-  // its control stage leaves fragment depth unclamped (patch.tesc).
+  // Only the displaced variant's control and evaluation stages have displacement code
+  // (the edge levels' displacement term, displace.glsl); its control stage leaves fragment
+  // depth unclamped (patch.tesc).
   if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
   const std::vector<vulkan::ShaderDefine> fragment = {
       {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
@@ -280,8 +284,11 @@ uint32_t Renderer::recordPatches(VkCommandBuffer cmd, const Camera& camera, cons
     if (draw.host->patchCount() != gpu.patchCount())
       throw Error("Renderer: host PatchSet has " + std::to_string(draw.host->patchCount()) +
                   " patches, the GpuPatchSet " + std::to_string(gpu.patchCount()));
-    bounds = tessVertexBounds(*draw.host, camera.viewProjection(),
-                              glm::dvec2(camera.width, camera.height), options.tessellation);
+    const GpuDisplacement* displacement = gpu.displacement();
+    bounds = tessVertexBounds(
+        *draw.host, camera.viewProjection(), glm::dvec2(camera.width, camera.height),
+        options.tessellation,
+        displacement ? displacement->edgeDisplacements() : std::span<const EdgeDisplacement>{});
   }
   const std::span<const uint32_t> all(bounds);
   const uint32_t nb = gpu.bezierCount();

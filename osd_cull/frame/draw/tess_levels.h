@@ -3,6 +3,7 @@
 /// \brief Tessellation options and a double-precision host mirror of the levels the patch
 /// shaders compute (shaders/patch/tess_levels.glsl), used to plan draws and in tests.
 
+#include "osd_cull/bound/displaced_map.h"
 #include "osd_cull/bound/drawn_triangles.h"
 #include "osd_cull/patch/patch_set.h"
 
@@ -11,8 +12,28 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
+#include <vector>
 
 namespace osd_cull::frame {
+
+/// \brief How adaptive levels of a displaced patch set account for the displacement
+/// (docs/algorithms/displacement.md, "Tessellation"; uniform levels never do).
+enum class DisplacedTessellation {
+  /// Each edge adds the screen length of the displacement's variation along it
+  /// (EdgeDisplacement): computed from what both patches sharing the edge see alike, so
+  /// shared edges get the same level (crack-free wherever the map is continuous).
+  EdgeVariation,
+  /// The undisplaced edge's level (the cost baseline).
+  Ignore,
+  /// Every edge of a patch adds the largest variation of its four edges: neighbours
+  /// disagree, so shared edges get different levels and the surface cracks. Not for
+  /// drawing: the counter-example the crack tests and `render --displaced-tess` measure.
+  PerPatch,
+};
+
+/// \brief "edge", "none", "per-patch" (the `--displaced-tess` names).
+const char* toString(DisplacedTessellation mode);
 
 /// \brief How patches are tessellated.
 struct TessellationOptions {
@@ -28,7 +49,35 @@ struct TessellationOptions {
   /// Largest level the device may generate (adaptive edges use at most half of it, so
   /// that a transition edge can hold two; as OpenSubdiv does).
   uint32_t maxLevel = 64;
+  /// Adaptive levels of displaced sets (ignored for undisplaced ones).
+  DisplacedTessellation displaced = DisplacedTessellation::EdgeVariation;
 };
+
+/// \brief The displacement's variation along each edge of a patch, in object units
+/// (DisplacementMap::variationAlong over the edge's texture-coordinate segment), for the
+/// whole edge and its halves (the Lo and Hi halves of a transition edge), edges in
+/// gl_TessLevelOuter order. A function of the edge's two texture coordinates (rounded to
+/// float, as the draw holds them) and the map only: the same on both sides of an edge
+/// wherever the texture coordinates are continuous across it.
+struct EdgeDisplacement {
+  std::array<float, 4> whole{};
+  std::array<float, 4> firstHalf{};
+  std::array<float, 4> secondHalf{};
+};
+
+/// \brief EdgeDisplacement of every patch; `uvCorners`: 4 per patch, corners (0,0), (1,0),
+/// (1,1), (0,1) (PatchExtraction::uvCorners).
+/// \throws osd_cull::Error when the corner count is not 4 * patchCount.
+std::vector<EdgeDisplacement> edgeDisplacements(const bound::DisplacementMap& map,
+                                                std::span<const glm::dvec2> uvCorners,
+                                                uint32_t patchCount);
+
+/// \brief The displacement length each edge (Lo, Hi halves) adds under `mode`: none for
+/// Ignore, the edge's own for EdgeVariation, the patch's largest for PerPatch.
+/// `split[e]`: edge e is a transition edge (the halves are used).
+void edgeDisplacementTerms(const EdgeDisplacement& d, DisplacedTessellation mode,
+                           const std::array<bool, 4>& split, std::array<double, 4>& lo,
+                           std::array<double, 4>& hi);
 
 /// \brief Levels of one patch: outer edges in gl_TessLevelOuter order (0: u=0, 1: v=0,
 /// 2: u=1, 3: v=1), split into Lo and Hi halves (Hi is 0 except on transition edges).
@@ -57,17 +106,20 @@ TessellationOptions effectiveOptions(const TessellationOptions& options, bool tr
 std::array<std::array<uint32_t, 4>, 4> edgeCurveIndices(PatchType type);
 
 /// \brief The levels the shaders compute for `patch`, in double precision, given the
-/// effective options of its set.
+/// effective options of its set; `displacement`: the patch's EdgeDisplacement when the set
+/// is displaced (adaptive levels add its screen length, options.displaced).
 PatchTessLevels patchTessLevels(const PatchSet& patches, uint32_t patch,
                                 const glm::dmat4& viewProjection, const glm::dvec2& viewport,
-                                const TessellationOptions& options);
+                                const TessellationOptions& options,
+                                const EdgeDisplacement* displacement = nullptr);
 
 /// \brief An upper bound of the tessellated vertices of each patch for this view,
 /// allowing for fp32 rounding in the shader (one extra segment per adaptive level);
-/// applies effectiveOptions() itself.
+/// applies effectiveOptions() itself. `displacement`: one per patch for a displaced set.
 std::vector<uint32_t> tessVertexBounds(const PatchSet& patches, const glm::dmat4& viewProjection,
                                        const glm::dvec2& viewport,
-                                       const TessellationOptions& options);
+                                       const TessellationOptions& options,
+                                       std::span<const EdgeDisplacement> displacement = {});
 
 /// \brief The shape of the worst drawn triangle of every patch for this view
 /// (bound::triangleShape of patchTessLevels()), as the double reference of the cull

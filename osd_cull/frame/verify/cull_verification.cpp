@@ -1,5 +1,7 @@
 #include "osd_cull/frame/verify/cull_verification.h"
 
+#include "osd_cull/frame/verify/crack_count.h"
+
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
 
 #include "osd_cull/bound/cull_reference.h"
@@ -238,6 +240,18 @@ void CullVerifier::verifyView(const Camera& camera) {
           ++t.pixelsChanged;
       }
     }
+  }
+  if (options_.countCracks) {
+    // Last: it draws over the target the methods above read.
+    RenderOptions crackOptions;
+    crackOptions.tessellation = options_.tessellation;
+    const PatchDraw draw{&gpu_, &host_, 0};
+    const uint32_t pixels =
+        countCracks(context_, renderer_, *target_, camera, draw, crackOptions, kSeamCrackWidth);
+    ++cracks_.views;
+    cracks_.pixels += pixels;
+    cracks_.viewsWithCracks += pixels > 0;
+    cracks_.worstView = std::max<uint64_t>(cracks_.worstView, pixels);
   }
 }
 

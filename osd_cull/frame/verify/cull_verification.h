@@ -62,6 +62,17 @@ struct VerifyOptions {
   /// points (DynamicPatchMesh::cullData; borrowed), read by that method's pass instead of
   /// cones built on the host, so the check covers what a deforming mesh is culled with.
   std::map<bound::BackPatchMethod, const vulkan::Buffer*> cullData;
+  /// Count crack pixels per view (frame::countCracks: two more draws, back faces culled
+  /// and not): for displaced meshes, where UV seams open the surface.
+  bool countCracks = false;
+};
+
+/// \brief Crack pixels over the views (VerifyOptions::countCracks).
+struct CrackTotals {
+  uint64_t views = 0;
+  uint64_t pixels = 0;
+  uint64_t viewsWithCracks = 0;
+  uint64_t worstView = 0;  ///< the most crack pixels in one view
 };
 
 /// \brief Totals of one method over all views so far.
@@ -135,6 +146,8 @@ class CullVerifier {
   const PatchSet& patches() const { return host_; }
   /// \brief Whether the oracle and image draws cull back-facing triangles.
   bool cullBackFaces() const { return cullBackFaces_; }
+  /// \brief Crack pixels so far (VerifyOptions::countCracks).
+  const CrackTotals& cracks() const { return cracks_; }
 
  private:
   struct Method;
@@ -156,6 +169,7 @@ class CullVerifier {
   std::vector<bound::SurfaceSamples> samples_;  // per patch, when sampling is on
   uint64_t viewIndex_ = 0;
   bool cullBackFaces_ = false;  // of the oracle and image draws
+  CrackTotals cracks_;
 };
 
 }  // namespace osd_cull::frame
