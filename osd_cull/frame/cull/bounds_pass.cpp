@@ -3,6 +3,7 @@
 #include "osd_cull/bound/patch_eval.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/draw/gpu_patch_set.h"
+#include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/pipeline.h"
@@ -90,7 +91,24 @@ std::string gregoryTables() {
 
 double widen(float v) { return static_cast<double>(v); }
 
+// The kernel's text; `bda` is the OSD_CULL_POINTS_BDA define (pointsByAddressDefine).
+std::string boundsKernel(const char* bda) {
+  return "#version 450\n#extension GL_EXT_control_flow_attributes : require\n" +
+         std::string("#define OSD_CULL_POINTS_BDA ") + bda + "\n" + gregoryTables() +
+         "#include \"bounds/patch_bounds_main.glsl\"\n";
+}
+
+constexpr const char* kBoundsKernelName = "bounds/patch_bounds.comp";
+
 }  // namespace
+
+std::vector<vulkan::ShaderVariant> boundsPassShaderVariants() {
+  std::vector<vulkan::ShaderVariant> v;
+  for (const char* bda : {"0", "1"})
+    v.push_back(vulkan::ShaderVariant::glsl(boundsKernel(bda), kBoundsKernelName,
+                                            VK_SHADER_STAGE_COMPUTE_BIT));
+  return v;
+}
 
 BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu,
                        bound::BackPatchMethod method)
@@ -108,13 +126,10 @@ BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu,
   const std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
   layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::BoundsConstants),
                                          VK_SHADER_STAGE_COMPUTE_BIT);
-  const std::string text = "#version 450\n#extension GL_EXT_control_flow_attributes : require\n" +
-                           std::string("#define OSD_CULL_POINTS_BDA ") +
-                           pointsByAddressDefine(context) + "\n" + gregoryTables() +
-                           "#include \"bounds/patch_bounds_main.glsl\"\n";
   pipeline_ = vulkan::createComputePipeline(
       context, layout_.get(),
-      vulkan::compileGlsl(text, "bounds/patch_bounds.comp", VK_SHADER_STAGE_COMPUTE_BIT));
+      vulkan::compileGlsl(boundsKernel(pointsByAddressDefine(context)), kBoundsKernelName,
+                          VK_SHADER_STAGE_COMPUTE_BIT));
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(setLayout_.get());
 }
