@@ -31,6 +31,7 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
   c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
             (options.statusColors ? shader::kFlagStatusColors : 0u) |
             (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
+            (options.clampDepthToControlPoints ? 0u : shader::kFlagNoDepthClamp) |
             (options.patchTypeColors && !options.statusColors ? shader::kFlagPatchTypeColors : 0u);
   return c;
 }
@@ -62,10 +63,11 @@ std::array<vulkan::ShaderSource, 4> patchShaders(PatchType type, bool displaced,
   std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points},
                                                {"OSD_CULL_POINTS_BDA", bda}};
   std::vector<vulkan::ShaderDefine> evalDefines = defines;
-  // Only the displaced variant's evaluation stage has displacement code (displace.glsl).
+  // Only the displaced variant's evaluation stage has displacement code (displace.glsl);
+  // its control stage leaves fragment depth unclamped (patch.tesc).
   if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
   return {vulkan::ShaderSource{"patch/patch.vert", defines},
-          vulkan::ShaderSource{"patch/patch.tesc", defines},
+          vulkan::ShaderSource{"patch/patch.tesc", evalDefines},
           vulkan::ShaderSource{"patch/patch.tese", evalDefines},
           vulkan::ShaderSource{"patch/patch.frag", {{"ITEM_BUFFER", items ? "1" : "0"}}}};
 }
