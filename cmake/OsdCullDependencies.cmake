@@ -6,8 +6,8 @@ include(CMakeFindDependencyMacro)
 
 find_package(Threads REQUIRED)
 find_package(Vulkan REQUIRED)
-# glslang's config needs Threads first (see shared/PLATFORM.md).
-find_package(glslang CONFIG REQUIRED)
+# glslang is found by osd_cull/CMakeLists.txt: only the build links it (shaders are compiled
+# to SPIR-V at build time), not the library's consumers.
 find_package(glm CONFIG REQUIRED)
 find_package(PNG REQUIRED)
 # OpenEXR: float displacement maps (adapters/image_exr.cpp).

@@ -12,8 +12,11 @@ install(TARGETS osd_cull osd_cull_adapters EXPORT osd_cull-targets
 # folder lands on their include path. The library's headers keep their paths
 # (<osd_cull/patch/...>), the loaders go to <osd_cull/adapters/...>, the shared C++/GLSL
 # layouts of shaders/shared to <osd_cull/shared/...>, the generated <osd_cull/version.h>.
+# osd_cull/vk/glsl/ is the run-time compiler, which is not installed (shaders are embedded
+# as SPIR-V).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/osd_cull/
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/osd_cull FILES_MATCHING PATTERN "*.h")
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/osd_cull FILES_MATCHING PATTERN "*.h"
+  REGEX "/vk/glsl($|/)" EXCLUDE)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/adapters/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/osd_cull/adapters FILES_MATCHING PATTERN "*.h")
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/shaders/shared/

@@ -42,7 +42,7 @@ TEST(DisplacedDrawShaders, OnlyTheDisplacedVariantSamplesAMap) {
     const vulkan::ShaderDefine bda{"OSD_CULL_POINTS_BDA", "0"};  // control_points.glsl
     const auto plain = vulkan::compileShader({"patch/patch.tese", {{"PATCH_POINTS", points}, bda}});
     const auto displaced = vulkan::compileShader(
-        {"patch/patch.tese", {{"PATCH_POINTS", points}, {"PATCH_DISPLACED", "1"}, bda}});
+        {"patch/patch.tese", {{"PATCH_POINTS", points}, bda, {"PATCH_DISPLACED", "1"}}});
     EXPECT_EQ(countOp(plain, 27), 0u) << points;
     EXPECT_EQ(countOp(plain, 88), 0u) << points;
     EXPECT_GT(countOp(displaced, 27), 0u) << points;

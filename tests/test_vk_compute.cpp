@@ -4,6 +4,7 @@
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/descriptors.h"
+#include "osd_cull/vk/glsl/runtime_compiler.h"
 #include "osd_cull/vk/pipeline.h"
 #include "osd_cull/vk/query.h"
 #include "osd_cull/vk/transfer.h"
@@ -54,7 +55,7 @@ TEST_F(VkTest, ComputeAxpyProducesExactValuesAndIsCounted) {
       vulkan::createPipelineLayout(context(), {&sl, 1}, sizeof(Push), VK_SHADER_STAGE_COMPUTE_BIT);
   vulkan::SpecializationConstants constants;
   constants.set(0, uint32_t{5});
-  auto spirv = vulkan::compileGlsl(kAxpy, "test/axpy.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+  auto spirv = vulkan::glsl::compileGlsl(kAxpy, "test/axpy.comp", VK_SHADER_STAGE_COMPUTE_BIT);
   auto pipeline = vulkan::createComputePipeline(context(), layout.get(), spirv, constants);
   vulkan::DescriptorPool pool(context(), 1, bindings);
   VkDescriptorSet set = pool.allocate(sl);

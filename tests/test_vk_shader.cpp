@@ -1,7 +1,8 @@
-// Shader compilation: embedded files, includes, variants, cache, errors with file:line.
+// The run-time compiler (osd_cull_glsl): embedded files, includes, variants, cache, errors
+// with file:line.
 #include "osd_cull/error.h"
-#include "osd_cull/vk/shader_compiler.h"
-#include "osd_cull/vk/shader_sources.h"
+#include "osd_cull/vk/glsl/runtime_compiler.h"
+#include "osd_cull/vk/glsl/shader_sources.h"
 
 #include <gtest/gtest.h>
 
@@ -25,7 +26,7 @@ TEST(VkShader, StageComesFromTheExtension) {
 TEST(VkShader, CompileErrorNamesFileAndLine) {
   const char* text = "#version 450\nvoid main() {\n  float x = undefinedThing;\n}\n";
   try {
-    vulkan::compileGlsl(text, "test/broken.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+    vulkan::glsl::compileGlsl(text, "test/broken.comp", VK_SHADER_STAGE_COMPUTE_BIT);
     FAIL() << "expected a compile error";
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -43,11 +44,11 @@ void main() { v[0] = VALUE; }
   const vulkan::ShaderDefine one[] = {{"VALUE", "1u"}};
   const vulkan::ShaderDefine two[] = {{"VALUE", "2u"}};
   ASSERT_TRUE(kDiskCacheOff);
-  const auto before = vulkan::shaderCacheStats();
-  auto a = vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
-  auto b = vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, two);
-  auto a2 = vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
-  const auto after = vulkan::shaderCacheStats();
+  const auto before = vulkan::glsl::compileStats();
+  auto a = vulkan::glsl::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
+  auto b = vulkan::glsl::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, two);
+  auto a2 = vulkan::glsl::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT, one);
+  const auto after = vulkan::glsl::compileStats();
   ASSERT_FALSE(a->empty());
   EXPECT_EQ((*a)[0], kSpirvMagic);
   EXPECT_NE(*a, *b);
@@ -55,7 +56,8 @@ void main() { v[0] = VALUE; }
   EXPECT_EQ(after.compiles - before.compiles, 2u);
   EXPECT_EQ(after.hits - before.hits, 1u);
   // Without the define the text does not compile.
-  EXPECT_THROW(vulkan::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT), Error);
+  EXPECT_THROW(vulkan::glsl::compileGlsl(text, "test/variant.comp", VK_SHADER_STAGE_COMPUTE_BIT),
+               Error);
 }
 
 TEST(VkShader, OpenSubdivPatchBasisIsIncludable) {
@@ -69,15 +71,15 @@ void main() {
   for (int i = 0; i < 20; ++i) w[i] = wP[i];
 }
 )";
-  auto spirv = vulkan::compileGlsl(text, "test/basis.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+  auto spirv = vulkan::glsl::compileGlsl(text, "test/basis.comp", VK_SHADER_STAGE_COMPUTE_BIT);
   EXPECT_EQ((*spirv)[0], kSpirvMagic);
-  EXPECT_GT(vulkan::shaderText("osd/patch_basis.glsl").size(), 10000u);
+  EXPECT_GT(vulkan::glsl::shaderText("osd/patch_basis.glsl").size(), 10000u);
 }
 
 TEST(VkShader, MissingIncludeIsAnError) {
   const char* text = "#version 450\n#include \"no/such/file.glsl\"\nvoid main() {}\n";
   try {
-    vulkan::compileGlsl(text, "test/include.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+    vulkan::glsl::compileGlsl(text, "test/include.comp", VK_SHADER_STAGE_COMPUTE_BIT);
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("no/such/file.glsl"), std::string::npos) << e.what();
@@ -86,7 +88,7 @@ TEST(VkShader, MissingIncludeIsAnError) {
 
 TEST(VkShader, EveryEmbeddedStageFileCompiles) {
   size_t stages = 0;
-  for (const auto& s : vulkan::embeddedShaders()) {
+  for (const auto& s : vulkan::glsl::embeddedShaders()) {
     const std::string path(s.path);
     if (path.ends_with(".glsl") || path.ends_with(".h")) continue;
     SCOPED_TRACE(path);
@@ -95,8 +97,8 @@ TEST(VkShader, EveryEmbeddedStageFileCompiles) {
     // ignore them).
     for (const char* points : {"16", "20"})
       for (const char* bda : {"0", "1"}) {
-        auto spirv =
-            vulkan::compileShader({path, {{"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", bda}}});
+        auto spirv = vulkan::glsl::compileShader(
+            {path, {{"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", bda}}});
         EXPECT_EQ((*spirv)[0], kSpirvMagic);
       }
     ++stages;

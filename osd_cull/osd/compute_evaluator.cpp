@@ -1,6 +1,7 @@
 #include "osd_cull/osd/compute_evaluator.h"
 
 #include "osd/eval_stencils_layout.h"
+#include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/descriptors.h"
 #include "osd_cull/vk/pipeline.h"
@@ -28,20 +29,26 @@ EvaluatorState& evaluatorState(DeviceContext& deviceContext) {
                                                [] { return std::make_shared<EvaluatorState>(); });
 }
 
-std::shared_ptr<const vulkan::ComputeProgram> stencilKernel(DeviceContext& deviceContext, int length,
-                                                        bool derivatives) {
+vulkan::ShaderSource stencilShader(bool derivatives) {
+  vulkan::ShaderSource source{"osd/eval_stencils.comp", {}};
+  if (derivatives) source.defines.push_back({"OSD_DERIVATIVES", "1"});
+  return source;
+}
+
+std::shared_ptr<const vulkan::ComputeProgram> stencilKernel(DeviceContext& deviceContext,
+                                                            int length, bool derivatives) {
   const std::string key = "osd/eval_stencils.comp length=" + std::to_string(length) +
                           (derivatives ? " derivatives" : "");
   return deviceContext.shared<vulkan::ComputeProgram>(key, [&] {
     std::vector<vulkan::DescriptorBinding> bindings;
     for (uint32_t b = 0; b < (derivatives ? kDerivativeBindings : kPlainBindings); ++b)
       bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT});
-    vulkan::ShaderSource source{"osd/eval_stencils.comp", {}};
-    if (derivatives) source.defines.push_back({"OSD_DERIVATIVES", "1"});
+    const vulkan::ShaderSource source = stencilShader(derivatives);
     vulkan::SpecializationConstants constants;
     constants.set(0, int32_t{length});
     return std::make_shared<vulkan::ComputeProgram>(deviceContext.context(), source, bindings,
-                                                uint32_t{sizeof(gpu::EvalStencilsPush)}, constants);
+                                                    uint32_t{sizeof(gpu::EvalStencilsPush)},
+                                                    constants);
   });
 }
 
@@ -235,5 +242,10 @@ void VkComputeEvaluator::Synchronize(DeviceContext* deviceContext) {
 }
 
 void VkComputeEvaluator::synchronize() const { deviceContext_.wait(lastTicket_); }
+
+std::vector<vulkan::ShaderVariant> evaluatorShaderVariants() {
+  return {vulkan::ShaderVariant::file(stencilShader(false)),
+          vulkan::ShaderVariant::file(stencilShader(true))};
+}
 
 }  // namespace osd_cull::osd

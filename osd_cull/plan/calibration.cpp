@@ -1,7 +1,7 @@
 #include "osd_cull/plan/calibration.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/vk/spirv_disk_cache.h"
+#include "osd_cull/vk/shader_compiler.h"  // fnv1a64
 
 #include <algorithm>
 #include <cmath>

@@ -11,7 +11,7 @@
 ///
 /// Cache location: `$OSD_CULL_CALIBRATION_CACHE` (a directory; `off` disables it), else
 /// `$XDG_CACHE_HOME/osd_cull/calibration`, else `$HOME/.cache/osd_cull/calibration`, as the
-/// SPIR-V cache (vk/spirv_disk_cache.h).
+/// SPIR-V cache (vk/glsl/spirv_disk_cache.h).
 
 #include <cstdint>
 #include <filesystem>

@@ -1,18 +1,15 @@
 #pragma once
 /// \file shader_compiler.h
-/// \brief GLSL → SPIR-V with glslang at run time, from the embedded shaders/ files.
+/// \brief The library's shader variants as SPIR-V compiled at build time.
 ///
-/// `#include "x"` and `#include <x>` resolve against the embedded files (relative to the
-/// including file first, then to shaders/). One virtual file exists besides them:
-/// "osd/patch_basis.glsl" is OpenSubdiv's own GLSL patch basis
-/// (Osd::GLSLPatchShaderSource::GetPatchBasisShaderSource(), with OSD_PATCH_BASIS_GLSL
-/// defined), so patches are evaluated with OpenSubdiv's functions.
-///
-/// Every variant (file, stage, defines) is compiled once per process and cached in memory,
-/// and across processes in the SPIR-V disk cache (spirv_disk_cache.h): a program whose
-/// variants are all on disk never starts glslang.
-/// Shaders target Vulkan 1.2 / SPIR-V 1.5. Defines come before the first line of the
-/// file; GL_GOOGLE_include_directive is enabled for every shader.
+/// Every variant the library requests (a file of shaders/ with defines, or GLSL it generates,
+/// such as the cull kernel) is listed by the module that requests it
+/// (osd_cull/frame/shader_variants.h), compiled by the build (tools/embed_spirv.cpp, with
+/// glslang) and embedded in the library. compileShader and compileGlsl look a variant up
+/// there: the library neither links glslang nor compiles at run time. A variant that was not
+/// embedded is an osd_cull::Error naming it. Compiling arbitrary GLSL at run time is the
+/// optional component osd_cull_glsl (osd_cull/vk/glsl/runtime_compiler.h), which the tests and
+/// the build-time generator link; the installed package does not ship it.
 
 #include <vulkan/vulkan.h>
 
@@ -31,10 +28,29 @@ struct ShaderDefine {
   std::string value;
 };
 
-/// \brief An embedded shader file and the defines of one variant.
+/// \brief A file of shaders/ and the defines of one variant.
 struct ShaderSource {
   std::string path;  ///< relative to shaders/, e.g. "patch/patch.tese"
   std::vector<ShaderDefine> defines;
+};
+
+/// \brief One shader variant: a file of shaders/ with defines, or generated GLSL text.
+struct ShaderVariant {
+  std::string name;  ///< the file (relative to shaders/), or the name of generated text
+  VkShaderStageFlagBits stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  std::vector<ShaderDefine> defines;
+  bool generated = false;
+  std::string text;  ///< generated GLSL (empty for a file)
+
+  static ShaderVariant file(const ShaderSource& source);
+  static ShaderVariant glsl(std::string_view text, std::string_view name,
+                            VkShaderStageFlagBits stage,
+                            std::span<const ShaderDefine> defines = {});
+  /// \brief Everything its SPIR-V depends on besides the shader files of the build.
+  std::string key() const;
+  /// \brief For messages: "patch/patch.tese {PATCH_POINTS=16, ...}", or for generated text
+  /// its name, size and `#define` lines.
+  std::string describe() const;
 };
 
 /// \brief Compiled SPIR-V words, shared by every user of the same variant.
@@ -44,33 +60,48 @@ using Spirv = std::shared_ptr<const std::vector<uint32_t>>;
 /// \throws osd_cull::Error for other extensions.
 VkShaderStageFlagBits shaderStageOf(std::string_view path);
 
-/// \brief The text of an embedded file (or of "osd/patch_basis.glsl").
-/// \throws osd_cull::Error when no such file is embedded.
-std::string_view shaderText(std::string_view path);
-
-/// \brief Compiles an embedded shader variant (cached).
-/// \throws osd_cull::Error with glslang's messages as "file:line: message".
+/// \brief The build-time SPIR-V of a file variant.
+/// \throws osd_cull::Error naming the variant when it was not embedded.
 Spirv compileShader(const ShaderSource& source);
 
-/// \brief Compiles GLSL given as text (cached by text, stage and defines). `name` is used
-/// in messages and as the base for relative #include.
+/// \brief The build-time SPIR-V of generated GLSL (`name` names it in messages).
+/// \throws osd_cull::Error naming the variant when it was not embedded.
 Spirv compileGlsl(std::string_view text, std::string_view name, VkShaderStageFlagBits stage,
                   std::span<const ShaderDefine> defines = {});
 
-/// \brief What the caches did in this process: variants compiled by glslang, answered from
-/// memory, loaded from the disk cache, and written to it.
+/// \brief The build-time SPIR-V of a variant, or nullptr when it was not embedded.
+Spirv findEmbeddedSpirv(const ShaderVariant& variant);
+
+/// \brief One embedded variant: the 128-bit hash of its key, where its words are, and its
+/// description (ShaderVariant::describe()).
+struct EmbeddedSpirv {
+  uint64_t hash0;
+  uint64_t hash1;
+  uint32_t offset;  ///< in words, into embeddedSpirvWords()
+  uint32_t words;
+  std::string_view description;
+};
+
+/// \brief Every embedded variant (generated at build time: embedded_spirv.cpp).
+std::span<const EmbeddedSpirv> embeddedSpirv();
+/// \brief The SPIR-V words of every embedded variant, back to back.
+std::span<const uint32_t> embeddedSpirvWords();
+/// \brief fnv1a64 of embeddedSpirvWords()' bytes, as written by the generator.
+uint64_t embeddedSpirvWordsHash();
+
+/// \brief The two hashes of a key that index embeddedSpirv().
+std::pair<uint64_t, uint64_t> spirvKeyHash(std::string_view key);
+
+/// \brief What the lookups did in this process: variants taken from the embedded SPIR-V,
+/// answered from memory, and the wall time spent.
 struct ShaderCacheStats {
-  size_t compiles = 0;
+  size_t embedded = 0;
   size_t hits = 0;
-  size_t diskHits = 0;
-  size_t diskWrites = 0;
-  double milliseconds = 0.0;  ///< wall time spent compiling and loading (not memory hits)
+  double milliseconds = 0.0;
 };
 ShaderCacheStats shaderCacheStats();
 
-/// \brief The disk-cache key of a variant: the environment (library and glslang versions,
-/// a hash of every embedded file and of OpenSubdiv's patch basis), then `memoryKey` (kind,
-/// name, stage, defines) and the variant's own `text`.
-std::string shaderCacheKey(std::string_view memoryKey, std::string_view text);
+/// \brief 64-bit FNV-1a hash of `bytes` (keys and stamps; not for security).
+uint64_t fnv1a64(std::string_view bytes, uint64_t seed = 0xcbf29ce484222325ull);
 
 }  // namespace osd_cull::vulkan

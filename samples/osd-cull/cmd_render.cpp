@@ -29,7 +29,6 @@
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/shader_compiler.h"
-#include "osd_cull/vk/spirv_disk_cache.h"
 
 #include <cmath>
 #include <cstdio>
@@ -395,12 +394,8 @@ int run(const RenderArgs& args) {
     std::cout << "wrote " << n << " pyramid levels to " << args.pyramidDir << "\n";
   }
   const vulkan::ShaderCacheStats shaders = vulkan::shaderCacheStats();
-  const std::string cacheDir = vulkan::spirvCacheDirectory().string();
-  std::printf(
-      "shader variants: %zu compiled with glslang, %zu loaded from the SPIR-V cache (%s), "
-      "%.1f ms\n",
-      shaders.compiles, shaders.diskHits, cacheDir.empty() ? "off" : cacheDir.c_str(),
-      shaders.milliseconds);
+  std::printf("shader variants: %zu from the library's build-time SPIR-V, %.1f ms\n",
+              shaders.embedded, shaders.milliseconds);
   if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
     return 1;

@@ -5,8 +5,8 @@
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/descriptors.h"
+#include "osd_cull/vk/glsl/runtime_compiler.h"
 #include "osd_cull/vk/pipeline.h"
-#include "osd_cull/vk/shader_compiler.h"
 
 #include <glm/vec4.hpp>
 
@@ -116,24 +116,26 @@ TessellatorCapture::TessellatorCapture(vulkan::Context& context)
   impl_->setLayout = vulkan::createDescriptorSetLayout(context, bindings);
   const VkDescriptorSetLayout l = impl_->setLayout.get();
   impl_->layout = vulkan::createPipelineLayout(context, {&l, 1}, sizeof(Push),
-                                           VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT);
+                                               VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT);
   vulkan::GraphicsPipelineDesc d;
   const std::string geometry = std::string(kGeometry).replace(
       std::string(kGeometry).find("MAX_TRIANGLES"), 13, std::to_string(kMaxTriangles) + "u");
-  d.stages.push_back({VK_SHADER_STAGE_VERTEX_BIT,
-                      vulkan::compileGlsl(kVertex, "capture.vert", VK_SHADER_STAGE_VERTEX_BIT),
+  d.stages.push_back(
+      {VK_SHADER_STAGE_VERTEX_BIT,
+       vulkan::glsl::compileGlsl(kVertex, "capture.vert", VK_SHADER_STAGE_VERTEX_BIT),
+       {}});
+  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
+                      vulkan::glsl::compileGlsl(kControl, "capture.tesc",
+                                                VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT),
+                      {}});
+  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
+                      vulkan::glsl::compileGlsl(kEvaluation, "capture.tese",
+                                                VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT),
                       {}});
   d.stages.push_back(
-      {VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
-       vulkan::compileGlsl(kControl, "capture.tesc", VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT),
+      {VK_SHADER_STAGE_GEOMETRY_BIT,
+       vulkan::glsl::compileGlsl(geometry, "capture.geom", VK_SHADER_STAGE_GEOMETRY_BIT),
        {}});
-  d.stages.push_back(
-      {VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
-       vulkan::compileGlsl(kEvaluation, "capture.tese", VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT),
-       {}});
-  d.stages.push_back({VK_SHADER_STAGE_GEOMETRY_BIT,
-                      vulkan::compileGlsl(geometry, "capture.geom", VK_SHADER_STAGE_GEOMETRY_BIT),
-                      {}});
   d.layout = impl_->layout.get();
   d.renderPass = impl_->pass.get();
   d.colorAttachments = 2;
@@ -157,8 +159,8 @@ std::vector<ParamTriangle> TessellatorCapture::capture(const bound::QuadTessLeve
   m.context.submit([&](VkCommandBuffer cmd) {
     vkCmdFillBuffer(cmd, m.out.handle(), 0, 8, 0);
     vulkan::memoryBarrier(cmd, vulkan::scope::kTransferWrite,
-                      {VK_PIPELINE_STAGE_GEOMETRY_SHADER_BIT,
-                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT});
+                          {VK_PIPELINE_STAGE_GEOMETRY_SHADER_BIT,
+                           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT});
     VkClearValue clears[3] = {};
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = m.pass.get();
@@ -180,7 +182,7 @@ std::vector<ParamTriangle> TessellatorCapture::capture(const bound::QuadTessLeve
     vkCmdDraw(cmd, 1, 1, 0, 0);
     vkCmdEndRenderPass(cmd);
     vulkan::memoryBarrier(cmd, {VK_PIPELINE_STAGE_GEOMETRY_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
-                      vulkan::scope::kHostRead);
+                          vulkan::scope::kHostRead);
   });
   const auto words = m.out.mappedAs<uint32_t>();
   const uint32_t count = words[0];

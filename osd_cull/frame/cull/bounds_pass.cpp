@@ -4,6 +4,7 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/draw/gpu_patch_set.h"
+#include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/limits.h"
@@ -94,6 +95,15 @@ std::string gregoryTables() {
 
 double widen(float v) { return static_cast<double>(v); }
 
+// The kernel's text; `bda` is the OSD_CULL_POINTS_BDA define (pointsByAddressDefine).
+std::string boundsKernel(const char* bda) {
+  return "#version 450\n#extension GL_EXT_control_flow_attributes : require\n" +
+         std::string("#define OSD_CULL_POINTS_BDA ") + bda + "\n" + gregoryTables() +
+         "#include \"bounds/patch_bounds_main.glsl\"\n";
+}
+
+constexpr const char* kBoundsKernelName = "bounds/patch_bounds.comp";
+
 uint32_t backPatchConeCode(bound::BackPatchMethod method) {
   switch (method) {
     case bound::BackPatchMethod::TCone:
@@ -133,6 +143,14 @@ std::vector<float> checkedRanges(std::span<const bound::DisplacementRange> range
 
 }  // namespace
 
+std::vector<vulkan::ShaderVariant> boundsPassShaderVariants() {
+  std::vector<vulkan::ShaderVariant> v;
+  for (const char* bda : {"0", "1"})
+    v.push_back(vulkan::ShaderVariant::glsl(boundsKernel(bda), kBoundsKernelName,
+                                            VK_SHADER_STAGE_COMPUTE_BIT));
+  return v;
+}
+
 // The pipeline: one kernel for every method and output (push constants choose), so every
 // pass on a device shares it (creating it runs lavapipe's LLVM for about 2 s).
 struct BoundsPipeline {
@@ -154,13 +172,10 @@ std::shared_ptr<const BoundsPipeline> sharedPipeline(vulkan::Context& context) {
   const std::vector<VkDescriptorSetLayout> layouts = {p->setLayout.get()};
   p->layout = vulkan::createPipelineLayout(context, layouts, sizeof(sh::BoundsConstants),
                                            VK_SHADER_STAGE_COMPUTE_BIT);
-  const std::string text = "#version 450\n#extension GL_EXT_control_flow_attributes : require\n" +
-                           std::string("#define OSD_CULL_POINTS_BDA ") +
-                           pointsByAddressDefine(context) + "\n" + gregoryTables() +
-                           "#include \"bounds/patch_bounds_main.glsl\"\n";
   p->pipeline = vulkan::createComputePipeline(
       context, p->layout.get(),
-      vulkan::compileGlsl(text, "bounds/patch_bounds.comp", VK_SHADER_STAGE_COMPUTE_BIT));
+      vulkan::compileGlsl(boundsKernel(pointsByAddressDefine(context)), kBoundsKernelName,
+                          VK_SHADER_STAGE_COMPUTE_BIT));
   slot = p;
   return p;
 }

@@ -4,6 +4,7 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/draw/draw_chunks.h"
+#include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/limits.h"
@@ -20,6 +21,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <set>
 
 namespace osd_cull::frame {
 
@@ -127,7 +129,51 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   return text;
 }
 
+constexpr const char* kCullKernelName = "cull/cull_kernel.comp";
+const vulkan::ShaderSource kWriteDraws{"cull/write_draws.comp", {}};
+
 }  // namespace
+
+std::vector<vulkan::ShaderVariant> cullPassShaderVariants() {
+  // Every kernel a CullPass can compose (as its constructor selects the stages): each stage
+  // off or one of its registered methods, with or without the drawn-triangle bound and points
+  // by address; a displaced mesh has no back-patch stage and the box of its displaced kernel
+  // (either box with the other methods), and a displaced kernel needs a displaced mesh.
+  auto methods = [](CullStage stage) {
+    std::vector<const CullMethod*> list = {nullptr};
+    for (const CullMethod& m : cullMethods())
+      if (m.stage == stage) list.push_back(&m);
+    return list;
+  };
+  std::vector<vulkan::ShaderVariant> variants = {vulkan::ShaderVariant::file(kWriteDraws)};
+  std::set<std::string> texts;
+  for (const CullMethod* frustum : methods(CullStage::Frustum))
+    for (const CullMethod* backPatch : methods(CullStage::BackPatch))
+      for (const CullMethod* occlusion : methods(CullStage::Occlusion))
+        for (const bool drawn : {false, true})
+          for (const bool bda : {false, true})
+            for (const int box : {-1, 0, 1}) {  // -1: not displaced, else a DisplacedBox
+              if (box >= 0 && backPatch) continue;
+              if (occlusion && occlusion->displaced &&
+                  (box < 0 || static_cast<int>(occlusion->displaced->box) != box))
+                continue;
+              std::vector<const CullMethod*> stages;
+              uint32_t lanes = 1;
+              for (const CullMethod* m : {frustum, backPatch, occlusion})
+                if (m) {
+                  stages.push_back(m);
+                  lanes = std::max(lanes, m->lanesPerPatch);
+                }
+              CullMethod::Displaced displaced;
+              displaced.box = static_cast<bound::DisplacedBox>(std::max(box, 0));
+              std::string text =
+                  composeKernel(stages, lanes, drawn, box >= 0 ? &displaced : nullptr, bda);
+              if (texts.insert(text).second)
+                variants.push_back(vulkan::ShaderVariant::glsl(text, kCullKernelName,
+                                                               VK_SHADER_STAGE_COMPUTE_BIT));
+            }
+  return variants;
+}
 
 uint32_t indirectDrawChunk(const TessellationOptions& tessellation, uint32_t controlPoints,
                            uint32_t count) {
@@ -306,10 +352,10 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
   p->layout = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
                                            VK_SHADER_STAGE_COMPUTE_BIT);
   const vulkan::Spirv cull =
-      vulkan::compileGlsl(kernel, "cull/cull_kernel.comp", VK_SHADER_STAGE_COMPUTE_BIT);
+      vulkan::compileGlsl(kernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT);
   p->cull = vulkan::createComputePipeline(context, p->layout.get(), cull);
-  p->draws = vulkan::createComputePipeline(context, p->layout.get(),
-                                           vulkan::compileShader({"cull/write_draws.comp", {}}));
+  p->draws =
+      vulkan::createComputePipeline(context, p->layout.get(), vulkan::compileShader(kWriteDraws));
   slot = p;
   return p;
 }

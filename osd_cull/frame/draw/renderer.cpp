@@ -3,12 +3,14 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/draw/dynamic_rendering.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
+#include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 
 #include <osd_cull/shared/draw_layout.h>
 
+#include <array>
 #include <chrono>
 
 namespace osd_cull::frame {
@@ -56,7 +58,45 @@ void checkOptions(const vulkan::Context& context, const Camera& camera, const Re
                 std::to_string(target.width()) + "x" + std::to_string(target.height()));
 }
 
+// The stages of a patch pipeline: vertex, control, evaluation, fragment. `bda`: the
+// OSD_CULL_POINTS_BDA define (pointsByAddressDefine), `items`: an item buffer is written.
+std::array<vulkan::ShaderSource, 4> patchShaders(PatchType type, bool displaced, const char* bda,
+                                                 bool items) {
+  const std::string points = type == PatchType::Bezier ? "16" : "20";
+  std::vector<vulkan::ShaderDefine> defines = {{"PATCH_POINTS", points},
+                                               {"OSD_CULL_POINTS_BDA", bda}};
+  std::vector<vulkan::ShaderDefine> evalDefines = defines;
+  // Only the displaced variant's control and evaluation stages have displacement code
+  // (the edge levels' displacement term, displace.glsl); its control stage leaves fragment
+  // depth unclamped (patch.tesc).
+  if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
+  return {vulkan::ShaderSource{"patch/patch.vert", defines},
+          vulkan::ShaderSource{"patch/patch.tesc", evalDefines},
+          vulkan::ShaderSource{"patch/patch.tese", evalDefines},
+          vulkan::ShaderSource{"patch/patch.frag", {{"ITEM_BUFFER", items ? "1" : "0"}}}};
+}
+
+// The stages of the triangle (occluder) pipeline: vertex, fragment.
+std::array<vulkan::ShaderSource, 2> triangleShaders(bool items) {
+  return {vulkan::ShaderSource{"mesh/triangle.vert", {}},
+          vulkan::ShaderSource{"mesh/triangle.frag", {{"ITEM_BUFFER", items ? "1" : "0"}}}};
+}
+
 }  // namespace
+
+std::vector<vulkan::ShaderVariant> rendererShaderVariants() {
+  std::vector<vulkan::ShaderVariant> v;
+  for (bool items : {false, true}) {
+    for (PatchType type : {PatchType::Bezier, PatchType::Gregory})
+      for (bool displaced : {false, true})
+        for (const char* bda : {"0", "1"})
+          for (const vulkan::ShaderSource& s : patchShaders(type, displaced, bda, items))
+            v.push_back(vulkan::ShaderVariant::file(s));
+    for (const vulkan::ShaderSource& s : triangleShaders(items))
+      v.push_back(vulkan::ShaderVariant::file(s));
+  }
+  return v;
+}
 
 Renderer::Renderer(vulkan::Context& context) : context_(context), statistics_(context, 1) {
   if (context.info().timestampValidBits > 0) timestamps_.emplace(context, 2);
@@ -96,27 +136,10 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
                                    bool mirrored, bool displaced, const TargetFormat& format) {
   auto& slot = patchPipelines_[{type, cullBackFaces, wireframe, mirrored, displaced, format}];
   if (slot) return slot.get();
-  const std::string points = type == PatchType::Bezier ? "16" : "20";
-  std::vector<vulkan::ShaderDefine> defines = {
-      {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
-  std::vector<vulkan::ShaderDefine> evalDefines = defines;
-  // Only the displaced variant's control and evaluation stages have displacement code
-  // (the edge levels' displacement term, displace.glsl); its control stage leaves fragment
-  // depth unclamped (patch.tesc).
-  if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
-  const std::vector<vulkan::ShaderDefine> fragment = {
-      {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
   vulkan::GraphicsPipelineDesc d;
-  d.stages.push_back(
-      {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"patch/patch.vert", defines}), {}});
-  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
-                      vulkan::compileShader({"patch/patch.tesc", evalDefines}),
-                      {}});
-  d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
-                      vulkan::compileShader({"patch/patch.tese", evalDefines}),
-                      {}});
-  d.stages.push_back(
-      {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"patch/patch.frag", fragment}), {}});
+  for (const vulkan::ShaderSource& s : patchShaders(
+           type, displaced, pointsByAddressDefine(context_), format.items != VK_FORMAT_UNDEFINED))
+    d.stages.push_back({vulkan::shaderStageOf(s.path), vulkan::compileShader(s), {}});
   d.layout = displaced ? displacedLayout_.get() : patchLayout_.get();
   describeTarget(d, format);
   d.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
@@ -138,13 +161,9 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
 VkPipeline Renderer::trianglePipeline(const TargetFormat& format) {
   auto& slot = trianglePipelines_[format];
   if (slot) return slot.get();
-  const std::vector<vulkan::ShaderDefine> fragment = {
-      {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
   vulkan::GraphicsPipelineDesc d;
-  d.stages.push_back(
-      {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"mesh/triangle.vert", {}}), {}});
-  d.stages.push_back(
-      {VK_SHADER_STAGE_FRAGMENT_BIT, vulkan::compileShader({"mesh/triangle.frag", fragment}), {}});
+  for (const vulkan::ShaderSource& s : triangleShaders(format.items != VK_FORMAT_UNDEFINED))
+    d.stages.push_back({vulkan::shaderStageOf(s.path), vulkan::compileShader(s), {}});
   d.layout = meshLayout_.get();
   describeTarget(d, format);
   slot = vulkan::createGraphicsPipeline(context_, d);

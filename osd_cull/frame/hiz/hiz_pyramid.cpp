@@ -1,6 +1,7 @@
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
@@ -65,6 +66,12 @@ const vulkan::DescriptorBinding kSinglePassBindings[] = {
     {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
     {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT, shader::kHiZMaxLevels},
     {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+
+// The shaders the pyramid builds with (hizPyramidShaderVariants lists them).
+const vulkan::ShaderSource kReduceFetch{"hiz/hiz_reduce.comp", {}};
+const vulkan::ShaderSource kReduceSampler{"hiz/hiz_reduce.comp", {{"HIZ_SAMPLER", ""}}};
+const vulkan::ShaderSource kReduceGather{"hiz/hiz_reduce.comp", {{"HIZ_GATHER", ""}}};
+const vulkan::ShaderSource kSinglePass{"hiz/hiz_single_pass.comp", {}};
 
 }  // namespace
 
@@ -131,19 +138,16 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth,
     depthMaxSampler_ = createSampler(context, true, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
   if (sampler_)
     levelMaxSampler_ = createSampler(context, true, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
-  const vulkan::ShaderSource fetch{"hiz/hiz_reduce.comp", {}};
-  const vulkan::ShaderSource filtered{"hiz/hiz_reduce.comp", {{"HIZ_SAMPLER", ""}}};
-  fetchProgram_ = std::make_unique<vulkan::ComputeProgram>(context, fetch, kBindings,
+  fetchProgram_ = std::make_unique<vulkan::ComputeProgram>(context, kReduceFetch, kBindings,
                                                            sizeof(shader::HiZReduceConstants));
   if (sampler_)
-    samplerProgram_ = std::make_unique<vulkan::ComputeProgram>(context, filtered, kBindings,
+    samplerProgram_ = std::make_unique<vulkan::ComputeProgram>(context, kReduceSampler, kBindings,
                                                                sizeof(shader::HiZReduceConstants));
   // The sampler build's top level when the depth format has no min/max filtering: one
   // gather of the 2 x 2 pixels (nearest, white border) instead of four fetches.
   if (sampler_ && !depthSampler_ && !legacy_) {
-    gatherProgram_ = std::make_unique<vulkan::ComputeProgram>(
-        context, vulkan::ShaderSource{"hiz/hiz_reduce.comp", {{"HIZ_GATHER", ""}}}, kBindings,
-        sizeof(shader::HiZReduceConstants));
+    gatherProgram_ = std::make_unique<vulkan::ComputeProgram>(context, kReduceGather, kBindings,
+                                                              sizeof(shader::HiZReduceConstants));
     depthMaxSampler_ = createSampler(context, false, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
   }
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, layout_.levelCount, kBindings);
@@ -185,8 +189,7 @@ shader::HiZParams HiZPyramid::params() const {
 
 void HiZPyramid::createSinglePass(vulkan::Context& context) {
   singlePassProgram_ = std::make_unique<vulkan::ComputeProgram>(
-      context, vulkan::ShaderSource{"hiz/hiz_single_pass.comp", {}}, kSinglePassBindings,
-      sizeof(shader::HiZSinglePassConstants));
+      context, kSinglePass, kSinglePassBindings, sizeof(shader::HiZSinglePassConstants));
   counter_ = vulkan::Buffer(context, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kSinglePassBindings);
   singlePassSet_ = pool_->allocate(singlePassProgram_->setLayout());
@@ -314,6 +317,14 @@ std::vector<std::vector<float>> HiZPyramid::readLevels(vulkan::Context& context)
     levels.push_back(std::move(texels));
   }
   return levels;
+}
+
+std::vector<vulkan::ShaderVariant> hizPyramidShaderVariants() {
+  std::vector<vulkan::ShaderVariant> v;
+  for (const vulkan::ShaderSource* s :
+       {&kReduceFetch, &kReduceSampler, &kReduceGather, &kSinglePass})
+    v.push_back(vulkan::ShaderVariant::file(*s));
+  return v;
 }
 
 }  // namespace osd_cull::frame

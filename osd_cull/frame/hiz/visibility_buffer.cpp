@@ -1,6 +1,7 @@
 #include "osd_cull/frame/hiz/visibility_buffer.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/descriptors.h"
@@ -44,6 +45,9 @@ constexpr vulkan::Scope kListReaders{
     VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT |
         VK_ACCESS_TRANSFER_READ_BIT};
 
+const vulkan::ShaderSource kUpdateShader{"hiz/visibility_update.comp", {}};
+const vulkan::ShaderSource kDrawsShader{"hiz/visibility_draws.comp", {}};
+
 }  // namespace
 
 const char* toString(FirstFrame policy) {
@@ -59,12 +63,10 @@ const char* toString(FirstFrame policy) {
 }
 
 VisibilityPrograms::VisibilityPrograms(vulkan::Context& context)
-    : update_(std::make_unique<vulkan::ComputeProgram>(
-          context, vulkan::ShaderSource{"hiz/visibility_update.comp", {}}, updateBindings(),
-          sizeof(VisibilityConstants))),
-      draws_(std::make_unique<vulkan::ComputeProgram>(
-          context, vulkan::ShaderSource{"hiz/visibility_draws.comp", {}}, drawsBindings(),
-          sizeof(VisibilityConstants))) {}
+    : update_(std::make_unique<vulkan::ComputeProgram>(context, kUpdateShader, updateBindings(),
+                                                       sizeof(VisibilityConstants))),
+      draws_(std::make_unique<vulkan::ComputeProgram>(context, kDrawsShader, drawsBindings(),
+                                                      sizeof(VisibilityConstants))) {}
 
 VisibilityPrograms::~VisibilityPrograms() = default;
 
@@ -224,6 +226,10 @@ std::vector<uint32_t> VisibilityBuffer::readStatus(vulkan::Context& context) con
   auto s = vulkan::readback<uint32_t>(context, status_);
   s.resize(gpu_.patchCount());
   return s;
+}
+
+std::vector<vulkan::ShaderVariant> visibilityShaderVariants() {
+  return {vulkan::ShaderVariant::file(kUpdateShader), vulkan::ShaderVariant::file(kDrawsShader)};
 }
 
 }  // namespace osd_cull::frame

@@ -1,6 +1,7 @@
 #include "osd_cull/frame/verify/visibility_oracle.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/descriptors.h"
@@ -20,6 +21,8 @@ const vulkan::DescriptorBinding kBindings[] = {
     {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
 
+const vulkan::ShaderSource kCountShader{"oracle/count_items.comp", {}};
+
 }  // namespace
 
 uint32_t VisibilityCounts::visiblePatchCount() const {
@@ -29,9 +32,8 @@ uint32_t VisibilityCounts::visiblePatchCount() const {
 
 VisibilityOracle::VisibilityOracle(vulkan::Context& context)
     : context_(context),
-      program_(std::make_unique<vulkan::ComputeProgram>(context,
-                                                    vulkan::ShaderSource{"oracle/count_items.comp", {}},
-                                                    kBindings, sizeof(shader::CountConstants))),
+      program_(std::make_unique<vulkan::ComputeProgram>(context, kCountShader, kBindings,
+                                                        sizeof(shader::CountConstants))),
       pool_(std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings)) {}
 
 VisibilityCounts VisibilityOracle::count(const RenderTarget& target, uint32_t patchCount,
@@ -52,7 +54,7 @@ VisibilityCounts VisibilityOracle::count(const RenderTarget& target, uint32_t pa
                 " tiles exceed one storage buffer; use a smaller tileLog2");
 
   vulkan::Buffer counts(context_, (size_t{patchCount} + shader::kCountExtra) * 4,
-                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   vulkan::Buffer tiles(context_, tileBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   pool_->reset();
   const VkDescriptorSet set = pool_->allocate(program_->setLayout());
@@ -104,6 +106,10 @@ VisibilityCounts VisibilityOracle::query(Renderer& renderer, RenderTarget& targe
   const PatchDraw draw{&patches, host, 0};
   renderer.render(target, camera, {&draw, 1}, occluders, options);
   return count(target, patches.patchCount(), tileLog2);
+}
+
+std::vector<vulkan::ShaderVariant> oracleShaderVariants() {
+  return {vulkan::ShaderVariant::file(kCountShader)};
 }
 
 }  // namespace osd_cull::frame

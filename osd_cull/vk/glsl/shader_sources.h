@@ -5,7 +5,7 @@
 #include <span>
 #include <string_view>
 
-namespace osd_cull::vulkan {
+namespace osd_cull::vulkan::glsl {
 
 /// \brief One embedded file: its path relative to shaders/ and its text.
 struct EmbeddedShader {
@@ -16,4 +16,4 @@ struct EmbeddedShader {
 /// \brief All files embedded from shaders/ (GLSL and shared headers).
 std::span<const EmbeddedShader> embeddedShaders();
 
-}  // namespace osd_cull::vulkan
+}  // namespace osd_cull::vulkan::glsl

@@ -1,4 +1,6 @@
-#include "osd_cull/vk/spirv_disk_cache.h"
+#include "osd_cull/vk/glsl/spirv_disk_cache.h"
+
+#include "osd_cull/vk/shader_compiler.h"
 
 #include <unistd.h>
 
@@ -9,7 +11,7 @@
 #include <fstream>
 #include <iterator>
 
-namespace osd_cull::vulkan {
+namespace osd_cull::vulkan::glsl {
 
 namespace fs = std::filesystem;
 
@@ -25,15 +27,6 @@ std::string hex(uint64_t x) {
 }
 
 }  // namespace
-
-uint64_t fnv1a64(std::string_view bytes, uint64_t seed) {
-  uint64_t h = seed;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
 
 fs::path spirvCacheDirectory() {
   if (const char* dir = std::getenv("OSD_CULL_SHADER_CACHE")) {
@@ -105,4 +98,4 @@ bool storeCachedSpirv(const std::string& key, std::span<const uint32_t> words) {
   return false;
 }
 
-}  // namespace osd_cull::vulkan
+}  // namespace osd_cull::vulkan::glsl
