@@ -83,6 +83,7 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
     if (run[i]->stage == CullStage::Occlusion) settings.occlusion = run[i]->name;
     settings.backPatchValidity = validity;
     settings.drawnTriangles = options.drawnTriangles;
+    settings.drawnEnumerate = options.drawnEnumerate;
     settings.displacementMap = options.displacementMap;
     settings.uvCorners = options.uvCorners;
     m->pass = std::make_unique<CullPass>(context, gpu_, host, settings);
