@@ -1,10 +1,12 @@
 #include "adapters/scene_assets.h"
 
+#include "adapters/image_displacement.h"
 #include "adapters/load_mesh.h"
 #include "adapters/load_occluder.h"
 #include "adapters/obj_sequence.h"
 #include "adapters/scene_file.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/draw/triangle_mesh.h"
 #include "osd_cull/scene/procedural.h"
 
@@ -19,6 +21,30 @@ frame::TriangleMesh loadOccluder(const OccluderDescription& o) {
       o.file.empty() ? frame::boxMesh(o.boxMin, o.boxMax) : loadTriangleMesh(o.file);
   for (glm::dvec3& p : mesh.positions) p = glm::dvec3(o.transform * glm::dvec4(p, 1.0));
   return mesh;
+}
+
+// Loads the map of a displaced mesh; errors name the scene file's JSON path of the
+// displacement (the caller adds the file and the mesh name).
+void displace(SceneMesh& mesh, const DisplacementDescription& d, size_t index) {
+  const std::string path = "/meshes/" + std::to_string(index) + "/displacement";
+  if (mesh.extraction.uvCorners.empty())
+    throw Error(path +
+                ": the mesh has no texture coordinates (OBJ vt lines) to look up its "
+                "displacement map with");
+  DisplacementOptions options;
+  options.source = d.source;
+  options.scale = d.scale;
+  options.midlevel = d.midlevel;
+  options.channel = d.channel;
+  options.maxLod = d.maxLod;
+  try {
+    mesh.displacementMap.emplace(loadDisplacementMap(options));
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
+  mesh.displacedExtension = d.extension;
+  mesh.displacedBox = d.box;
+  mesh.validity = {false, frame::kDisplacedBackPatchNote};
 }
 
 }  // namespace
@@ -45,6 +71,7 @@ scene::LoadedScene loadScene(scene::SceneDescription description) {
       if (!animation) animation = makeProceduralAnimation(m.animation, cage.positions);
       scene.meshes.push_back(
           makeSceneMesh(m.name, std::move(cage), m.patches, m.recentre, std::move(animation)));
+      if (m.displacement) displace(scene.meshes.back(), *m.displacement, scene.meshes.size() - 1);
     } catch (const Error& e) {
       throw Error(description.source + ": mesh '" + m.name + "': " + e.what());
     }

@@ -194,13 +194,49 @@ AnimationSource readAnimation(const Node& n, const Context& c) {
   return a;
 }
 
+// The `render`/`verify` displacement options as an object (docs/scene-format.md).
+DisplacementDescription readDisplacement(const Node& n, const Context& c) {
+  n.object({"map", "scale", "midlevel", "channel", "lod", "bound", "box"});
+  DisplacementDescription d;
+  const std::string map = n["map"].string();
+  d.source = map == "procedural" ? map : resolve(c, map);
+  if (n.has("scale")) d.scale = n["scale"].number(-1e30, 1e30);
+  if (n.has("midlevel")) d.midlevel = n["midlevel"].number(-1e30, 1e30);
+  if (n.has("channel")) {
+    const std::string ch = n["channel"].string();
+    if (ch.size() != 1 || std::string("rgba").find(ch[0]) == std::string::npos)
+      n["channel"].fail("unknown channel '" + ch + "' (expected r, g, b or a)");
+    d.channel = ch[0];
+  }
+  if (n.has("lod")) d.maxLod = uint32_t(n["lod"].integer(0, 15));
+  if (n.has("bound")) {
+    const std::string b = n["bound"].string();
+    if (b == "full")
+      d.extension = bound::DisplacedExtension::Full;
+    else if (b == "acon")
+      d.extension = bound::DisplacedExtension::ACoN;
+    else if (b == "con")
+      d.extension = bound::DisplacedExtension::CoN;
+    else
+      n["bound"].fail("unknown displaced bound '" + b + "' (expected full, acon or con)");
+  }
+  if (n.has("box")) {
+    const std::string b = n["box"].string();
+    if (b == "oobb")
+      d.box = bound::DisplacedBox::OOBB;
+    else if (b == "caf")
+      d.box = bound::DisplacedBox::CAF;
+    else
+      n["box"].fail("unknown displaced box '" + b + "' (expected oobb or caf)");
+  }
+  return d;
+}
+
 MeshDescription readMesh(const Node& n, const Context& c) {
   n.object({"name", "file", "builtIn", "scheme", "level", "endCaps", "animation", "recentre",
             "displacement"});
   MeshDescription m;
   m.name = n["name"].string();
-  if (n.has("displacement"))
-    n["displacement"].fail("displacement is not supported yet (reserved for displaced meshes)");
   if (n.has("file") == n.has("builtIn")) n.fail("give exactly one of 'file' and 'builtIn'");
   if (n.has("file")) m.file = resolve(c, n["file"].string());
   if (n.has("builtIn")) {
@@ -229,6 +265,14 @@ MeshDescription readMesh(const Node& n, const Context& c) {
   }
   if (n.has("recentre")) m.recentre = n["recentre"].boolean();
   if (n.has("animation")) m.animation = readAnimation(n["animation"], c);
+  if (n.has("displacement")) {
+    const Node d = n["displacement"];
+    if (m.animation.kind != AnimationSource::Kind::None)
+      d.fail(
+          "a deforming mesh cannot be displaced yet (its per-frame bounds pass has no "
+          "displaced bounds); drop 'animation' or 'displacement'");
+    m.displacement = readDisplacement(d, c);
+  }
   return m;
 }
 

@@ -6,7 +6,8 @@
 //      right, for motion of the mesh instead of the camera);
 //   2. per-frame cost of point update + bounds pass + cull + draw, animated (CPU and GPU
 //      point update) against static, frames interleaved, at tessellation 4 and 16;
-//   3. bounds pass and cull kernel in ns per patch, interleaved;
+//   3. bounds pass (back-patch data of every method, displaced ACoN and CoN cones) and cull
+//      kernel in ns per patch, interleaved;
 //   4. back-patch cull rates with cones from the GPU bounds pass against host-built cones.
 #include "adapters/load_mesh.h"
 #include "bench_support.h"
@@ -18,8 +19,10 @@
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
 #include "osd_cull/frame/verify/view_sets.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/scene/cage_animation.h"
+#include "osd_cull/scene/procedural_displacement.h"
 #include "osd_cull/vk/context.h"
 
 #include <glm/geometric.hpp>
@@ -246,18 +249,30 @@ void frameCost(vulkan::Context& context, const Options& o) {
   }
 }
 
-// 3. Bounds pass against cull kernel, ns per patch, interleaved.
+// 3. Bounds pass against cull kernel, ns per patch, interleaved: the back-patch data of
+// each method (tangent plane: Gregory TCONE and G, H) and the displaced cones (ACoN, CoN,
+// procedural map; issue 11), next to the cull kernels that read them.
 void kernels(vulkan::Context& context, const Options& o) {
   Character c = bigGuy(40.0);
-  frame::DynamicPatchMesh mesh(context, c.cage);
+  PatchExtraction ex = extractPatches(c.cage);
+  const std::vector<glm::dvec2> uvCorners = ex.uvCorners;
+  frame::DynamicPatchMesh mesh(context, std::move(ex), c.cage.positions);
   const PatchSet& host = mesh.patches();
+  const bound::DisplacementMap map("procedural", 256, 256,
+                                   scene::proceduralDisplacementTexels(256, 4), 1.5, 0.5);
+  const auto ranges = bound::displacementRanges(host, uvCorners, map);
   frame::BoundsPass tcone(context, mesh.gpu(), BackPatchMethod::TCone);
   frame::BoundsPass ncone(context, mesh.gpu(), BackPatchMethod::NCone);
+  frame::BoundsPass tplane(context, mesh.gpu(), BackPatchMethod::TangentPlane);
+  frame::BoundsPass acon(context, mesh.gpu(), bound::DisplacedExtension::ACoN, ranges);
+  frame::BoundsPass con(context, mesh.gpu(), bound::DisplacedExtension::CoN, ranges);
   frame::CullSettings st{true, "tcone", "", c.validity}, sn{true, "ncone", "", c.validity};
+  frame::CullSettings sp{true, "tangent-plane", "", c.validity};
   frame::CullPass cullT(context, mesh.gpu(), host, st, tcone.cullData());
   frame::CullPass cullN(context, mesh.gpu(), host, sn, ncone.cullData());
+  frame::CullPass cullP(context, mesh.gpu(), host, sp, tplane.cullData());
   const frame::Camera camera = viewOf(frame::boundsOf(host.points), 0, o.size);
-  std::vector<double> bt, bn, ct, cn, ht, hn;
+  std::vector<double> bt, bn, bp, ba, bc, ct, cn, cp, ht, hn, hp, ha, hc;
   auto hostBuild = [&](BackPatchMethod m) {  // the double reference, one thread (no upload)
     const auto start = std::chrono::steady_clock::now();
     const auto cones = bound::buildPatchCones(host, m);
@@ -268,13 +283,29 @@ void kernels(vulkan::Context& context, const Options& o) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
   };
+  auto hostDisplaced = [&](bound::DisplacedExtension e) {  // the cones of the host path
+    const auto start = std::chrono::steady_clock::now();
+    double s = 0;
+    for (uint32_t p = 0; p < host.patchCount(); ++p)
+      s += bound::displacementCone(host, p, e).sinAngle;
+    if (!(s >= 0)) throw Error("host displaced cones");
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  };
   for (int i = 0; i < 2 * o.frames + 1; ++i) {
     ht.push_back(hostBuild(BackPatchMethod::TCone));
     hn.push_back(hostBuild(BackPatchMethod::NCone));
+    hp.push_back(hostBuild(BackPatchMethod::TangentPlane));
+    ha.push_back(hostDisplaced(bound::DisplacedExtension::ACoN));
+    hc.push_back(hostDisplaced(bound::DisplacedExtension::CoN));
     bt.push_back(tcone.run(mesh.pointError()));
     bn.push_back(ncone.run(mesh.pointError()));
+    bp.push_back(tplane.run(mesh.pointError()));
+    ba.push_back(acon.run(mesh.pointError()));
+    bc.push_back(con.run(mesh.pointError()));
     ct.push_back(cullT.run(camera));
     cn.push_back(cullN.run(camera));
+    cp.push_back(cullP.run(camera));
   }
   const double n = host.patchCount();
   auto ns = [&](const std::vector<double>& v) { return bench::median(v) * 1e6 / n; };
@@ -282,19 +313,24 @@ void kernels(vulkan::Context& context, const Options& o) {
       "\n## Bounds pass and cull kernel (BigGuy level 2, %u patches: %u Bezier, %u "
       "Gregory; wall time of submit-and-wait, medians of %d interleaved runs)\n\n",
       host.patchCount(), host.bezierCount, host.gregoryCount, 2 * o.frames + 1);
-  std::printf("| pass | ms | ns per patch |\n|---|---:|---:|\n");
-  std::printf("| bounds pass, TCONE (+ Gregory TCONE, G, H) | %.2f | %.0f |\n", bench::median(bt),
-              ns(bt));
-  std::printf("| bounds pass, NCONE (+ Gregory TCONE, G, H) | %.2f | %.0f |\n", bench::median(bn),
-              ns(bn));
-  std::printf("| host reference in double, TCONE + G, H (1 thread, no upload) | %.2f | %.0f |\n",
-              bench::median(ht), ns(ht));
-  std::printf("| host reference in double, NCONE + G, H (1 thread, no upload) | %.2f | %.0f |\n",
-              bench::median(hn), ns(hn));
-  std::printf("| cull kernel, frustum + tcone (+ draw commands) | %.2f | %.0f |\n",
-              bench::median(ct), ns(ct));
-  std::printf("| cull kernel, frustum + ncone (+ draw commands) | %.2f | %.0f |\n",
-              bench::median(cn), ns(cn));
+  std::printf("| pass | ms | ns per patch | / TCONE bounds pass |\n|---|---:|---:|---:|\n");
+  auto row = [&](const char* name, const std::vector<double>& v) {
+    std::printf("| %s | %.2f | %.0f | %.2f |\n", name, bench::median(v), ns(v),
+                bench::median(v) / bench::median(bt));
+  };
+  row("bounds pass, TCONE (+ Gregory TCONE, G, H)", bt);
+  row("bounds pass, NCONE (+ Gregory TCONE, G, H)", bn);
+  row("bounds pass, tangent plane (Gregory TCONE, G, H)", bp);
+  row("bounds pass, displaced ACoN (TCONE + Gregory TCONE, Dmin/Dmax)", ba);
+  row("bounds pass, displaced CoN (NCONE + Gregory TCONE, Dmin/Dmax)", bc);
+  row("host reference in double, TCONE + G, H (1 thread, no upload)", ht);
+  row("host reference in double, NCONE + G, H (1 thread, no upload)", hn);
+  row("host reference in double, tangent plane: Gregory TCONE + G, H (1 thread)", hp);
+  row("host reference in double, ACoN cones (1 thread, no upload)", ha);
+  row("host reference in double, CoN cones (1 thread, no upload)", hc);
+  row("cull kernel, frustum + tcone (+ draw commands)", ct);
+  row("cull kernel, frustum + ncone (+ draw commands)", cn);
+  row("cull kernel, frustum + tangent-plane (+ draw commands)", cp);
   std::fflush(stdout);
 }
 

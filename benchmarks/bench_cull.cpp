@@ -61,56 +61,18 @@ struct Options {
   std::string parts = "12";  ///< which parts run
 };
 
-std::vector<std::string> names(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) out.push_back(item);
-  return out;
-}
-
-std::vector<uint32_t> numbers(const std::string& text) {
-  std::vector<uint32_t> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) out.push_back(static_cast<uint32_t>(std::stoul(item)));
-  return out;
-}
-
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--mesh")
-      o.mesh = next();
-    else if (a == "--levels")
-      o.levels = numbers(next());
-    else if (a == "--tess")
-      o.tess = numbers(next());
-    else if (a == "--views")
-      o.views = std::max(1u, numbers(next()).at(0));
-    else if (a == "--width")
-      o.width = numbers(next()).at(0);
-    else if (a == "--height")
-      o.height = numbers(next()).at(0);
-    else if (a == "--repeats")
-      o.repeats = std::max(1u, numbers(next()).at(0));
-    else if (a == "--device")
-      o.device = next();
-    else if (a == "--methods")
-      o.methods = names(next());
-    else if (a == "--frame-modes")
-      o.frameModes = names(next());
-    else if (a == "--parts")
-      o.parts = next();
-    else
-      throw Error("unknown option " + a + " (see the comment at the top of bench_cull.cpp)");
-  }
-  return o;
+// False after --help.
+bool parse(int argc, char** argv, Options& o) {
+  return bench::CommandLine("bench-cull", "bench_cull.cpp")
+      .imageAndDevice(o.width, o.height, o.repeats, o.device)
+      .text("--mesh", o.mesh)
+      .numbers("--levels", o.levels)
+      .numbers("--tess", o.tess)
+      .number("--views", o.views, 1)
+      .names("--methods", o.methods)
+      .names("--frame-modes", o.frameModes)
+      .text("--parts", o.parts)
+      .parse(argc, argv);
 }
 
 using osd_cull::bench::median;
@@ -234,17 +196,13 @@ void frameSavings(vulkan::Context& context, const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const Options o = parse(argc, argv);
-    vulkan::ContextOptions co;
-    co.device = o.device;
-    vulkan::Context context(co);
+  return bench::run("bench-cull", [&] {
+    Options o;
+    if (!parse(argc, argv, o)) return 0;
+    vulkan::Context context(bench::contextOptions(o.device));
     std::printf("bench-cull: %s on %s\n", o.mesh.c_str(), context.info().name.c_str());
     if (o.parts.find('1') != std::string::npos) kernelCost(context, o);
     if (o.parts.find('2') != std::string::npos) frameSavings(context, o);
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench-cull: %s\n", e.what());
-    return 1;
-  }
+  });
 }

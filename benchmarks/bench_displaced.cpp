@@ -30,13 +30,7 @@ using namespace osd_cull;
 using bound::DisplacedBox;
 using bound::DisplacedExtension;
 
-std::vector<uint32_t> numbers(const std::string& text) {
-  std::vector<uint32_t> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) out.push_back(static_cast<uint32_t>(std::stoul(item)));
-  return out;
-}
+using osd_cull::bench::numberList;
 
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
@@ -56,11 +50,11 @@ int main(int argc, char** argv) try {
     if (a == "--mesh")
       mesh = v;
     else if (a == "--levels")
-      levels = numbers(v);
+      levels = numberList(v);
     else if (a == "--views")
-      views = std::max(1u, numbers(v).at(0));
+      views = std::max(1u, numberList(v).at(0));
     else if (a == "--repeats")
-      repeats = std::max(1u, numbers(v).at(0));
+      repeats = std::max(1u, numberList(v).at(0));
     else if (a == "--scale")
       scale = std::stod(v);
     else

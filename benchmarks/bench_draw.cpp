@@ -34,33 +34,15 @@ struct Options {
   std::string mesh = std::string(OSD_CULL_SOURCE_DIR) + "/../shared/data/characters/bigguy.obj";
 };
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error(a + " needs a value");
-      return argv[++i];
-    };
-    auto number = [&]() { return static_cast<uint32_t>(std::stoul(next())); };
-    if (a == "--width")
-      o.width = number();
-    else if (a == "--height")
-      o.height = number();
-    else if (a == "--repeats")
-      o.repeats = std::max(1u, number());
-    else if (a == "--max-one-draw-level")
-      o.maxOneDrawLevel = number();
-    else if (a == "--nu")
-      o.nu = number();
-    else if (a == "--nv")
-      o.nv = number();
-    else if (a == "--device")
-      o.device = next();
-    else
-      throw Error("unknown option " + a + " (see the comment at the top of bench_draw.cpp)");
-  }
-  return o;
+// False after --help.
+bool parse(int argc, char** argv, Options& o) {
+  return bench::CommandLine("bench-draw", "bench_draw.cpp")
+      .imageAndDevice(o.width, o.height, o.repeats, o.device)
+      .text("--mesh", o.mesh)
+      .number("--max-one-draw-level", o.maxOneDrawLevel)
+      .number("--nu", o.nu)
+      .number("--nv", o.nv)
+      .parse(argc, argv);
 }
 
 using osd_cull::bench::median;
@@ -95,11 +77,10 @@ Row measure(frame::Renderer& renderer, frame::VisibilityOracle& oracle, frame::R
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const Options o = parse(argc, argv);
-    vulkan::ContextOptions contextOptions;
-    contextOptions.device = o.device;
-    vulkan::Context context(contextOptions);
+  return bench::run("bench-draw", [&] {
+    Options o;
+    if (!parse(argc, argv, o)) return 0;
+    vulkan::Context context(bench::contextOptions(o.device));
     PatchSet set;
     glm::dvec3 up(0, 1, 0), from(0.45, 0.35, 1.0);  // OBJ cages: y up, seen from the front
     if (o.mesh != "torus" && std::filesystem::exists(o.mesh)) {
@@ -167,8 +148,5 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench-draw: %s\n", e.what());
-    return 1;
-  }
+  });
 }

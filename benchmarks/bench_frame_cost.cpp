@@ -52,54 +52,20 @@ struct Options {
   std::string csv, device;
 };
 
-void progress(const std::string& what) {
-  static const auto start = std::chrono::steady_clock::now();
-  const std::chrono::duration<double> t = std::chrono::steady_clock::now() - start;
-  std::fprintf(stderr, "[%7.1f s] %s\n", t.count(), what.c_str());
-}
+using osd_cull::bench::nameList;
+using osd_cull::bench::progress;
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) out.push_back(item);
-  return out;
-}
-
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error(a + " needs a value");
-      return argv[++i];
-    };
-    auto number = [&]() { return static_cast<uint32_t>(std::stoul(next())); };
-    if (a == "--width")
-      o.width = number();
-    else if (a == "--height")
-      o.height = number();
-    else if (a == "--frames")
-      o.frames = std::max(1u, number());
-    else if (a == "--repeats")
-      o.repeats = std::max(1u, number());
-    else if (a == "--bigguy-level")
-      o.bigguyLevel = number();
-    else if (a == "--tess") {
-      o.tess.clear();
-      for (const auto& t : split(next())) o.tess.push_back(static_cast<uint32_t>(std::stoul(t)));
-    } else if (a == "--paths")
-      o.paths = next();
-    else if (a == "--only")
-      o.only = next();
-    else if (a == "--csv")
-      o.csv = next();
-    else if (a == "--device")
-      o.device = next();
-    else
-      throw Error("unknown option " + a + " (see the comment at the top of bench_frame_cost.cpp)");
-  }
-  return o;
+// False after --help.
+bool parse(int argc, char** argv, Options& o) {
+  return bench::CommandLine("bench-frame-cost", "bench_frame_cost.cpp")
+      .imageAndDevice(o.width, o.height, o.repeats, o.device)
+      .number("--frames", o.frames, 1)
+      .number("--bigguy-level", o.bigguyLevel)
+      .numbers("--tess", o.tess)
+      .text("--paths", o.paths)
+      .text("--only", o.only)
+      .text("--csv", o.csv)
+      .parse(argc, argv);
 }
 
 // A mesh with occluders on the device, and how to cull it.
@@ -414,30 +380,25 @@ void pyramidCost(vulkan::Context& context, const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const Options o = parse(argc, argv);
-    vulkan::ContextOptions co;
-    co.device = o.device;
-    vulkan::Context context(co);
+  return bench::run("bench-frame-cost", [&] {
+    Options o;
+    if (!parse(argc, argv, o)) return 0;
+    vulkan::Context context(bench::contextOptions(o.device));
     std::printf("bench-frame-cost: %s, %ux%u\n\n", context.info().name.c_str(), o.width, o.height);
     auto want = [&](char c) { return o.only.find(c) != std::string::npos; };
     if (want('P')) pyramidCost(context, o);
     if (!want('F') && !want('B')) return 0;
-    std::unique_ptr<FILE, int (*)(FILE*)> csv(nullptr, &std::fclose);
-    if (!o.csv.empty()) {
-      csv.reset(std::fopen(o.csv.c_str(), "w"));
-      if (!csv) throw Error("--csv: cannot write " + o.csv);
-      std::fprintf(csv.get(),
-                   "path,stages,tess,not_drawn,ratio,tes_ratio,fragment_ratio,unculled_ms,"
-                   "pass1_ms,pyramid_ms,cull_ms,pass2_ms,split_total_ms\n");
-    }
+    const bench::CsvFile csv =
+        bench::openCsv(o.csv,
+                       "path,stages,tess,not_drawn,ratio,tes_ratio,fragment_ratio,unculled_ms,"
+                       "pass1_ms,pyramid_ms,cull_ms,pass2_ms,split_total_ms");
     std::printf(
         "\n## Frame cost, culled / unculled, like for like (medians over %u frames per "
         "level)\n",
         o.frames);
     std::vector<PathResult> results;
     std::unique_ptr<Scene> builtIn, guy;
-    for (const std::string& p : split(o.paths)) {
+    for (const std::string& p : nameList(o.paths)) {
       if (p.rfind("default", 0) == 0 && !builtIn) builtIn = std::make_unique<Scene>(defaultScene());
       if (p.rfind("bigguy", 0) == 0 && !guy) guy = std::make_unique<Scene>(bigGuy(o.bigguyLevel));
       if (p == "default-orbit")
@@ -459,8 +420,5 @@ int main(int argc, char** argv) {
     if (want('B')) printBreakEven(results, o);
     progress("done");
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench-frame-cost: %s\n", e.what());
-    return 1;
-  }
+  });
 }

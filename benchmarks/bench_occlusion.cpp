@@ -62,48 +62,20 @@ struct Options {
   bool drawBackFaces = false;  ///< no rasterizer back-face culling, even on closed meshes
 };
 
-// Progress on stderr: what runs, and seconds since the start.
-void progress(const std::string& what) {
-  static const auto start = std::chrono::steady_clock::now();
-  const std::chrono::duration<double> t = std::chrono::steady_clock::now() - start;
-  std::fprintf(stderr, "[%7.1f s] %s\n", t.count(), what.c_str());
-}
+using osd_cull::bench::progress;
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error(a + " needs a value");
-      return argv[++i];
-    };
-    auto number = [&]() { return static_cast<uint32_t>(std::stoul(next())); };
-    if (a == "--width")
-      o.width = number();
-    else if (a == "--height")
-      o.height = number();
-    else if (a == "--views")
-      o.views = std::max(1u, number());
-    else if (a == "--orbit-degrees")
-      o.orbitDegrees = std::max(10.0, std::stod(next()));
-    else if (a == "--sequence")
-      o.sequence = std::max(1u, number());
-    else if (a == "--repeats")
-      o.repeats = std::max(1u, number());
-    else if (a == "--only")
-      o.only = next();
-    else if (a == "--scenes")
-      o.scenes = next();
-    else if (a == "--device")
-      o.device = next();
-    else if (a == "--csv")
-      o.csv = next();
-    else if (a == "--draw-back-faces")
-      o.drawBackFaces = true;
-    else
-      throw Error("unknown option " + a + " (see the comment at the top of bench_occlusion.cpp)");
-  }
-  return o;
+// False after --help.
+bool parse(int argc, char** argv, Options& o) {
+  return bench::CommandLine("bench-occlusion", "bench_occlusion.cpp")
+      .imageAndDevice(o.width, o.height, o.repeats, o.device)
+      .number("--views", o.views, 1)
+      .real("--orbit-degrees", o.orbitDegrees, 10.0)
+      .number("--sequence", o.sequence, 1)
+      .text("--only", o.only)
+      .text("--scenes", o.scenes)
+      .text("--csv", o.csv)
+      .flag("--draw-back-faces", o.drawBackFaces)
+      .parse(argc, argv);
 }
 
 using osd_cull::bench::median;
@@ -484,11 +456,10 @@ std::vector<Scene> scenes(const std::string& names) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const Options o = parse(argc, argv);
-    vulkan::ContextOptions contextOptions;
-    contextOptions.device = o.device;
-    vulkan::Context context(contextOptions);
+  return bench::run("bench-occlusion", [&] {
+    Options o;
+    if (!parse(argc, argv, o)) return 0;
+    vulkan::Context context(bench::contextOptions(o.device));
     const std::vector<Scene> all = scenes(o.scenes);
     std::printf(
         "device: %s; image %ux%u; Hi-Z top level at half resolution; back faces %s, the same "
@@ -518,14 +489,10 @@ int main(int argc, char** argv) {
           "| scene | degrees / frame | frames | occlusion cull rate | not drawn in the frame | "
           "patches drawn in pass 2 |\n");
       std::printf("|---|---:|---:|---:|---:|---:|\n");
-      std::unique_ptr<FILE, int (*)(FILE*)> csv(nullptr, &std::fclose);
-      if (!o.csv.empty()) {
-        csv.reset(std::fopen(o.csv.c_str(), "w"));
-        if (!csv) throw Error("--csv: cannot write " + o.csv);
-        std::fprintf(csv.get(),
-                     "scene,degrees_per_frame,frames,occlusion_cull_rate_percent,"
-                     "not_drawn_percent,pass2_patches_per_frame\n");
-      }
+      const bench::CsvFile csv =
+          bench::openCsv(o.csv,
+                         "scene,degrees_per_frame,frames,occlusion_cull_rate_percent,"
+                         "not_drawn_percent,pass2_patches_per_frame");
       for (const Scene& s : all) rotationRates(context, s, o, csv.get());
     }
     if (want('3')) {
@@ -559,8 +526,5 @@ int main(int argc, char** argv) {
     }
     progress("done");
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench-occlusion: %s\n", e.what());
-    return 1;
-  }
+  });
 }

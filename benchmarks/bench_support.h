@@ -1,16 +1,25 @@
 #pragma once
 /// \file bench_support.h
-/// \brief Small helpers shared by the benchmarks.
+/// \brief Small helpers shared by the benchmarks: statistics, the command line (options,
+/// --help, errors naming the option), the run wrapper of main(), progress lines and CSV
+/// files. Header-only: every benchmarks/bench_*.cpp is a program of its own.
 
 #include "adapters/load_mesh.h"
 #include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/error.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/vk/context.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -32,6 +41,181 @@ inline std::vector<uint32_t> numberList(const std::string& text) {
   std::string item;
   while (std::getline(in, item, ',')) out.push_back(static_cast<uint32_t>(std::stoul(item)));
   return out;
+}
+
+/// \brief A comma-separated list of names ("default,bigguy0").
+inline std::vector<std::string> nameList(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(item);
+  return out;
+}
+
+/// \brief A benchmark's command line: options are declared with the variable each one sets
+/// (its value before parse() is the default --help shows), then parse() reads argv.
+class CommandLine {
+ public:
+  /// \brief `program` ("bench-draw") and `source` ("bench_draw.cpp", whose top comment
+  /// describes the options) are named in --help and in errors.
+  CommandLine(std::string program, std::string source)
+      : program_(std::move(program)), source_(std::move(source)) {}
+
+  /// \brief `--name TEXT`.
+  CommandLine& text(const std::string& name, std::string& value) {
+    return add(
+        name, "TEXT", [&value](const std::string& v) { value = v; }, [&value] { return value; });
+  }
+  /// \brief `--name N`, a whole number; values below `atLeast` become `atLeast`.
+  CommandLine& number(const std::string& name, uint32_t& value, uint32_t atLeast = 0) {
+    return add(
+        name, "N",
+        [&value, atLeast](const std::string& v) {
+          value = std::max(atLeast, static_cast<uint32_t>(std::stoul(v)));
+        },
+        [&value] { return std::to_string(value); });
+  }
+  /// \brief `--name X`, a real number; values below `atLeast` become `atLeast`.
+  CommandLine& real(const std::string& name, double& value, double atLeast) {
+    return add(
+        name, "X",
+        [&value, atLeast](const std::string& v) { value = std::max(atLeast, std::stod(v)); },
+        [&value] {
+          std::ostringstream out;
+          out << value;
+          return out.str();
+        });
+  }
+  /// \brief `--name N,N,...` (numberList()).
+  CommandLine& numbers(const std::string& name, std::vector<uint32_t>& values) {
+    return add(
+        name, "N,N,...", [&values](const std::string& v) { values = numberList(v); },
+        [&values] {
+          std::string out;
+          for (uint32_t n : values) out += (out.empty() ? "" : ",") + std::to_string(n);
+          return out;
+        });
+  }
+  /// \brief `--name A,B,...` (nameList()).
+  CommandLine& names(const std::string& name, std::vector<std::string>& values) {
+    return add(
+        name, "A,B,...", [&values](const std::string& v) { values = nameList(v); },
+        [&values] {
+          std::string out;
+          for (const std::string& n : values) out += (out.empty() ? "" : ",") + n;
+          return out;
+        });
+  }
+  /// \brief The options every Vulkan benchmark has: `--width N`, `--height N` (the image),
+  /// `--repeats N` (at least 1) and `--device X` (vulkan::ContextOptions::device).
+  CommandLine& imageAndDevice(uint32_t& width, uint32_t& height, uint32_t& repeats,
+                              std::string& device) {
+    return number("--width", width)
+        .number("--height", height)
+        .number("--repeats", repeats, 1)
+        .text("--device", device);
+  }
+  /// \brief `--name` without a value: sets `value`.
+  CommandLine& flag(const std::string& name, bool& value) {
+    options_.push_back({name, "", [&value](const std::string&) { value = true; },
+                        [&value] { return std::string(value ? "on" : "off"); }});
+    return *this;
+  }
+
+  /// \brief Reads the options of argv into their variables. Returns false after printing
+  /// the options for --help (or -h): the caller exits with 0.
+  /// \throws osd_cull::Error "OPTION needs a value" or "unknown option OPTION (see the
+  /// comment at the top of SOURCE)"; std::invalid_argument or std::out_of_range for a
+  /// value that is not a number.
+  bool parse(int argc, char** argv) const {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--help" || a == "-h") {
+        std::printf("%s", help().c_str());
+        return false;
+      }
+      auto it = std::find_if(options_.begin(), options_.end(),
+                             [&](const Option& o) { return o.name == a; });
+      if (it == options_.end())
+        throw Error("unknown option " + a + " (see the comment at the top of " + source_ + ")");
+      if (it->valueName.empty()) {
+        it->set("");
+        continue;
+      }
+      if (i + 1 >= argc) throw Error(a + " needs a value");
+      it->set(argv[++i]);
+    }
+    return true;
+  }
+
+  /// \brief "usage: PROGRAM [options]", one line an option with its default, and where the
+  /// options are described.
+  std::string help() const {
+    std::string out = "usage: " + program_ + " [options]\n\noptions (default in brackets):\n";
+    for (const Option& o : options_) {
+      std::string line = "  " + o.name + (o.valueName.empty() ? "" : " " + o.valueName);
+      line.resize(std::max<size_t>(line.size() + 1, 32), ' ');
+      out += line + "[" + o.current() + "]\n";
+    }
+    out += "  --help                        this text\n\nWhat they do and what " + program_ +
+           " prints: the comment at the top of benchmarks/" + source_ + ".\n";
+    return out;
+  }
+
+ private:
+  struct Option {
+    std::string name, valueName;
+    std::function<void(const std::string&)> set;
+    std::function<std::string()> current;
+  };
+  CommandLine& add(const std::string& name, const std::string& valueName,
+                   std::function<void(const std::string&)> set,
+                   std::function<std::string()> current) {
+    options_.push_back({name, valueName, std::move(set), std::move(current)});
+    return *this;
+  }
+
+  std::string program_, source_;
+  std::vector<Option> options_;
+};
+
+/// \brief A benchmark's main(): the exit code of `body`, or 1 after "PROGRAM: message" on
+/// stderr when it throws.
+inline int run(const char* program, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+    return 1;
+  }
+}
+
+/// \brief The options of the benchmark's Vulkan context: the device `--device` named
+/// (empty: the default choice).
+inline vulkan::ContextOptions contextOptions(const std::string& device) {
+  vulkan::ContextOptions o;
+  o.device = device;
+  return o;
+}
+
+/// \brief A progress line on stderr: seconds since the first call, and what runs.
+inline void progress(const std::string& what) {
+  static const auto start = std::chrono::steady_clock::now();
+  const std::chrono::duration<double> t = std::chrono::steady_clock::now() - start;
+  std::fprintf(stderr, "[%7.1f s] %s\n", t.count(), what.c_str());
+}
+
+/// \brief A CSV file opened for writing with its `header` line written; null when `path`
+/// is empty (no CSV asked for).
+/// \throws osd_cull::Error "--csv: cannot write PATH".
+using CsvFile = std::unique_ptr<FILE, int (*)(FILE*)>;
+inline CsvFile openCsv(const std::string& path, const char* header) {
+  CsvFile csv(nullptr, &std::fclose);
+  if (path.empty()) return csv;
+  csv.reset(std::fopen(path.c_str(), "w"));
+  if (!csv) throw Error("--csv: cannot write " + path);
+  std::fprintf(csv.get(), "%s\n", header);
+  return csv;
 }
 
 /// \brief The data folder beside the project (as the tests find it), or $OSD_CULL_DATA_DIR.

@@ -4,14 +4,17 @@
 // lowered through ContextOptions::adjustDeviceInfo, so a small mesh exercises the paths that
 // a million patches takes on lavapipe (128 MiB: 524,288 Bezier patches).
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
 #include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/limits.h"
+#include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
 
+#include <shared/bounds_layout.h>
 #include <shared/cull_layout.h>
 
 #include <gtest/gtest.h>
@@ -200,6 +203,50 @@ TEST(LargeBuffers, DispatchesBeyondTheWorkGroupCountAreANamedError) {
                     {"cull dispatch", "maxComputeWorkGroupCount"});
   EXPECT_EQ(vulkan::checkedGroups2D(*context, 3, "three").x, 2u);
   EXPECT_EQ(vulkan::checkedGroups2D(*context, 3, "three").y, 2u);
+}
+
+// The bounds pass's output of `pass` after one run (raw floats).
+std::vector<float> boundsOutput(vulkan::Context& context, frame::BoundsPass& pass) {
+  pass.run(1.01 * 2.0 / 16777216.0);  // |coordinate| < 2 on the sphere
+  EXPECT_GT(pass.dispatchCount(), 0u);
+  return vulkan::readback<float>(context, pass.cullData());
+}
+
+// The bounds pass past its old limit (issue 10): its 1 KiB-per-patch scratch buffer is gone
+// (the working vectors live in shared memory), so with maxStorageBufferRange lowered to its
+// output (64 B per patch, 16 times less than the scratch needed) and the work-group count
+// to 2 x 16 (the dispatch spread over x and y), a small mesh takes the path of a
+// 2-million-patch mesh and writes exactly what an unrestricted device writes. Below the
+// output the error names the limit.
+TEST(LargeBuffers, BoundsPassNeedsOnlyItsOutputInOneDescriptor) {
+  const PatchSet set = sphere();
+  const uint32_t n = set.patchCount();
+  const uint32_t output = n * shader::kConeVec4s * 16;
+  ASSERT_GT(n, 2u * shader::kBoundsGroupSize);  // more than two groups: the 2D dispatch
+  std::vector<bound::DisplacementRange> ranges(n, bound::DisplacementRange{-0.1, 0.2});
+  std::vector<std::vector<float>> outputs[2];
+  for (int restricted = 0; restricted < 2; ++restricted) {
+    AdjustedContext context([&](vulkan::DeviceInfo& info) {
+      if (!restricted) return;
+      info.limits.maxStorageBufferRange = output;
+      info.limits.maxComputeWorkGroupCount[0] = 2;
+    });
+    if (!(*context).info().optional.bufferDeviceAddress)
+      GTEST_SKIP() << "the device lacks bufferDeviceAddress";
+    frame::GpuPatchSet gpu(*context, set);
+    frame::BoundsPass tcone(*context, gpu, bound::BackPatchMethod::TCone);
+    outputs[restricted].push_back(boundsOutput(*context, tcone));
+    frame::BoundsPass con(*context, gpu, bound::DisplacedExtension::CoN, ranges);
+    outputs[restricted].push_back(boundsOutput(*context, con));
+  }
+  ASSERT_EQ(outputs[0].size(), outputs[1].size());
+  for (size_t k = 0; k < outputs[0].size(); ++k)
+    EXPECT_EQ(outputs[0][k], outputs[1][k]) << "output " << k;
+  AdjustedContext small(
+      [&](vulkan::DeviceInfo& info) { info.limits.maxStorageBufferRange = output - 16; });
+  frame::GpuPatchSet gpu(*small, set);
+  expectErrorNaming([&] { frame::BoundsPass pass(*small, gpu, bound::BackPatchMethod::NCone); },
+                    {"BoundsPass", "cull data", "maxStorageBufferRange"});
 }
 
 TEST(LargeBuffers, IndirectDrawsBeyondMaxDrawIndirectCountAreANamedError) {

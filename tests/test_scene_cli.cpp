@@ -3,6 +3,7 @@
 // fails before rendering; a bad scene file fails with the JSON path of the problem.
 #include "support/run_command.h"
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -144,6 +145,91 @@ TEST(SceneCommand, BadSceneFileNamesThePath) {
   EXPECT_EQ(r.exitCode(), 1) << r.output;
   EXPECT_NE(r.output.find("/instances/1/mesh: unknown mesh 'nothing'"), std::string::npos)
       << r.output;
+}
+
+// Issue 11 in scene files: a static displaced mesh (procedural map, con-oobb bound) beside a
+// twisting undisplaced one; every frame renders like the unculled draw and verifies with no
+// false cull, the displaced instance also with its own kernel.
+std::string displacedScene() {
+  const std::string obj = (test::dataDir() / "shapes/catmark_single_crease.obj").string();
+  return R"({"version": 1,
+  "settings": {"frameCount": 2, "width": 80, "height": 64},
+  "meshes": [{"name": "bumpy", "file": ")" +
+         obj + R"(", "level": 1,
+              "displacement": {"map": "procedural", "scale": 0.3, "bound": "con", "box": "oobb"}},
+             {"name": "twister", "builtIn": "creased-cube", "level": 1,
+              "animation": {"deformer": "twist", "axis": 2, "amount": 1.2}}],
+  "instances": [{"name": "bumpy", "mesh": "bumpy", "transform": {"translate": [-1.5, 0, 0]}},
+                {"name": "twister", "mesh": "twister", "transform": {"translate": [1.5, 0, 0]}}],
+  "views": [{"name": "main", "camera": {"eye": [0, -7, 3], "target": [0, 0, 0]}}]})";
+}
+
+TEST(SceneCommand, DisplacedStaticAndAnimatedMeshesRenderAndVerifyWithoutFalseCulls) {
+  OSD_CULL_REQUIRE_DATA();
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  const fs::path scene = dir.write("scene.json", displacedScene());
+  const auto r = test::runCommand(test::osdCullProgram().string() + " render " + scene.string() +
+                                  " --validate --compare --tess 2 --out-dir " +
+                                  (dir.path() / "frames").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  for (const char* line : {"displaced (procedural", "con-oobb; back-patch culling off",
+                           "deforms (twist", "view main frame 1:"})
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+  const auto v = test::runCommand(test::osdCullProgram().string() + " verify " + scene.string() +
+                                  " --frames 2 --views 1 --width 64 --height 64 --tess 2"
+                                  " --image-check --validate --json " +
+                                  (dir.path() / "verify.json").string());
+  ASSERT_EQ(v.exitCode(), 0) << v.output;
+  std::ifstream in(dir.path() / "verify.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j.at("ok").get<bool>());
+  std::vector<std::string> names;
+  for (const auto& m : j.at("methods")) {
+    names.push_back(m.at("name"));
+    EXPECT_EQ(m.at("false_culls"), 0) << m.at("name");
+    EXPECT_EQ(m.at("culled_not_in_reference"), 0) << m.at("name");
+    EXPECT_EQ(m.at("pixels_lost"), 0) << m.at("name");
+  }
+  for (const char* n : {"frustum", "tcone", "ncone", "con-oobb"})
+    EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n << "\n" << v.output;
+  // Back-patch methods are skipped on the displaced mesh only.
+  EXPECT_NE(v.output.find("skipped tcone on bumpy"), std::string::npos) << v.output;
+  EXPECT_EQ(v.output.find("skipped tcone on twister"), std::string::npos) << v.output;
+
+  // A map that cannot be read: the error names the mesh, the JSON path and the file.
+  std::string missing = displacedScene();
+  missing.replace(missing.find("\"procedural\""), 12, "\"missing.png\"");
+  const fs::path bad = dir.write("missing.json", missing);
+  const auto m = test::runCommand(test::osdCullProgram().string() + " render " + bad.string());
+  EXPECT_EQ(m.exitCode(), 1) << m.output;
+  EXPECT_NE(m.output.find("mesh 'bumpy': /meshes/0/displacement: "), std::string::npos) << m.output;
+  EXPECT_NE(m.output.find("missing.png"), std::string::npos) << m.output;
+}
+
+TEST(SceneCommand, BadDisplacementNamesThePath) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  const std::string head = R"({"version": 1, "meshes": [{"name": "m", "builtIn": "cube", )";
+  const std::string tail =
+      R"(}], "views": [{"name": "v", "camera": {"eye": [0, -5, 0], "target": [0, 0, 0]}}]})";
+  const std::pair<std::string, std::string> cases[] = {
+      {R"("displacement": {"map": "procedural", "bound": "cone"})",
+       "/meshes/0/displacement/bound: unknown displaced bound 'cone'"},
+      {R"("displacement": {"map": "procedural", "channel": "x"})",
+       "/meshes/0/displacement/channel: unknown channel 'x'"},
+      {R"("displacement": {"scale": 2})", "/meshes/0/displacement: missing key 'map'"},
+      {R"("animation": {"deformer": "twist"}, "displacement": {"map": "procedural"})",
+       "/meshes/0/displacement: a deforming mesh cannot be displaced yet"},
+      {R"("displacement": {"map": "procedural"})",
+       "/meshes/0/displacement: the mesh has no texture coordinates"},
+  };
+  for (const auto& [mesh, expected] : cases) {
+    const fs::path scene = dir.write("bad.json", head + mesh + tail);
+    const auto r = test::runCommand(test::osdCullProgram().string() + " render " + scene.string());
+    EXPECT_EQ(r.exitCode(), 1) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << expected << "\n" << r.output;
+  }
 }
 
 }  // namespace

@@ -1,15 +1,21 @@
-// `osd-cull view`: the key bindings and the --script language as plain logic, and the real
-// window under Xvfb (status colors appear after "s", fewer patches are drawn after culling
-// is switched on, the HUD is drawn, validation stays silent).
+// `osd-cull view`: the key bindings, the --script language, the animation clock and the
+// per-pass timing schedule as plain logic, and the real window under Xvfb (status colors
+// appear after "s", fewer patches are drawn after culling is switched on, the HUD is drawn,
+// an animated scene moves while playing and stands still while paused, timed frames come
+// at the chosen interval with non-zero figures, scene files open, validation stays silent).
 #include "osd_cull/frame/draw/png_io.h"
 #include "support/run_command.h"
+#include "support/temp_dir.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
 #if OSD_CULL_HAVE_VIEWER
 #include "viewer/view_state.h"
+#include "viewer/viewer.h"
 #endif
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -55,6 +61,106 @@ TEST(ViewerKeys, TogglesCullStagesColorsAndTessellation) {
   EXPECT_FALSE(pressKey(s, "%").has_value());
   pressKey(s, "esc");
   EXPECT_TRUE(s.quit);
+}
+
+TEST(ViewerKeys, SpacePlaysTheAnimationAndRTurnsTheTable) {
+  ViewState s;
+  EXPECT_FALSE(s.playing || s.turntable || s.sceneCamera);
+  EXPECT_EQ(*pressKey(s, "space"), "animation playing");
+  EXPECT_TRUE(s.playing);
+  EXPECT_FALSE(s.turntable);  // the camera no longer turns with space
+  EXPECT_EQ(*pressKey(s, "r"), "turntable on");
+  EXPECT_TRUE(s.turntable);
+  EXPECT_EQ(*pressKey(s, "v"), "camera of the scene");
+  EXPECT_TRUE(s.sceneCamera);
+  EXPECT_EQ(*pressKey(s, "space"), "animation paused");
+  EXPECT_FALSE(s.playing);
+}
+
+TEST(ViewerAnimation, AdvancesOnlyWhilePlayingAndWraps) {
+  ViewState s;
+  viewer::advanceAnimation(s, 3);
+  EXPECT_EQ(s.sceneFrame, 0u);  // paused
+  s.playing = true;
+  viewer::advanceAnimation(s, 3);
+  viewer::advanceAnimation(s, 3);
+  EXPECT_EQ(s.sceneFrame, 2u);
+  viewer::advanceAnimation(s, 3);
+  EXPECT_EQ(s.sceneFrame, 0u);  // wrapped after three frames
+  viewer::advanceAnimation(s, 1);
+  EXPECT_EQ(s.sceneFrame, 0u);  // a one-frame scene does not move
+}
+
+TEST(ViewerPassTiming, TimesTheFirstFrameThenEveryInterval) {
+  viewer::PassTiming t(4);
+  EXPECT_TRUE(t.due(2));  // nothing timed yet
+  t.record(2, 1.5, 0.25, 0.5, 0.75);
+  EXPECT_FALSE(t.due(3));
+  EXPECT_FALSE(t.due(5));
+  EXPECT_TRUE(t.due(6));
+  EXPECT_EQ(t.lastTimed(), 2u);
+  EXPECT_DOUBLE_EQ(t.pass1Ms(), 1.5);
+  EXPECT_DOUBLE_EQ(t.pyramidMs(), 0.25);
+  EXPECT_DOUBLE_EQ(t.cullMs(), 0.5);
+  EXPECT_DOUBLE_EQ(t.pass2Ms(), 0.75);
+  EXPECT_NE(t.describe(5).find("timed frame 2 (3 frames ago"), std::string::npos) << t.describe(5);
+  t.forget();  // a new cull frame: time the next frame
+  EXPECT_TRUE(t.due(3));
+  viewer::PassTiming never(0);
+  EXPECT_FALSE(never.due(0));
+  EXPECT_FALSE(never.due(1000));
+}
+
+TEST(ViewerScenes, ASceneWithoutInstancesOrPerspectiveViewIsRefusedByName) {
+  auto message = [](scene::LoadedScene loaded) -> std::string {
+    try {
+      viewer::playedScene(std::move(loaded));
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  scene::LoadedScene empty;
+  empty.description.source = "empty.json";
+  EXPECT_EQ(message(std::move(empty)), "scene empty.json: no instances to view");
+  scene::LoadedScene shadowOnly;
+  shadowOnly.description.source = "shadow.json";
+  shadowOnly.description.instances.emplace_back();
+  shadowOnly.description.views.emplace_back();
+  shadowOnly.description.views.back().kind = scene::ViewDescription::Kind::Shadow;
+  EXPECT_EQ(message(std::move(shadowOnly)),
+            "scene shadow.json: no perspective view to start the viewer from");
+}
+
+TEST(ViewerScenes, PlayedSceneKeepsItsFirstPerspectiveViewForTheSceneCamera) {
+  scene::LoadedScene loaded;
+  loaded.description.instances.emplace_back();
+  loaded.description.views.resize(3);
+  loaded.description.views[0].kind = scene::ViewDescription::Kind::Shadow;
+  loaded.description.views[1].name = "main";
+  loaded.description.views[1].eye = {0, -5, 0};
+  loaded.description.views[1].target = {0, 0, 0};
+  loaded.description.views[1].up = {0, 0, 1};
+  loaded.description.views[2].name = "second";
+  const viewer::ViewerScene v = viewer::playedScene(std::move(loaded));
+  ASSERT_EQ(v.scene.description.views.size(), 1u);
+  EXPECT_EQ(v.scene.description.views[0].name, "main");
+  EXPECT_EQ(v.viewDirection, glm::dvec3(0, -5, 0));  // from the target towards the eye
+  EXPECT_EQ(v.up, glm::dvec3(0, 0, 1));
+}
+
+TEST(ViewerScript, ShotStepsAreNamedAfterTheScreenshot) {
+  viewer::ScriptPlayer player(viewer::parseScript("@1 shot @2"));
+  EXPECT_TRUE(player.hasShots());
+  ViewState s;
+  player.beforeFrame(0, s);
+  EXPECT_FALSE(player.takeShot());
+  player.beforeFrame(1, s);
+  EXPECT_TRUE(player.takeShot());
+  EXPECT_FALSE(player.takeShot());  // once
+  EXPECT_FALSE(viewer::ScriptPlayer(viewer::parseScript("@1 c")).hasShots());
+  EXPECT_EQ(viewer::screenshotPath("out/view.png", 7), "out/view-frame7.png");
+  EXPECT_EQ(viewer::screenshotPath("a.b/view", 3), "a.b/view-frame3");
 }
 
 TEST(ViewerScript, AppliesStepsBeforeTheirFrame) {
@@ -182,11 +288,157 @@ TEST_F(ViewerWindow, HudIsDrawnOverTheView) {
   EXPECT_GT(differ, 1000u);
 }
 
+// The frame lines' animation and per-pass timing figures.
+struct FrameClock {
+  uint32_t sceneFrame = 0, frameCount = 0;
+  bool playing = false;
+  double pass1 = 0, pyramid = 0, cull = 0, pass2 = 0;
+  int timedAt = -1;  ///< the frame the per-pass figures come from; -1: none yet
+  uint32_t drawn = 0, total = 0, culled = 0;
+};
+
+std::vector<FrameClock> frameClocks(const std::string& output) {
+  std::vector<FrameClock> lines;
+  const std::regex re(
+      R"(drawn (\d+) of (\d+) patches.*culled frustum (\d+) back-patch (\d+) occlusion (\d+).*)"
+      R"(scene frame (\d+) of (\d+) (playing|paused), ms per pass ([\d.]+) ([\d.]+) ([\d.]+) )"
+      R"(([\d.]+) (none|from frame (\d+)))");
+  for (std::sregex_iterator it(output.begin(), output.end(), re), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    FrameClock c;
+    c.drawn = static_cast<uint32_t>(std::stoul(m[1]));
+    c.total = static_cast<uint32_t>(std::stoul(m[2]));
+    c.culled = static_cast<uint32_t>(std::stoul(m[3]) + std::stoul(m[4]) + std::stoul(m[5]));
+    c.sceneFrame = static_cast<uint32_t>(std::stoul(m[6]));
+    c.frameCount = static_cast<uint32_t>(std::stoul(m[7]));
+    c.playing = m[8] == "playing";
+    c.pass1 = std::stod(m[9]);
+    c.pyramid = std::stod(m[10]);
+    c.cull = std::stod(m[11]);
+    c.pass2 = std::stod(m[12]);
+    c.timedAt = m[14].matched ? std::stoi(m[14]) : -1;
+    lines.push_back(c);
+  }
+  return lines;
+}
+
+// Pixels whose color differs between two images of the same size.
+size_t differingPixels(const frame::PngImage& a, const frame::PngImage& b) {
+  EXPECT_EQ(a.samples8.size(), b.samples8.size());
+  size_t n = 0;
+  const size_t c = size_t(a.channels);
+  for (size_t i = 0; i + c <= std::min(a.samples8.size(), b.samples8.size()); i += c)
+    n += !std::equal(a.samples8.begin() + i, a.samples8.begin() + i + 3, b.samples8.begin() + i);
+  return n;
+}
+
+// The images a view() run's `shot` steps wrote.
+frame::PngImage shotOf(const std::string& run, int frame) {
+  return frame::readPng(fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer" /
+                        (run + "-frame" + std::to_string(frame) + ".png"));
+}
+
+TEST_F(ViewerWindow, AnimatedSceneMovesWhilePlayingAndStandsStillWhenPaused) {
+  // Culling on from the start; shots of two paused frames, then of two playing ones; a
+  // timed diagnostic frame every 3 frames.
+  const ViewRun run = view("anim", 8, "@2 shot @3 shot @4 space @5 shot @6 shot",
+                           "--no-hud --cull all --time-passes 3 built-in:scene");
+  ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;  // 1 on validation messages
+  EXPECT_EQ(run.result.output.find("validation"), std::string::npos) << run.result.output;
+  std::vector<frame::PngImage> shots;
+  for (int f : {2, 3, 5, 6}) shots.push_back(shotOf("anim", f));
+  EXPECT_EQ(differingPixels(shots[0], shots[1]), 0u);   // paused: the same image
+  EXPECT_GT(differingPixels(shots[2], shots[3]), 50u);  // playing: the character moves
+
+  const std::vector<FrameClock> clocks = frameClocks(run.result.output);
+  ASSERT_EQ(clocks.size(), 8u) << run.result.output;
+  for (uint32_t f = 0; f < 4; ++f) {
+    EXPECT_FALSE(clocks[f].playing);
+    EXPECT_EQ(clocks[f].sceneFrame, 0u);
+  }
+  for (uint32_t f = 4; f < 8; ++f) {
+    EXPECT_TRUE(clocks[f].playing);
+    EXPECT_EQ(clocks[f].sceneFrame, f - 3);  // one animation frame per frame drawn
+    EXPECT_EQ(clocks[f].frameCount, 48u);
+    EXPECT_GT(clocks[f].culled, 0u) << "frame " << f;  // culling stays on while playing
+    EXPECT_LT(clocks[f].drawn, clocks[f].total) << "frame " << f;
+  }
+  // Timed frames at 0, 3 and 6; every frame shows the figures of the last one, all non-zero.
+  for (uint32_t f = 0; f < 8; ++f) {
+    EXPECT_EQ(clocks[f].timedAt, int(f / 3 * 3)) << "frame " << f;
+    EXPECT_GT(clocks[f].pass1, 0.0) << "frame " << f;
+    EXPECT_GT(clocks[f].pyramid, 0.0) << "frame " << f;
+    EXPECT_GT(clocks[f].cull, 0.0) << "frame " << f;
+    EXPECT_GT(clocks[f].pass2, 0.0) << "frame " << f;
+  }
+}
+
+// A scene file of one creased cube seen from (4, -6, 3) with `frames` frames; `extra`
+// is added to the instance (an animation) and `path` to the view (a camera path).
+fs::path cubeScene(const test::TempDir& dir, uint32_t frames, const std::string& extra,
+                   const std::string& path) {
+  return dir.write("scene.json", R"({"version": 1,
+  "settings": {"frameCount": )" + std::to_string(frames) +
+                                     R"(, "framesPerSecond": 24},
+  "meshes": [{"name": "cube", "builtIn": "creased-cube", "level": 1}],
+  "instances": [{"name": "cube", "mesh": "cube")" +
+                                     extra + R"(}],
+  "views": [{"name": "main", "camera": {"eye": [4, -6, 3], "target": [0, 0, 0]})" +
+                                     path + "}]}");
+}
+
+TEST_F(ViewerWindow, OpensASceneFileAndPlaysItsInstanceMotion) {
+  test::TempDir dir("viewer_scene_");
+  const fs::path scene = cubeScene(
+      dir, 4, R"(, "animation": {"spin": {"axis": [0, 0, 1], "degreesPerSecond": 240}})", "");
+  const ViewRun run =
+      view("scene_file", 4, "@1 space @2 shot @3 shot", "--no-hud " + scene.string());
+  ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;
+  const std::vector<FrameClock> clocks = frameClocks(run.result.output);
+  ASSERT_EQ(clocks.size(), 4u) << run.result.output;
+  EXPECT_EQ(clocks[3].sceneFrame, 3u);
+  EXPECT_EQ(clocks[3].frameCount, 4u);
+  EXPECT_EQ(clocks[3].drawn, clocks[3].total);  // no culling asked for
+  EXPECT_GT(differingPixels(shotOf("scene_file", 2), shotOf("scene_file", 3)), 50u);  // it spins
+}
+
+TEST_F(ViewerWindow, SceneCameraFollowsItsPathOnlyWhilePlaying) {
+  test::TempDir dir("viewer_camera_");
+  const fs::path scene = cubeScene(dir, 8, "", R"(, "path": {"orbit": {"degreesPerFrame": 10}})");
+  // v: look through the scene's camera; paused it stands still, playing it orbits.
+  const ViewRun run = view("camera_path", 7, "@1 v @2 shot @3 shot @4 space @5 shot @6 shot",
+                           "--no-hud --cull all " + scene.string());
+  ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;
+  EXPECT_EQ(differingPixels(shotOf("camera_path", 2), shotOf("camera_path", 3)), 0u);
+  EXPECT_GT(differingPixels(shotOf("camera_path", 5), shotOf("camera_path", 6)), 50u);
+  // frame 6 (the last image): the path has turned 30 degrees since frame 2
+  EXPECT_GT(differingPixels(run.image, shotOf("camera_path", 2)), 50u);
+}
+
+TEST_F(ViewerWindow, OpensAMeshFile) {
+  const fs::path mesh = test::dataDir() / "shapes" / "catmark_cube.obj";
+  if (!fs::exists(mesh)) GTEST_SKIP() << mesh << " not found";
+  const ViewRun run = view("mesh_file", 3, "@1 space", "--no-hud --cull all " + mesh.string());
+  ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;
+  const std::vector<FrameClock> clocks = frameClocks(run.result.output);
+  ASSERT_EQ(clocks.size(), 3u) << run.result.output;
+  EXPECT_GT(clocks[2].total, 0u);
+  EXPECT_GT(clocks[2].drawn, 0u);
+  EXPECT_EQ(clocks[2].frameCount, 1u);  // a mesh file is one static frame
+  EXPECT_EQ(clocks[2].sceneFrame, 0u);  // playing moves nothing
+  EXPECT_GT(clocks[2].culled, 0u);      // back patches of the closed cube
+  EXPECT_EQ(run.image.width, 320u);
+}
+
 TEST_F(ViewerWindow, BadScriptIsAUsageErrorBeforeAnyWindow) {
   const auto r =
       test::runCommand(test::osdCullProgram().string() + " view --frames 2 --script '@3 @1'");
   EXPECT_NE(r.exitCode(), 0);
   EXPECT_NE(r.output.find("frames must not decrease"), std::string::npos) << r.output;
+  const auto shot =
+      test::runCommand(test::osdCullProgram().string() + " view --frames 2 --script '@1 shot'");
+  EXPECT_NE(shot.exitCode(), 0);
+  EXPECT_NE(shot.output.find("'shot' needs --screenshot"), std::string::npos) << shot.output;
 }
 
 }  // namespace

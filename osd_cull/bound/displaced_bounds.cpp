@@ -100,10 +100,9 @@ ConeOfNormals displacementCone(const PatchSet& patches, uint32_t patch,
                                               : buildConeFromTangentCones(points);
 }
 
-std::vector<DisplacedPatch> buildDisplacedPatches(const PatchSet& patches,
+std::vector<DisplacementRange> displacementRanges(const PatchSet& patches,
                                                   std::span<const glm::dvec2> uvCorners,
-                                                  const DisplacementMap& map,
-                                                  DisplacedExtension extension) {
+                                                  const DisplacementMap& map) {
   if (uvCorners.empty())
     throw Error((patches.source.empty() ? std::string("mesh") : patches.source) +
                 ": the mesh has no texture coordinates (OBJ 'vt'); a displacement map needs "
@@ -112,9 +111,20 @@ std::vector<DisplacedPatch> buildDisplacedPatches(const PatchSet& patches,
     throw Error("displaced bounds: " + std::to_string(uvCorners.size()) +
                 " texture coordinates for " + std::to_string(patches.patchCount()) +
                 " patches (4 per patch expected)");
+  std::vector<DisplacementRange> out(patches.patchCount());
+  for (uint32_t p = 0; p < patches.patchCount(); ++p)
+    out[p] = map.displacementOver(patchUvRegion(uvCorners.subspan(4 * size_t{p}, 4)));
+  return out;
+}
+
+std::vector<DisplacedPatch> buildDisplacedPatches(const PatchSet& patches,
+                                                  std::span<const glm::dvec2> uvCorners,
+                                                  const DisplacementMap& map,
+                                                  DisplacedExtension extension) {
+  const std::vector<DisplacementRange> ranges = displacementRanges(patches, uvCorners, map);
   std::vector<DisplacedPatch> out(patches.patchCount());
   for (uint32_t p = 0; p < patches.patchCount(); ++p) {
-    out[p].range = map.displacementOver(patchUvRegion(uvCorners.subspan(4 * size_t{p}, 4)));
+    out[p].range = ranges[p];
     out[p].cone = displacementCone(patches, p, extension);
   }
   return out;

@@ -72,6 +72,14 @@ struct DisplacedPatch {
 };
 
 /// \brief Dmin/Dmax of every patch over its texture region (uvCorners: 4 per patch, the
+/// PatchSet order): static under motion of the cage (the bounds pass of an animated mesh
+/// reads them).
+/// \throws osd_cull::Error when uvCorners is empty (no UVs) or does not hold 4 per patch.
+std::vector<DisplacementRange> displacementRanges(const PatchSet& patches,
+                                                  std::span<const glm::dvec2> uvCorners,
+                                                  const DisplacementMap& map);
+
+/// \brief Dmin/Dmax of every patch over its texture region (uvCorners: 4 per patch, the
 /// PatchSet order) and the cone of `extension`.
 /// \throws osd_cull::Error when uvCorners does not hold 4 per patch.
 std::vector<DisplacedPatch> buildDisplacedPatches(const PatchSet& patches,

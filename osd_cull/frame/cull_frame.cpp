@@ -9,6 +9,7 @@
 #include <osd_cull/shared/draw_layout.h>
 #include <osd_cull/shared/visibility_layout.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace osd_cull::frame {
@@ -87,7 +88,8 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
   }
   const bool anyStage = cull.frustum || !cull.backPatch.empty() || !cull.occlusion.empty();
   uint32_t base = 0;
-  for (const CullMesh& m : meshes_) {
+  for (size_t i = 0; i < meshes_.size(); ++i) {
+    const CullMesh& m = meshes_[i];
     if (!m.gpu || !m.host) throw Error("CullFrame: a mesh without GpuPatchSet or PatchSet");
     if (m.gpu->patchCount() != m.host->patchCount())
       throw Error("CullFrame: mesh '" + m.host->source + "' has " +
@@ -97,12 +99,50 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
     base += m.gpu->patchCount();
     visibility_.push_back(
         std::make_unique<VisibilityBuffer>(context, *programs_, *m.gpu, options.firstFrame));
+    // Issue 10: an instance joins the batch of an earlier one with the same patch set and
+    // the same cull configuration; its model is its own.
+    auto same = [&](const Batch& b) {
+      const CullMesh& o = meshes_[b.members.front()];
+      const auto validity = [](const CullMesh& x) {
+        return x.backPatchValidity
+                   ? std::optional<std::pair<bool, std::string>>(
+                         {x.backPatchValidity->enabled, x.backPatchValidity->reason})
+                   : std::nullopt;
+      };
+      return o.gpu == m.gpu && o.host == m.host && o.cullData == m.cullData &&
+             o.displacementMap == m.displacementMap && o.uvCorners.data() == m.uvCorners.data() &&
+             o.displacedKernel.extension == m.displacedKernel.extension &&
+             o.displacedKernel.box == m.displacedKernel.box && validity(o) == validity(m);
+    };
+    auto batch = options.batchInstances ? std::find_if(batches_.begin(), batches_.end(), same)
+                                        : batches_.end();
+    if (batch == batches_.end()) {
+      batches_.emplace_back();
+      batch = batches_.end() - 1;
+    }
+    batchOf_.push_back(size_t(batch - batches_.begin()));
+    slotOf_.push_back(uint32_t(batch->members.size()));
+    batch->members.push_back(i);
+  }
+  for (Batch& b : batches_) {
+    const CullMesh& m = meshes_[b.members.front()];
     CullSettings settings = cull;
     if (m.backPatchValidity) settings.backPatchValidity = *m.backPatchValidity;
-    passes_.push_back(
-        !anyStage    ? nullptr
-        : m.cullData ? std::make_unique<CullPass>(context, *m.gpu, *m.host, settings, *m.cullData)
-                     : std::make_unique<CullPass>(context, *m.gpu, *m.host, settings));
+    if (m.displacementMap) {
+      settings.displacementMap = m.displacementMap;
+      settings.uvCorners = m.uvCorners;
+      settings.displacedKernel = m.displacedKernel;
+    }
+    settings.instanceCount = uint32_t(b.members.size());
+    if (anyStage)
+      b.pass = m.cullData
+                   ? std::make_unique<CullPass>(context, *m.gpu, *m.host, settings, *m.cullData)
+                   : std::make_unique<CullPass>(context, *m.gpu, *m.host, settings);
+    if (anyStage && b.members.size() > 1)
+      for (size_t k = 0; k < b.members.size(); ++k)
+        b.results.emplace_back(
+            context, std::max<size_t>(4, size_t{m.gpu->patchCount()} * 4),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   }
   if (!anyStage) {
     survivedResults_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
@@ -205,21 +245,52 @@ void CullFrame::recordFirstPass(VkCommandBuffer cmd, const Camera& camera,
   renderer_.endPass(cmd);
 }
 
-void CullFrame::recordCull(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot) {
-  for (size_t m = 0; m < meshes_.size(); ++m) {
-    const Chunks c = chunks(m);
-    if (!passes_[m]) {
-      visibility_[m]->recordUpdate(cmd, survivedResults_, c.bezier, c.gregory);
-    } else {
-      // One dispatch: frustum → back-patch → Hi-Z occlusion, a result code per patch.
-      passes_[m]->record(cmd, instanceCamera(camera, meshes_[m].model),
-                         options_.render.tessellation, stage_ ? stage_->set() : VK_NULL_HANDLE);
-      vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kComputeRead);
-      visibility_[m]->recordUpdate(cmd, passes_[m]->resultsBuffer(), c.bezier, c.gregory);
-    }
-    visibility_[m]->recordStatsCopy(cmd, slot.counters,
-                                    VkDeviceSize{m} * VisibilityBuffer::kStatsCopyWords * 4);
+void CullFrame::recordBatchCull(VkCommandBuffer cmd, const Camera& camera, Batch& batch) {
+  // One dispatch for every instance: frustum → back-patch → Hi-Z occlusion, a result code
+  // per (instance, patch), each instance culled in its object space with view · model
+  // composed in double (instanceCamera).
+  std::vector<Camera> cameras;
+  for (size_t m : batch.members) cameras.push_back(instanceCamera(camera, meshes_[m].model));
+  batch.pass->record(cmd, cameras, options_.render.tessellation,
+                     stage_ ? stage_->set() : VK_NULL_HANDLE);
+  if (batch.members.size() == 1) {
+    vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kComputeRead);
+    return;
   }
+  // Each instance's codes into its own buffer for its status update (VisibilityBuffer
+  // reads a whole buffer).
+  vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kTransferRead);
+  const VkDeviceSize bytes = VkDeviceSize{batch.pass->results().size()} * 4;
+  for (size_t k = 0; k < batch.members.size(); ++k) {
+    const VkBufferCopy region{k * bytes, 0, bytes};
+    if (bytes > 0)
+      vkCmdCopyBuffer(cmd, batch.pass->resultsBuffer().handle(), batch.results[k].handle(), 1,
+                      &region);
+  }
+  vulkan::memoryBarrier(cmd, vulkan::scope::kTransferWrite, vulkan::scope::kComputeRead);
+}
+
+void CullFrame::recordCull(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot) {
+  for (Batch& batch : batches_) {
+    if (batch.pass) recordBatchCull(cmd, camera, batch);
+    for (size_t k = 0; k < batch.members.size(); ++k) {
+      const size_t m = batch.members[k];
+      const Chunks c = chunks(m);
+      const vulkan::Buffer& results = !batch.pass             ? survivedResults_
+                                      : batch.results.empty() ? batch.pass->resultsBuffer()
+                                                              : batch.results[k];
+      visibility_[m]->recordUpdate(cmd, results, c.bezier, c.gregory);
+      visibility_[m]->recordStatsCopy(cmd, slot.counters,
+                                      VkDeviceSize{m} * VisibilityBuffer::kStatsCopyWords * 4);
+    }
+  }
+}
+
+uint64_t CullFrame::cullDispatches() const {
+  uint64_t n = 0;
+  for (const Batch& b : batches_)
+    if (b.pass) n += b.pass->dispatchCount();
+  return n;
 }
 
 void CullFrame::recordSecondPass(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot) {
@@ -308,8 +379,9 @@ CullFrameStats CullFrame::render(const Camera& camera,
 
 std::vector<uint32_t> CullFrame::readResults(size_t mesh) const {
   const uint32_t n = meshes_.at(mesh).gpu->patchCount();
-  if (!passes_[mesh]) return std::vector<uint32_t>(n, shader::kStageNone);
-  const auto r = passes_[mesh]->results();
+  const CullPass* pass = cullPass(mesh);
+  if (!pass) return std::vector<uint32_t>(n, shader::kStageNone);
+  const auto r = pass->results(slotOf_[mesh]);
   return std::vector<uint32_t>(r.begin(), r.begin() + n);
 }
 

@@ -4,8 +4,9 @@
 /// meshes and triangle occluders:
 ///   1. draw the occluders and the patches visible last frame            → depth
 ///   2. build the Hi-Z pyramid from that depth (one dispatch, hiz_pyramid.h)
-///   3. cull every patch (one dispatch of the cull kernel, cull_pass.h: frustum, back-patch,
-///      Hi-Z occlusion), update its status, build the draw lists
+///   3. cull every patch (one dispatch of the cull kernel per patch set, covering all its
+///      instances, cull_pass.h: frustum, back-patch, Hi-Z occlusion), update each
+///      instance's status, build the draw lists
 ///   4. draw the patches that became visible                             → final image
 /// The aggressive mode (§3.1) skips 4: patches that become visible appear one frame late.
 /// Each mesh keeps its own VisibilityBuffer for this view, so another CullFrame (a second
@@ -61,6 +62,11 @@ struct CullFrameOptions {
   /// normal path, one submission per frame. (Timestamps are not used for the split:
   /// lavapipe's compute timestamps after graphics work are not trustworthy, PLATFORM.md.)
   bool timePasses = false;
+  /// Instances sharing a patch set (the same GpuPatchSet, host PatchSet, cull data,
+  /// back-patch validity and displacement) are culled by one CullPass: one dispatch per
+  /// view for all of them (issue 10), each keeping its own status. False: a pass per
+  /// instance (the frame before instancing, kept for comparison).
+  bool batchInstances = true;
   /// Slots of the statistics ring: the statistics of frame N can be read with stats(N)
   /// until frame N + statsSlots is recorded. At least the application's frames in flight.
   uint32_t statsSlots = 3;
@@ -104,6 +110,12 @@ struct CullMesh {
   /// Back-patch validity of this mesh, instead of CullFrameOptions::cull's (a scene's meshes
   /// differ: closed or not, static or deforming).
   std::optional<bound::BackPatchValidity> backPatchValidity;
+  /// A displaced mesh (its GpuPatchSet draws with the map), instead of
+  /// CullFrameOptions::cull's: the map and uvCorners (borrowed) and the displaced bound
+  /// the frustum and occlusion stages test (CullSettings::displacementMap).
+  const bound::DisplacementMap* displacementMap = nullptr;
+  std::span<const glm::dvec2> uvCorners;
+  CullMethod::Displaced displacedKernel;
 };
 
 /// \brief The frame pipeline of one view.
@@ -168,8 +180,15 @@ class CullFrame {
   bool occlusion() const { return pyramid_ != nullptr; }
   /// \throws osd_cull::Error without occlusion.
   const HiZPyramid& pyramid() const;
-  /// \brief The cull pass of `mesh`, or nullptr when no stage is enabled.
-  const CullPass* cullPass(size_t mesh) const { return passes_.at(mesh).get(); }
+  /// \brief The cull pass of `mesh` (shared by the instances of its patch set, see
+  /// CullFrameOptions::batchInstances), or nullptr when no stage is enabled.
+  const CullPass* cullPass(size_t mesh) const { return batches_.at(batchOf_.at(mesh)).pass.get(); }
+  /// \brief Mesh `mesh`'s instance index in its cullPass().
+  uint32_t instanceInPass(size_t mesh) const { return slotOf_.at(mesh); }
+  /// \brief Cull passes: one per patch set (one per mesh without batchInstances).
+  size_t cullPassCount() const { return batches_.size(); }
+  /// \brief Cull dispatches recorded since construction, all passes.
+  uint64_t cullDispatches() const;
   size_t meshCount() const { return meshes_.size(); }
   /// \brief Moves mesh `mesh` (an instance) for the next frames.
   void setModel(size_t mesh, const glm::dmat4& model) { meshes_.at(mesh).model = model; }
@@ -206,8 +225,19 @@ class CullFrame {
   std::vector<uint32_t> itemBases_;
   std::unique_ptr<VisibilityPrograms> programs_;
   std::vector<std::unique_ptr<VisibilityBuffer>> visibility_;
-  std::vector<std::unique_ptr<CullPass>> passes_;  // null when no stage is enabled
-  vulkan::Buffer survivedResults_;                 // all kStageNone, used without a pass
+  // The meshes culled by one pass (one dispatch): the instances of a patch set.
+  struct Batch {
+    std::unique_ptr<CullPass> pass;  // null when no stage is enabled
+    std::vector<size_t> members;     // mesh indices, in the pass's instance order
+    // With several members: each one's result codes, copied from the pass's shared buffer
+    // for its VisibilityBuffer update.
+    std::vector<vulkan::Buffer> results;
+  };
+  void recordBatchCull(VkCommandBuffer cmd, const Camera& camera, Batch& batch);
+  std::vector<Batch> batches_;
+  std::vector<size_t> batchOf_;     // per mesh
+  std::vector<uint32_t> slotOf_;    // per mesh: its instance in the batch
+  vulkan::Buffer survivedResults_;  // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
   std::vector<std::unique_ptr<StatsSlot>> slots_;  // the statistics ring

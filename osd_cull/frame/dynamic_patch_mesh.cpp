@@ -35,6 +35,25 @@ void requireFinite(std::span<const glm::dvec3> positions, int start) {
   }
 }
 
+// The pass of `key`, made by `make` and run once when first asked for.
+template <class Key, class Make>
+BoundsPass& findOrRun(std::map<Key, std::unique_ptr<BoundsPass>>& passes, Key key,
+                      double pointError, Make make) {
+  auto it = passes.find(key);
+  if (it == passes.end()) {
+    std::unique_ptr<BoundsPass> pass = make();
+    pass->run(pointError);
+    it = passes.emplace(key, std::move(pass)).first;
+  }
+  return *it->second;
+}
+
+template <class Key>
+const BoundsPass* findPass(const std::map<Key, std::unique_ptr<BoundsPass>>& passes, Key key) {
+  const auto it = passes.find(key);
+  return it == passes.end() ? nullptr : it->second.get();
+}
+
 }  // namespace
 
 const char* toString(PointUpdatePath path) { return path == PointUpdatePath::Cpu ? "cpu" : "gpu"; }
@@ -124,9 +143,13 @@ bool DynamicPatchMesh::update() {
   if (!moved_) return false;
   updatePoints();
   const auto start = std::chrono::steady_clock::now();
-  if (!bounds_.empty())
+  std::vector<BoundsPass*> passes;
+  for (auto& [method, pass] : bounds_) passes.push_back(pass.get());
+  for (auto& [extension, pass] : displacedBounds_)
+    if (pass->dependsOnPoints()) passes.push_back(pass.get());
+  if (!passes.empty())
     context_.submit([&](VkCommandBuffer cmd) {
-      for (auto& [method, pass] : bounds_) pass->record(cmd, pointError_);
+      for (BoundsPass* pass : passes) pass->record(cmd, pointError_);
     });
   times_.boundsMs = msSince(start);
   moved_ = false;
@@ -134,18 +157,29 @@ bool DynamicPatchMesh::update() {
 }
 
 const vulkan::Buffer& DynamicPatchMesh::cullData(bound::BackPatchMethod method) {
-  auto it = bounds_.find(method);
-  if (it == bounds_.end()) {
-    auto pass = std::make_unique<BoundsPass>(context_, *gpu_, method);
-    pass->run(pointError_);
-    it = bounds_.emplace(method, std::move(pass)).first;
-  }
-  return it->second->cullData();
+  return findOrRun(bounds_, method, pointError_,
+                   [&] { return std::make_unique<BoundsPass>(context_, *gpu_, method); })
+      .cullData();
 }
 
 const BoundsPass* DynamicPatchMesh::boundsPass(bound::BackPatchMethod method) const {
-  const auto it = bounds_.find(method);
-  return it == bounds_.end() ? nullptr : it->second.get();
+  return findPass(bounds_, method);
+}
+
+const vulkan::Buffer& DynamicPatchMesh::displacedCullData(const bound::DisplacementMap& map,
+                                                          std::span<const glm::dvec2> uvCorners,
+                                                          bound::DisplacedExtension extension) {
+  return findOrRun(displacedBounds_, extension, pointError_,
+                   [&] {
+                     return std::make_unique<BoundsPass>(
+                         context_, *gpu_, extension,
+                         bound::displacementRanges(host_, uvCorners, map));
+                   })
+      .cullData();
+}
+
+const BoundsPass* DynamicPatchMesh::displacedBoundsPass(bound::DisplacedExtension extension) const {
+  return findPass(displacedBounds_, extension);
 }
 
 const PatchSet& DynamicPatchMesh::patches() {
@@ -160,6 +194,8 @@ DynamicMeshCounters DynamicPatchMesh::counters() const {
   DynamicMeshCounters c;
   c.pointUpdates = pointUpdates_;
   for (const auto& [method, pass] : bounds_) c.boundsDispatches += pass->dispatchCount();
+  for (const auto& [extension, pass] : displacedBounds_)
+    c.boundsDispatches += pass->dispatchCount();
   return c;
 }
 

@@ -17,16 +17,29 @@
 /// (double or float xyz). update() then recomputes the control points through the patch
 /// point matrix (osd_cull/patch/point_matrix.h), on the CPU in double (uploaded as float) or
 /// on the GPU with the Vulkan stencil evaluator (osd/gpu_point_update.h, float), as
-/// PointUpdatePath says, and runs the bounds pass of every cone method in use
-/// (frame/cull/bounds_pass.h) in one submission. A frame whose cage did not move runs
-/// nothing (counters() proves it). Temporal visibility (CullFrame) needs nothing else: the
-/// two-pass frame simply re-tests the moved patches.
+/// PointUpdatePath says, and runs the bounds pass of every back-patch method and displaced
+/// extension in use (frame/cull/bounds_pass.h) in one submission. A frame whose cage did
+/// not move runs nothing (counters() proves it). Temporal visibility (CullFrame) needs
+/// nothing else: the two-pass frame simply re-tests the moved patches.
+///
+/// Every back-patch method has per-frame cull data (cullData(): tcone, ncone and, for their
+/// Gregory patches, the tangent-plane methods; BoundsPass::hasCullData), and so has every
+/// displaced kernel (displacedCullData(): the cones of ACoN and CoN, Nießner & Loop §4.2,
+/// next to the static Dmin/Dmax of the map), so a deforming mesh can be culled with any of
+/// them:
+///
+///   CullSettings s;  s.displacementMap = &map;  s.uvCorners = uvCorners;
+///   s.occlusion = "con-caf";  // or displacedKernel = {CoN, CAF} with another occlusion
+///   CullPass pass(context, mesh.gpu(), mesh.patches(), s,
+///                 mesh.displacedCullData(map, uvCorners, bound::DisplacedExtension::CoN));
 
 #include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/bound/displaced_bounds.h"
 #include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/draw/gpu_patch_set.h"
 #include "osd_cull/patch/extract_patches.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -57,7 +70,7 @@ const char* toString(PointUpdatePath path);
 /// \brief Work counters of a DynamicPatchMesh (a static mesh stops adding to them).
 struct DynamicMeshCounters {
   uint64_t pointUpdates = 0;      ///< control point recomputations
-  uint64_t boundsDispatches = 0;  ///< bounds pass dispatches, all methods
+  uint64_t boundsDispatches = 0;  ///< bounds pass dispatches, all methods and extensions
 };
 
 /// \brief Wall time of the last update() that ran, in ms.
@@ -96,12 +109,27 @@ class DynamicPatchMesh {
   /// waits for both. Otherwise nothing. Returns whether it ran.
   bool update();
 
-  /// \brief The cull data of a cone method for CullPass, recomputed by every update() that
-  /// runs. The first call for a method makes its bounds pass and runs it once.
-  /// \throws osd_cull::Error for a method without cull data (see BoundsPass).
+  /// \brief The cull data of a back-patch method (TCone, NCone, TangentPlane) for
+  /// CullPass, recomputed by every update() that runs. The first call for a method makes its
+  /// bounds pass and runs it once.
+  /// \throws osd_cull::Error for a method without cull data (see BoundsPass::hasCullData).
   const vulkan::Buffer& cullData(bound::BackPatchMethod method);
   /// \brief The bounds pass of `method`, nullptr before cullData(method).
   const BoundsPass* boundsPass(bound::BackPatchMethod method) const;
+
+  /// \brief The displaced cull data of `extension` for a CullPass whose settings give the
+  /// same `map` and `uvCorners` (PatchExtraction::uvCorners of this mesh, 4 per patch) and
+  /// a displaced kernel of this extension. Dmin/Dmax are computed once (they do not move
+  /// with the cage); the cones (ACoN, CoN) are recomputed by every update() that runs (Full
+  /// has none and is not rerun). The first call for an extension makes its bounds pass and
+  /// runs it once; `map` is borrowed only for that call, and later calls for the extension
+  /// return the data of the first call's map and UVs.
+  /// \throws osd_cull::Error for no or the wrong number of UV corners.
+  const vulkan::Buffer& displacedCullData(const bound::DisplacementMap& map,
+                                          std::span<const glm::dvec2> uvCorners,
+                                          bound::DisplacedExtension extension);
+  /// \brief The displaced bounds pass of `extension`, nullptr before displacedCullData().
+  const BoundsPass* displacedBoundsPass(bound::DisplacedExtension extension) const;
 
   GpuPatchSet& gpu() { return *gpu_; }
   /// \brief The host patch set with the current control points in double (computed from the
@@ -129,6 +157,7 @@ class DynamicPatchMesh {
   std::unique_ptr<osd::GpuPointUpdate> gpuUpdate_;  // GPU path
   double stencilErrorFactor_ = 0.0;                 // max over rows of (entries + 2) sum |w|
   std::map<bound::BackPatchMethod, std::unique_ptr<BoundsPass>> bounds_;
+  std::map<bound::DisplacedExtension, std::unique_ptr<BoundsPass>> displacedBounds_;
   bool moved_ = false;
   bool hostStale_ = false;
   double pointError_ = 0.0;

@@ -4,6 +4,7 @@
 /// adapters::loadScene() makes of a scene file and scene::builtInScene() of the built-in one.
 
 #include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/bound/displaced_map.h"
 #include "osd_cull/frame/camera.h"
 #include "osd_cull/frame/draw/triangle_mesh.h"
 #include "osd_cull/patch/extract_patches.h"
@@ -11,6 +12,7 @@
 #include "osd_cull/scene/scene_description.h"
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace osd_cull::scene {
@@ -27,6 +29,11 @@ struct SceneMesh {
   bound::BackPatchValidity validity;         ///< whether back-patch culling is valid on the cage
   std::unique_ptr<CageAnimation> animation;  ///< null: static
   frame::Bounds restBounds;                  ///< of the rest-pose control points
+  /// A displaced (static) mesh: its map, drawn along extraction.uvCorners; culled with the
+  /// displaced bound `displacedExtension` applied to `displacedBox`.
+  std::optional<bound::DisplacementMap> displacementMap;
+  bound::DisplacedExtension displacedExtension = bound::DisplacedExtension::ACoN;
+  bound::DisplacedBox displacedBox = bound::DisplacedBox::CAF;
 };
 
 /// \brief A description whose meshes and occluders are loaded.

@@ -10,6 +10,7 @@
 /// are our `meshes`, its `graph` nodes our `instances`, its `view` our `views`, and its
 /// `settings` our `settings`.
 
+#include "osd_cull/bound/displaced_bounds.h"
 #include "osd_cull/patch/adaptive_patches.h"
 #include "osd_cull/patch/cage_mesh.h"
 #include "osd_cull/scene/cage_animation.h"
@@ -41,6 +42,20 @@ struct AnimationSource {
 /// \brief "none", "twist", "bend", "wave", "skin", "sequence".
 const char* toString(AnimationSource::Kind kind);
 
+/// \brief A mesh's scalar displacement P + N · scale · (D(s,t) − midlevel) and the displaced
+/// bound its culls test: the scene-file form of the `render`/`verify` options
+/// --displacement ... --displaced-box (docs/algorithms/displacement.md; Niessner & Loop
+/// §4.2, Sathe's per-patch extents).
+struct DisplacementDescription {
+  std::string source;  ///< absolute path of a PNG or EXR map, or "procedural"
+  double scale = 1.0;
+  std::optional<double> midlevel;  ///< unset: 0.5 for PNG and procedural, 0 for EXR
+  char channel = 'r';              ///< 'r', 'g', 'b' or 'a'
+  uint32_t maxLod = 0;             ///< coarsest mip level the draw samples
+  bound::DisplacedExtension extension = bound::DisplacedExtension::ACoN;
+  bound::DisplacedBox box = bound::DisplacedBox::CAF;
+};
+
 /// \brief One subdivision mesh: a cage file or a built-in cage, refined with `patches`.
 struct MeshDescription {
   std::string name;
@@ -49,6 +64,9 @@ struct MeshDescription {
   std::optional<Scheme> scheme;
   PatchOptions patches;  ///< isolation level, end caps
   AnimationSource animation;
+  /// Displaced meshes are static (a deforming mesh's per-frame bounds pass has no displaced
+  /// bounds yet); back-patch culling is off for them.
+  std::optional<DisplacementDescription> displacement;
   /// Move the cage's bounding-box centre to the origin at load and put the offset into
   /// every instance's transform, so control points stay small (large coordinates).
   bool recentre = true;

@@ -2,6 +2,7 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_methods.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
 #include "osd_cull/scene/scene_eval.h"
 
@@ -15,13 +16,16 @@ namespace osd_cull::scene {
 struct ScenePlayer::Points {
   size_t mesh = 0;
   double timeOffset = 0.0;
-  // A static mesh: its rest pose.
+  // A static mesh: its rest pose, and its displacement when it has a map (destroyed after
+  // the patch set that draws with it).
   PatchSet rest;
+  std::unique_ptr<frame::GpuDisplacement> displacement;
   std::unique_ptr<frame::GpuPatchSet> restGpu;
   // A deforming mesh: the cage input, control points and GPU bounds passes of
   // frame/dynamic_patch_mesh.h.
   std::unique_ptr<frame::DynamicPatchMesh> dynamic;
-  std::vector<glm::dvec3> cage;  // scratch for the animation
+  std::vector<glm::dvec3> cage;   // scratch for the animation
+  std::optional<double> posedAt;  // the mesh time of the current pose (deforming)
   frame::Bounds bounds;
 
   frame::GpuPatchSet& gpu() { return dynamic ? dynamic->gpu() : *restGpu; }
@@ -29,7 +33,7 @@ struct ScenePlayer::Points {
 };
 
 ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
-                         const frame::CullFrameOptions& options)
+                         const frame::CullFrameOptions& options, frame::PointUpdatePath pointUpdate)
     : context_(context), scene_(scene), options_(options) {
   const SceneDescription& d = scene.description;
   if (d.instances.empty()) throw Error("scene " + d.source + ": no instances to draw");
@@ -45,11 +49,16 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
       p->mesh = inst.mesh;
       p->timeOffset = offset;
       if (mesh.animation) {
-        p->dynamic =
-            std::make_unique<frame::DynamicPatchMesh>(context, mesh.extraction, mesh.restCage);
+        p->dynamic = std::make_unique<frame::DynamicPatchMesh>(context, mesh.extraction,
+                                                               mesh.restCage, pointUpdate);
       } else {
         p->rest = mesh.extraction.patches;
         p->restGpu = std::make_unique<frame::GpuPatchSet>(context, p->rest);
+        if (mesh.displacementMap) {
+          p->displacement = std::make_unique<frame::GpuDisplacement>(
+              context, *mesh.displacementMap, mesh.extraction.uvCorners, p->rest.patchCount());
+          p->restGpu->setDisplacement(p->displacement.get());
+        }
       }
       p->bounds = mesh.restBounds;
       points_.push_back(std::move(p));
@@ -75,6 +84,11 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
                       .host = &p.host(),
                       .model = inst.model,
                       .backPatchValidity = mesh.validity};
+    if (mesh.displacementMap) {
+      m.displacementMap = &*mesh.displacementMap;
+      m.uvCorners = mesh.extraction.uvCorners;
+      m.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
+    }
     if (p.dynamic && mesh.validity.enabled) {
       if (coneMethod)
         m.cullData = &p.dynamic->cullData(*coneMethod);
@@ -113,7 +127,10 @@ void ScenePlayer::seek(uint32_t frameIndex) {
   const double t = d.settings.seconds(frameIndex);
   for (auto& p : points_) {
     const SceneMesh& mesh = scene_.meshes[p->mesh];
-    if (!mesh.animation) continue;
+    // A static mesh is never re-evaluated; a deforming one only when its time changed, and
+    // then DynamicPatchMesh::update() recomputes its points and its bounds-pass cull data.
+    if (!mesh.animation || p->posedAt == t + p->timeOffset) continue;
+    p->posedAt = t + p->timeOffset;
     p->cage.resize(mesh.animation->vertexCount());
     mesh.animation->positions(t + p->timeOffset, p->cage);
     for (glm::dvec3& v : p->cage) v -= mesh.recentreOffset;
@@ -165,17 +182,66 @@ frame::FrameStats ScenePlayer::renderUnculled(size_t view, frame::RenderTarget& 
   return renderer_->render(target, v.camera, draws, occluderPtrs_, o);
 }
 
+UnculledComparison ScenePlayer::compareWithUnculled(size_t view, frame::RenderTarget& scratch) {
+  frame::RenderTarget& culled = target(view);
+  if (scratch.width() != culled.width() || scratch.height() != culled.height())
+    throw Error("ScenePlayer::compareWithUnculled: the scratch target is " +
+                std::to_string(scratch.width()) + "x" + std::to_string(scratch.height()) +
+                ", view " + std::to_string(view) + " renders " + std::to_string(culled.width()) +
+                "x" + std::to_string(culled.height()));
+  UnculledComparison c;
+  c.unculled = renderUnculled(view, scratch);
+  const std::vector<uint32_t> a = culled.readItems(context_);
+  const std::vector<uint32_t> b = scratch.readItems(context_);
+  c.pixels = a.size();
+  for (size_t p = 0; p < a.size(); ++p) {
+    c.covered += b[p] != 0;
+    c.lost += b[p] != 0 && a[p] == 0;
+    c.differing += a[p] != b[p];
+  }
+  return c;
+}
+
+uint32_t ScenePlayer::users(const Points& points) const {
+  uint32_t n = 0;
+  for (const Instance& i : instances_) n += points_[i.points].get() == &points;
+  return n;
+}
+
+std::vector<MeshWork> ScenePlayer::work() const {
+  std::vector<MeshWork> out;
+  for (const auto& p : points_) {
+    MeshWork w{.mesh = scene_.meshes[p->mesh].name,
+               .deforms = p->dynamic != nullptr,
+               .instances = users(*p)};
+    if (p->dynamic) {
+      const frame::DynamicMeshCounters c = p->dynamic->counters();
+      w.pointUpdates = c.pointUpdates;
+      w.boundsDispatches = c.boundsDispatches;
+    }
+    out.push_back(w);
+  }
+  return out;
+}
+
+frame::DynamicPatchMesh* ScenePlayer::dynamicMesh(size_t i) {
+  return points_.at(instances_.at(i).points)->dynamic.get();
+}
+
 std::vector<std::string> ScenePlayer::describe() const {
   std::vector<std::string> lines;
   for (const auto& p : points_) {
     const SceneMesh& mesh = scene_.meshes[p->mesh];
-    size_t users = 0;
-    for (const Instance& i : instances_) users += points_[i.points].get() == p.get();
     const PatchSet& host = p->host();
     std::string line = "mesh '" + mesh.name + "': " + std::to_string(host.bezierCount) +
                        " Bezier + " + std::to_string(host.gregoryCount) + " Gregory patches, " +
-                       std::to_string(users) + " instance(s) share its points";
+                       std::to_string(users(*p)) + " instance(s) share its points";
     line += mesh.animation ? ", deforms (" + mesh.animation->describe() + ")" : ", static";
+    if (mesh.displacementMap)
+      line += ", displaced (" + mesh.displacementMap->name() + ", scale " +
+              std::to_string(mesh.displacementMap->scale()) + ", culled with " +
+              bound::displacedKernelName(mesh.displacedExtension, mesh.displacedBox) +
+              "; back-patch culling off)";
     if (glm::length(mesh.recentreOffset) > 0.0) {
       const glm::dvec3& o = mesh.recentreOffset;
       line += ", recentred by (" + std::to_string(o.x) + ", " + std::to_string(o.y) + ", " +

@@ -44,6 +44,19 @@ DispatchSize checkedGroups2D(const Context& context, uint64_t groups, std::strin
   return d;
 }
 
+DispatchSize checkedGroupsXY(const Context& context, uint64_t x, uint64_t y,
+                             std::string_view what) {
+  const auto& limits = context.info().limits;
+  if (x > limits.maxComputeWorkGroupCount[0])
+    exceeded(what, x, "workgroups in x", "maxComputeWorkGroupCount[0]",
+             limits.maxComputeWorkGroupCount[0]);
+  if (y > limits.maxComputeWorkGroupCount[1])
+    exceeded(what, y, "workgroups in y", "maxComputeWorkGroupCount[1]",
+             limits.maxComputeWorkGroupCount[1]);
+  return {static_cast<uint32_t>(std::max<uint64_t>(1, x)),
+          static_cast<uint32_t>(std::max<uint64_t>(1, y))};
+}
+
 void checkDrawIndirectCount(const Context& context, uint64_t drawCount, std::string_view what) {
   const uint32_t limit = context.info().limits.maxDrawIndirectCount;
   if (drawCount > limit) exceeded(what, drawCount, "draws", "maxDrawIndirectCount", limit);

@@ -36,6 +36,10 @@ uint32_t checkedGroups1D(const Context& context, uint64_t groups, std::string_vi
 /// cannot hold them.
 DispatchSize checkedGroups2D(const Context& context, uint64_t groups, std::string_view what);
 
+/// \brief A dispatch of exactly `x` by `y` groups (e.g. y = one row per instance).
+/// \throws osd_cull::Error naming maxComputeWorkGroupCount[0] or [1] when one does not fit.
+DispatchSize checkedGroupsXY(const Context& context, uint64_t x, uint64_t y, std::string_view what);
+
 /// \brief Checks that an indirect draw call of up to `drawCount` commands fits
 /// maxDrawIndirectCount.
 void checkDrawIndirectCount(const Context& context, uint64_t drawCount, std::string_view what);

@@ -8,6 +8,7 @@
 #include "mesh_patches.h"
 #include "mesh_source.h"
 #include "option_checks.h"
+#include "plan_options.h"
 #include "render_args.h"
 #include "scene_render.h"
 #include "scene_source.h"
@@ -220,6 +221,36 @@ int run(const RenderArgs& args) {
     frameOptions.cull.uvCorners = scene.uvCorners;
     frameOptions.cull.displacedKernel = displacement.kernels[0];
   }
+  // The effect plan (docs/algorithms/plan.md): without --cull, each frame's stages are the
+  // planner's; a change rebuilds the pass (the hysteresis keeps changes rare).
+  const std::unique_ptr<plan::Planner> planner =
+      makePlanner(args.plan, context, !args.cull.mode.empty(), args.adaptive <= 0.0, std::cout);
+  std::optional<plan::Plan> lastPlan;
+  auto planFrame = [&](uint32_t f, const frame::Camera& view) {
+    plan::PlanInput in;
+    in.mesh = scene.patches.source;
+    in.view = "render";
+    in.bezier = scene.patches.bezierCount;
+    in.gregory = scene.patches.gregoryCount;
+    in.tess = args.tess;
+    in.objectBounds = frame::boundsOf(scene.patches.points);
+    in.camera = view;
+    in.displaced = displacementMap.has_value();
+    in.backPatchValidity = scene.backPatch;
+    in.occluders = !occluders.empty();
+    plan::Plan p = planner->plan("render", in, f);
+    if (!lastPlan || !(p.stages == lastPlan->stages)) {
+      printPlanChange(lastPlan ? &*lastPlan : nullptr, p, std::cout);
+      const frame::CullFrameOptions o = plan::applyPlan(p, frameOptions);
+      pass.reset();
+      cullFrame.reset();
+      if (!p.stages.occlusion.empty())
+        cullFrame = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, o);
+      else if (p.culls())
+        pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches, o.cull);
+    }
+    lastPlan = std::move(p);
+  };
   const std::vector<const frame::CullMethod*>* stages = nullptr;
   if (cull.occlusion()) {
     cullFrame = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, frameOptions);
@@ -258,8 +289,12 @@ int run(const RenderArgs& args) {
   frame::Camera view = camera;
   for (uint32_t f = 0; f < frames; ++f) {
     view = frame::orbit(camera, pivot, up, orbitDegrees * f);
+    if (planner) planFrame(f, view);
     if (cullFrame) {
       const frame::CullFrameStats stats = cullFrame->render(view, occluders);
+      if (planner)
+        planner->observe("render", *lastPlan, stats.culledFrustum, stats.culledBackPatch,
+                         stats.culledOcclusion, stats.patchesTotal);
       std::printf("%s\n", cullFrameLine(f, stats).c_str());
       jsonFrames.push_back(cullFrameJson(f, stats));
     } else {
@@ -276,6 +311,9 @@ int run(const RenderArgs& args) {
       if (pass) {
         uint32_t byStage[4] = {0, 0, 0, 0};
         for (uint32_t code : pass->results()) ++byStage[bound::CullCode{code}.stage() & 3u];
+        if (planner)
+          planner->observe("render", *lastPlan, byStage[1], byStage[2], 0,
+                           scene.patches.patchCount());
         std::printf("  culled %u of %u: frustum %u, back-patch %u\n",
                     scene.patches.patchCount() - stats.patchesDrawn, scene.patches.patchCount(),
                     byStage[1], byStage[2]);
@@ -401,6 +439,7 @@ Runner setup(CLI::App& app) {
       ->type_name("FILE.json");
   addDeviceOptions(app, args->device);
   addCullOptions(app, args->cull);
+  addPlanOptions(app, args->plan);
   app.add_flag("--status-view", args->statusView,
                "with occlusion: also write FILE_status.png, patches colored by\n"
                "their status (green visible, yellow newly visible, blue frustum-,\n"

@@ -5,6 +5,7 @@
 #include "mesh_patches.h"
 #include "mesh_source.h"
 #include "option_checks.h"
+#include "scene_source.h"
 
 #include "osd_cull/error.h"
 #include "osd_cull/scene/default_scene.h"
@@ -22,9 +23,14 @@ namespace osd_cull::cli {
 namespace {
 
 const char* kDescription =
-    R"(Opens a window on MESH (or the built-in scene) drawn with the tessellation pipeline and
-culled as the keys say, with a HUD of per-frame figures (patches drawn by pass, culled by
-stage, TES invocations, ms per pass) and a live plot of cull rate and frame time. Needs an
+    R"(Opens a window on MESH drawn with the tessellation pipeline and culled as the keys say,
+with a HUD of per-frame figures (patches drawn by pass, culled by stage, TES invocations,
+ms per pass, the animation frame) and a live plot of cull rate and frame time. MESH may
+also be a scene: a scene file (.json, docs/scene-format.md), an OBJ sequence pattern
+(walk_###.obj) or built-in:scene; space plays its animations (deforming meshes, moving
+instances, camera paths; v looks through its camera). Without MESH: the built-in static
+scene. The ms per pass come from a timed diagnostic frame every --time-passes frames
+(each pass submitted and waited for alone; the normal frame is one submission). Needs an
 X11 display: on a machine without one, run under `xvfb-run -a`.)";
 
 /// \brief The parsed options of `osd-cull view`.
@@ -39,6 +45,7 @@ struct ViewArgs {
   std::string screenshot;
   std::string script;
   bool noHud = false;
+  uint32_t timePasses = 30;
   vulkan::ContextOptions device;
 };
 
@@ -52,6 +59,7 @@ int run(const ViewArgs& args) {
   o.frames = args.frames;
   if (!args.screenshot.empty()) o.screenshot = args.screenshot;
   o.script = args.script;
+  o.timePassesEvery = args.timePasses;
   o.initial.showHud = !args.noHud;
   o.device = args.device.device;
   o.validate = args.device.validation;
@@ -62,20 +70,24 @@ int run(const ViewArgs& args) {
   viewer::ViewerScene scene;
   if (!source.path) {
     scene::Scene demo = scene::defaultScene(patchOptions);
-    scene.patches = std::move(demo.patches);
-    scene.occluders = std::move(demo.occluders);
-    scene.up = demo.up;
-    scene.viewDirection = demo.viewDirection;
-    scene.backPatch = {true, "built-in scene: closed cages, normals outward by construction"};
+    scene =
+        viewer::staticScene(std::move(demo.patches), std::move(demo.occluders),
+                            {true, "built-in scene: closed cages, normals outward by construction"},
+                            demo.up, demo.viewDirection);
+  } else if (isSceneArgument(*source.path)) {
+    scene = viewer::playedScene(loadSceneArgument(*source.path, 0));
+    std::cout << "scene " << scene.scene.description.source << ": "
+              << scene.scene.description.settings.frameCount << " frames at "
+              << scene.scene.description.settings.framesPerSecond << " fps (space plays)\n";
   } else {
     if (!std::filesystem::exists(*source.path)) throw Error(*source.path + ": no such file");
     const LoadedMesh loaded = loadMeshSource(source);
     MeshPatches mesh = meshPatches(loaded, patchOptions);
     for (const std::string& note : mesh.notes) std::cout << "note: " << note << "\n";
-    scene.patches = std::move(mesh.patches);
-    scene.backPatch = mesh.backPatch;
-    scene.up = loaded.bezier ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
-    scene.viewDirection = loaded.bezier ? glm::dvec3(0.6, -1.0, 0.5) : glm::dvec3(0.45, 0.35, 1.0);
+    const glm::dvec3 up = loaded.bezier ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 direction =
+        loaded.bezier ? glm::dvec3(0.6, -1.0, 0.5) : glm::dvec3(0.45, 0.35, 1.0);
+    scene = viewer::staticScene(std::move(mesh.patches), {}, mesh.backPatch, up, direction);
   }
   return viewer::runViewer(scene, o);
 }
@@ -109,9 +121,15 @@ Runner setup(CLI::App& app) {
   app.add_option("--script", args->script,
                  "keys to press, e.g. \"@2 c @4 s\": `@N` waits for frame N, a key\n"
                  "name presses it (as below; also plus, minus, space, esc),\n"
-                 "orbit:YAW,PITCH and zoom:FACTOR move the camera")
+                 "orbit:YAW,PITCH and zoom:FACTOR move the camera, shot writes the\n"
+                 "coming frame to FILE-frameN.png (FILE from --screenshot)")
       ->type_name("\"STEPS\"");
   app.add_flag("--no-hud", args->noHud, "start with the HUD hidden (key h)");
+  app.add_option("--time-passes", args->timePasses,
+                 "a timed diagnostic frame every N frames gives the HUD its ms per pass\n"
+                 "(default 30; 0: never)")
+      ->type_name("N")
+      ->check(integerIn(0, 10000000));
   addDeviceOptions(app, args->device);
   return [args] { return run(*args); };
 }

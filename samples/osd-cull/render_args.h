@@ -6,6 +6,7 @@
 #include "cull_options.h"
 #include "displacement_args.h"
 #include "mesh_source.h"
+#include "plan_options.h"
 
 #include "osd_cull/vk/context.h"
 
@@ -20,6 +21,7 @@ struct RenderArgs {
   MeshSource source;
   PatchOptions patchOptions;
   CullArgs cull;                  ///< cull.mode empty: not given (mesh: none; scene: all)
+  PlanArgs plan;                  ///< the mesh form: --plan auto plans when --cull is not given
   DisplacementArgs displacement;  ///< the mesh form only
   vulkan::ContextOptions device;
   std::string out;                 ///< required by the mesh form

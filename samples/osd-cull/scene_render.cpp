@@ -60,6 +60,9 @@ int renderScene(const RenderArgs& args) {
       args.stats.empty() ? std::nullopt : std::optional(args.stats);
   const std::optional<uint32_t> width = args.width, height = args.height;
   CullChoice cull = cullChoice(args.cull);
+  if (args.plan.mode == "auto" && args.cull.mode.empty())
+    std::cout << "plan: not applied to a scene yet, it plays with --cull all (`osd-cull plan "
+                 "SCENE` prints each instance's plan)\n";
   if (args.cull.mode.empty()) cull.mode = "all";
   const std::string& argument = *args.source.path;
   if (args.source.scheme) throw UsageError("--scheme does not apply to a scene");

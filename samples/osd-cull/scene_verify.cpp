@@ -10,6 +10,7 @@
 #include "osd_cull/scene/scene_player.h"
 #include "osd_cull/vk/context.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -24,8 +25,6 @@ On each of N frames (animations and instance motion evaluated), checks every met
 instance (culled in its own coordinates with view · model, each alone, as the mesh form)
 from the scene's own views at that frame and V random whole-scene views. Totals are summed
 over instances and frames; the JSON has the mesh form's fields plus "frames".)";
-
-namespace {}  // namespace
 
 int verifyScene(const VerifyArgs& args) {
   const uint32_t frames = args.frames.value_or(2);
@@ -47,6 +46,13 @@ int verifyScene(const VerifyArgs& args) {
   if (!args.json.empty()) checkOutputFile(args.json, "--json", {".json"});
 
   scene::LoadedScene loaded = loadSceneArgument(argument, frames);
+  // A displaced mesh is also checked with the displaced bound it is culled with (an
+  // occlusion method; the other meshes skip it).
+  for (const scene::SceneMesh& mesh : loaded.meshes)
+    if (const std::string kernel =
+            bound::displacedKernelName(mesh.displacedExtension, mesh.displacedBox);
+        mesh.displacementMap && std::find(methods.begin(), methods.end(), kernel) == methods.end())
+      methods.push_back(kernel);
   vulkan::Context context(args.device);
   frame::VerifyOptions options;
   options.tessellation.uniformLevel = tess;
@@ -84,8 +90,21 @@ int verifyScene(const VerifyArgs& args) {
       // A deforming instance is checked on this frame's points: a fresh verifier, whose
       // passes build their cones from those points.
       if (!verifiers[i] || mesh.animation) {
+        frame::VerifyOptions instanceOptions = options;
+        // A deforming instance's tcone and ncone read the cones the player's GPU bounds pass
+        // computed for this frame, as its frames are culled with (ScenePlayer).
+        if (frame::DynamicPatchMesh* dynamic = player.dynamicMesh(i);
+            dynamic && mesh.validity.enabled)
+          for (const std::string& m : methods)
+            if (const bound::BackPatchMethod ref = frame::cullMethod(m).reference;
+                ref == bound::BackPatchMethod::TCone || ref == bound::BackPatchMethod::NCone)
+              instanceOptions.cullData[ref] = &dynamic->cullData(ref);
+        if (mesh.displacementMap) {
+          instanceOptions.displacementMap = &*mesh.displacementMap;
+          instanceOptions.uvCorners = mesh.extraction.uvCorners;
+        }
         verifiers[i] = std::make_unique<frame::CullVerifier>(context, player.patches(i), methods,
-                                                             mesh.validity, options);
+                                                             mesh.validity, instanceOptions);
         if (f == d.settings.frameStart)
           for (const auto& s : verifiers[i]->skipped())
             skipped.emplace_back(s.first + " on " + d.instances[i].name, s.second);

@@ -143,13 +143,15 @@ void Hud::build(const HudFigures& f, const std::string& keys, bool show) {
     ImGui::Separator();
     ImGui::Text("cull: %s", f.cull.c_str());
     ImGui::Text("tessellation: %s   view: %s", f.tessellation.c_str(), f.mode.c_str());
+    ImGui::Text("animation: %s   camera: %s", f.animation.c_str(), f.camera.c_str());
     ImGui::Text("patches %u, drawn %u (pass 1: %u, pass 2: %u)", f.patches, drawn, f.drawnPass1,
                 f.drawnPass2);
     ImGui::Text("culled: frustum %u, back-patch %u, occlusion %u", f.culledFrustum,
                 f.culledBackPatch, f.culledOcclusion);
     ImGui::Text("TES invocations %llu", static_cast<unsigned long long>(f.tesInvocations));
-    ImGui::Text("ms: pass 1 %.1f, pyramid %.1f, cull %.1f, pass 2 %.1f, frame %.1f", f.pass1Ms,
+    ImGui::Text("ms: pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f; frame %.1f", f.pass1Ms,
                 f.pyramidMs, f.cullMs, f.pass2Ms, f.frameMs);
+    ImGui::TextWrapped("per pass: %s", f.timing.c_str());
     for (const auto& note : f.notes) ImGui::TextWrapped("%s", note.c_str());
     plot("cull rate %", cullRate_, 0.0f, 100.0f);
     plot("frame ms", frameMs_, 0.0f,

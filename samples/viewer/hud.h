@@ -25,6 +25,9 @@ class Window;
 /// \brief What the HUD shows for one frame.
 struct HudFigures {
   std::string device, scene, cull, tessellation, mode;
+  std::string animation;  ///< the animation frame and whether it plays
+  std::string camera;     ///< orbit or the scene's
+  std::string timing;     ///< where the ms per pass come from (PassTiming::describe)
   uint32_t patches = 0;
   uint32_t drawnPass1 = 0, drawnPass2 = 0;
   uint32_t culledFrustum = 0, culledBackPatch = 0, culledOcclusion = 0;

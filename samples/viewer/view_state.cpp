@@ -73,6 +73,9 @@ std::optional<std::string> pressKey(ViewState& s, std::string_view key) {
   if (key == "w") return "wireframe " + onOff(s.wireframe = !s.wireframe);
   if (key == "space")
     return "animation " + std::string((s.playing = !s.playing) ? "playing" : "paused");
+  if (key == "r") return "turntable " + onOff(s.turntable = !s.turntable);
+  if (key == "v")
+    return "camera " + std::string((s.sceneCamera = !s.sceneCamera) ? "of the scene" : "orbit");
   if (key == "z")
     return "cull camera " +
            std::string((s.freezeCull = !s.freezeCull) ? "frozen" : "follows the view");
@@ -99,7 +102,9 @@ std::string keyHelp() {
          "occlusion)\n"
          "  t        patch-type colors (regular, boundary, corner, Gregory)\n"
          "  w        wireframe\n"
-         "  space    animation (turntable) play/pause\n"
+         "  space    animation play/pause (deforming meshes, moving instances, camera paths)\n"
+         "  r        turntable (the orbit camera turns) on/off\n"
+         "  v        look through the scene's camera (and its path) / the orbit camera\n"
          "  z        freeze the cull camera and fly around what it culled\n"
          "  f        reset the camera;  h  HUD on/off;  q / Esc  quit\n"
          "  mouse    left drag: orbit, right drag or wheel: zoom\n";
@@ -131,6 +136,8 @@ std::vector<ScriptStep> parseScript(std::string_view text) {
       step.kind = ScriptStep::Kind::Orbit;
       step.a = parseNumber(args.substr(0, comma), token);
       step.b = parseNumber(args.substr(comma + 1), token);
+    } else if (token == "shot") {
+      step.kind = ScriptStep::Kind::Shot;
     } else if (token.starts_with("zoom:")) {
       step.kind = ScriptStep::Kind::Zoom;
       step.a = parseNumber(token.substr(5), token);
@@ -139,7 +146,8 @@ std::vector<ScriptStep> parseScript(std::string_view text) {
       ViewState scratch = probe;
       if (!pressKey(scratch, token))
         throw Error("--script: '" + token +
-                    "' is not a key, orbit:YAW,PITCH, zoom:F or @FRAME (keys:\n" + keyHelp() + ")");
+                    "' is not a key, orbit:YAW,PITCH, zoom:F, shot or @FRAME (keys:\n" + keyHelp() +
+                    ")");
       step.key = token;
     }
     steps.push_back(std::move(step));
@@ -159,12 +167,57 @@ std::vector<std::string> ScriptPlayer::beforeFrame(uint32_t frame, ViewState& st
     } else if (step.kind == ScriptStep::Kind::Zoom) {
       zoomCamera(state, step.a);
       lines.push_back("zoom " + std::to_string(state.zoom));
+    } else if (step.kind == ScriptStep::Kind::Shot) {
+      shot_ = true;
+      lines.push_back("screenshot of frame " + std::to_string(frame));
     } else if (auto line = pressKey(state, step.key)) {
       lines.push_back(*line);
     }
     ++next_;
   }
   return lines;
+}
+
+bool ScriptPlayer::hasShots() const {
+  return std::any_of(steps_.begin(), steps_.end(),
+                     [](const ScriptStep& s) { return s.kind == ScriptStep::Kind::Shot; });
+}
+
+std::string screenshotPath(const std::string& screenshot, uint32_t frame) {
+  const std::string suffix = "-frame" + std::to_string(frame);
+  const size_t dot = screenshot.rfind('.');
+  const size_t slash = screenshot.find_last_of("/\\");
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+    return screenshot + suffix;
+  return screenshot.substr(0, dot) + suffix + screenshot.substr(dot);
+}
+
+bool PassTiming::due(uint32_t frame) const {
+  return interval_ != 0 && (!last_ || frame >= *last_ + interval_);
+}
+
+void PassTiming::record(uint32_t frame, double pass1Ms, double pyramidMs, double cullMs,
+                        double pass2Ms) {
+  last_ = frame;
+  pass1Ms_ = pass1Ms;
+  pyramidMs_ = pyramidMs;
+  cullMs_ = cullMs;
+  pass2Ms_ = pass2Ms;
+}
+
+std::string PassTiming::describe(uint32_t frame) const {
+  if (interval_ == 0) return "per-pass timing off (--time-passes 0)";
+  if (!last_) return "no timed frame yet";
+  const uint32_t age = frame - *last_;
+  return "timed frame " + std::to_string(*last_) + " (" + std::to_string(age) +
+         (age == 1 ? " frame" : " frames") +
+         " ago; wall clock of each pass submitted alone, every " + std::to_string(interval_) +
+         " frames)";
+}
+
+void advanceAnimation(ViewState& state, uint32_t frameCount) {
+  if (!state.playing || frameCount < 2) return;
+  state.sceneFrame = (state.sceneFrame + 1) % frameCount;
 }
 
 void orbitCamera(ViewState& state, double yawDegrees, double pitchDegrees) {

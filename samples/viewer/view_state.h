@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace osd_cull::viewer {
@@ -27,8 +28,11 @@ struct ViewState {
   bool statusColors = false;  ///< color patches by cull status (needs a cull stage)
   bool typeColors = false;    ///< regular / boundary / corner / Gregory
   bool wireframe = false;
-  bool playing = false;     ///< turntable rotation
-  bool freezeCull = false;  ///< keep the cull camera; fly around what it culled
+  bool playing = false;      ///< the scene's animations advance one frame per frame drawn
+  uint32_t sceneFrame = 0;   ///< the animation frame shown, from the scene's first frame
+  bool turntable = false;    ///< the orbit camera turns about the up axis
+  bool sceneCamera = false;  ///< look through the scene's camera (its path) instead of orbiting
+  bool freezeCull = false;   ///< keep the cull camera; fly around what it culled
   bool showHud = true;
   bool quit = false;
 
@@ -39,6 +43,37 @@ struct ViewState {
   bool anyCull() const { return frustum || backPatch || occlusion; }
   /// \brief "frustum+backpatch(tcone)+hiz", or "none".
   std::string cullLabel() const;
+};
+
+/// \brief When the viewer draws a timed diagnostic frame (CullFrameOptions::timePasses:
+/// each pass submitted, waited for and timed with the wall clock) to show ms per pass,
+/// and the figures of the last one. The normal frame is one submission and has no split.
+class PassTiming {
+ public:
+  explicit PassTiming(uint32_t interval = 30) : interval_(interval) {}
+  /// \brief Frames between timed frames; 0: never.
+  uint32_t interval() const { return interval_; }
+  /// \brief True when frame `frame` should be timed: no timed frame since the cull frame
+  /// was made (forget()), or `interval` frames since the last one.
+  bool due(uint32_t frame) const;
+  /// \brief Keeps the figures of timed frame `frame`.
+  void record(uint32_t frame, double pass1Ms, double pyramidMs, double cullMs, double pass2Ms);
+  /// \brief Drops the figures (the cull frame they were measured on is gone).
+  void forget() { last_.reset(); }
+  /// \brief The frame the figures come from, if any.
+  std::optional<uint32_t> lastTimed() const { return last_; }
+  double pass1Ms() const { return pass1Ms_; }
+  double pyramidMs() const { return pyramidMs_; }
+  double cullMs() const { return cullMs_; }
+  double pass2Ms() const { return pass2Ms_; }
+  /// \brief "timed frame 30 (4 frames ago), wall clock per pass, every 30 frames", or why
+  /// there are no figures.
+  std::string describe(uint32_t frame) const;
+
+ private:
+  uint32_t interval_;
+  std::optional<uint32_t> last_;
+  double pass1Ms_ = 0, pyramidMs_ = 0, cullMs_ = 0, pass2Ms_ = 0;
 };
 
 /// \brief The back-patch methods the `m` key cycles through.
@@ -52,9 +87,10 @@ std::optional<std::string> pressKey(ViewState& state, std::string_view key);
 /// \brief The key bindings, one line each, for --help and the HUD.
 std::string keyHelp();
 
-/// \brief One step of a --script: press a key, drag the camera, or wait for a frame.
+/// \brief One step of a --script: press a key, drag the camera, wait for a frame, or keep
+/// the image of the coming frame.
 struct ScriptStep {
-  enum class Kind { Key, Orbit, Zoom, WaitFrame } kind = Kind::Key;
+  enum class Kind { Key, Orbit, Zoom, WaitFrame, Shot } kind = Kind::Key;
   std::string key;     ///< Kind::Key
   double a = 0.0;      ///< Orbit: yaw degrees; Zoom: factor
   double b = 0.0;      ///< Orbit: pitch degrees
@@ -62,8 +98,9 @@ struct ScriptStep {
 };
 
 /// \brief Parses a script: whitespace-separated tokens, each a key name (as pressKey
-/// takes), `orbit:YAW,PITCH` (degrees), `zoom:FACTOR`, or `@N` (the following steps happen
-/// before frame N, counting from 0; frames must not decrease).
+/// takes), `orbit:YAW,PITCH` (degrees), `zoom:FACTOR`, `shot` (write the image of the coming
+/// frame, see screenshotPath()) or `@N` (the following steps happen before frame N,
+/// counting from 0; frames must not decrease).
 /// \throws osd_cull::Error naming the token and what is wrong with it.
 std::vector<ScriptStep> parseScript(std::string_view text);
 
@@ -75,11 +112,23 @@ class ScriptPlayer {
   /// \brief Applies the steps due before `frame`; returns the lines pressKey returned.
   std::vector<std::string> beforeFrame(uint32_t frame, ViewState& state);
   bool done() const { return next_ >= steps_.size(); }
+  /// \brief True once when a `shot` step came before the current frame.
+  bool takeShot() { return std::exchange(shot_, false); }
+  /// \brief True when the script has a `shot` step.
+  bool hasShots() const;
 
  private:
   std::vector<ScriptStep> steps_;
   size_t next_ = 0;
+  bool shot_ = false;
 };
+
+/// \brief Where a script's `shot` of frame `frame` goes: FILE.png becomes FILE-frameN.png.
+std::string screenshotPath(const std::string& screenshot, uint32_t frame);
+
+/// \brief Moves `state` to the next animation frame when it is playing, wrapping after
+/// `frameCount` frames (the scene's length; 1 or 0: nothing moves).
+void advanceAnimation(ViewState& state, uint32_t frameCount);
 
 /// \brief Applies a camera drag (degrees) and zoom factor within the state's limits.
 void orbitCamera(ViewState& state, double yawDegrees, double pitchDegrees);

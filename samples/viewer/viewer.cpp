@@ -8,12 +8,14 @@
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/draw/png_io.h"
 #include "osd_cull/frame/draw/renderer.h"
+#include "osd_cull/scene/scene_player.h"
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/context.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -80,19 +82,70 @@ frame::RenderOptions renderOptions(const ViewState& s, const vulkan::Context& co
   return o;
 }
 
-/// Everything sized to the window: the swapchain's HUD framebuffers and our targets.
-struct Targets {
-  std::unique_ptr<frame::RenderTarget> view, status;
-};
-
 }  // namespace
 
-int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
+ViewerScene staticScene(PatchSet patches, std::vector<frame::TriangleMesh> occluders,
+                        const bound::BackPatchValidity& backPatch, const glm::dvec3& up,
+                        const glm::dvec3& viewDirection) {
+  ViewerScene v;
+  v.up = up;
+  v.viewDirection = viewDirection;
+  scene::SceneDescription& d = v.scene.description;
+  d.source = patches.source;
+  scene::MeshDescription md;
+  md.name = patches.source;
+  md.recentre = false;
+  d.meshes.push_back(md);
+  scene::InstanceDescription inst;
+  inst.name = patches.source;
+  d.instances.push_back(inst);
+  frame::Bounds bounds = frame::boundsOf(patches.points);
+  for (const auto& m : occluders) bounds = frame::unite(bounds, frame::boundsOf(m.positions));
+  scene::ViewDescription view;
+  view.name = "default";
+  view.up = up;
+  view.target = bounds.center();
+  view.eye = bounds.center() + glm::normalize(viewDirection) * (3.0 * bounds.radius());
+  d.views.push_back(view);
+  scene::SceneMesh mesh;
+  mesh.name = patches.source;
+  mesh.validity = backPatch;
+  mesh.restBounds = frame::boundsOf(patches.points);
+  mesh.extraction.patches = std::move(patches);
+  v.scene.meshes.push_back(std::move(mesh));
+  v.scene.occluders = std::move(occluders);
+  return v;
+}
+
+ViewerScene playedScene(scene::LoadedScene loaded) {
+  scene::SceneDescription& d = loaded.description;
+  if (d.instances.empty()) throw Error("scene " + d.source + ": no instances to view");
+  auto view = std::find_if(d.views.begin(), d.views.end(), [](const scene::ViewDescription& v) {
+    return v.kind == scene::ViewDescription::Kind::Perspective;
+  });
+  if (view == d.views.end())
+    throw Error("scene " + d.source + ": no perspective view to start the viewer from");
+  ViewerScene v;
+  v.up = view->up;
+  v.viewDirection = view->eye - view->target;
+  if (!(glm::length(v.viewDirection) > 0.0)) v.viewDirection = {0.55, -1.0, 0.45};
+  d.views = {*view};
+  v.scene = std::move(loaded);
+  return v;
+}
+
+int runViewer(ViewerScene& scene, const ViewerOptions& options) {
   const std::vector<ScriptStep> steps = parseScript(options.script);
   ScriptPlayer script(steps);
-  if (scene.patches.patchCount() == 0) throw Error(scene.patches.source + ": no patches to view");
+  if (script.hasShots() && !options.screenshot)
+    throw Error("--script: 'shot' needs --screenshot FILE.png (the shots are named after it)");
+  scene::SceneDescription& description = scene.scene.description;
+  uint32_t patchTotal = 0;
+  for (const scene::InstanceDescription& i : description.instances)
+    patchTotal += scene.scene.meshes.at(i.mesh).extraction.patches.patchCount();
+  if (patchTotal == 0) throw Error(description.source + ": no patches to view");
 
-  Window window(options.width, options.height, "osd-cull view: " + scene.patches.source);
+  Window window(options.width, options.height, "osd-cull view: " + description.source);
   vulkan::ContextOptions contextOptions;
   contextOptions.device = options.device;
   contextOptions.validation = options.validate;
@@ -106,30 +159,22 @@ int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
   Swapchain swapchain(context, surface.handle, fbWidth, fbHeight);
   Hud hud(context, window, swapchain);
 
-  frame::GpuPatchSet gpu(context, scene.patches);
-  std::vector<frame::GpuTriangleMesh> occluderMeshes;
-  for (const auto& m : scene.occluders) occluderMeshes.emplace_back(context, m);
-  std::vector<const frame::GpuTriangleMesh*> occluders;
-  for (const auto& m : occluderMeshes) occluders.push_back(&m);
-  frame::Bounds bounds = frame::boundsOf(scene.patches.points);
-  for (const auto& m : scene.occluders) bounds = frame::unite(bounds, frame::boundsOf(m.positions));
-  frame::Renderer renderer(context);
-  const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
-  const frame::PatchDraw draw{&gpu, &scene.patches, 0};
-
   ViewState state = options.initial;
   state.maxTessLevel = context.info().limits.maxTessellationGenerationLevel;
-  Targets targets;
-  std::unique_ptr<frame::CullFrame> cullFrame;
-  std::string builtCull;  // the configuration cullFrame was made for
-  auto makeTargets = [&] {
-    const VkExtent2D e = swapchain.extent();
-    cullFrame.reset();
+  const uint32_t frameCount = std::max(1u, description.settings.frameCount);
+  // The player (its CullFrame and target) is made for one window size and one set of cull
+  // stages; it is made again when either changes. The status view has its own target.
+  std::unique_ptr<scene::ScenePlayer> player;
+  std::unique_ptr<frame::RenderTarget> statusTarget;
+  std::string builtCull;                 // the stages the player was made with
+  std::optional<uint32_t> shownFrame;    // the animation frame the player was moved to
+  std::optional<frame::Bounds> framing;  // the orbit camera's, from the first frame
+  PassTiming timing(options.timePassesEvery);
+  auto dropPlayer = [&] {
+    player.reset();
+    statusTarget.reset();
     builtCull.clear();
-    targets.view = std::make_unique<frame::RenderTarget>(context, e.width, e.height);
-    targets.status = std::make_unique<frame::RenderTarget>(context, e.width, e.height);
   };
-  makeTargets();
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -156,25 +201,31 @@ int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
 
   HudFigures figures;
   figures.device = context.info().name;
-  figures.scene = scene.patches.source + ": " + std::to_string(scene.patches.bezierCount) +
-                  " Bezier + " + std::to_string(scene.patches.gregoryCount) + " Gregory patches";
+  figures.scene = description.source + ": " + std::to_string(description.instances.size()) +
+                  " instance(s), " + std::to_string(patchTotal) + " patches";
+  figures.patches = patchTotal;
   const std::string keys = keyHelp();
   std::cout << "keys:\n" << keys;
-  if (!scene.backPatch.enabled)
-    std::cout << "note: back-patch culling off: " << scene.backPatch.reason << "\n";
+  std::vector<std::string> backPatchNotes;
+  for (const scene::SceneMesh& m : scene.scene.meshes)
+    if (!m.validity.enabled)
+      backPatchNotes.push_back("back-patch culling off for '" + m.name + "': " + m.validity.reason);
+  for (const std::string& note : backPatchNotes) std::cout << "note: " << note << "\n";
 
   for (uint32_t f = 0; options.frames == 0 || f < options.frames; ++f) {
     if (!window.poll()) break;
     const auto start = Clock::now();
     for (const std::string& line : script.beforeFrame(f, state))
       std::cout << "key: " << line << "\n";
+    const bool shot = script.takeShot();
     const WindowInput input = window.takeInput();
     for (const std::string& k : input.keys)
       if (auto line = pressKey(state, k)) std::cout << "key: " << *line << "\n";
     orbitCamera(state, -0.3 * input.orbitX, -0.3 * input.orbitY);
     zoomCamera(state, std::pow(1.01, input.zoomY) * std::pow(0.9, input.wheel));
     if (state.quit) break;
-    if (state.playing) orbitCamera(state, 1.0, 0.0);
+    if (state.turntable) orbitCamera(state, 1.0, 0.0);
+    advanceAnimation(state, frameCount);
 
     uint32_t w = 0, h = 0;
     window.framebufferSize(w, h);
@@ -182,76 +233,95 @@ int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
     if (w != swapchain.extent().width || h != swapchain.extent().height) {
       swapchain.recreate(w, h);
       hud.attach(swapchain);
-      makeTargets();
+      dropPlayer();
     }
     const VkExtent2D extent = swapchain.extent();
-    const frame::Camera camera = viewCamera(state, bounds, scene, extent.width, extent.height);
-    const bool backPatch = state.backPatch && scene.backPatch.enabled;
-    const frame::RenderOptions render = renderOptions(state, context, backPatch);
+    const bool backPatchAllowed = std::any_of(scene.scene.meshes.begin(), scene.scene.meshes.end(),
+                                              [](const auto& m) { return m.validity.enabled; });
+    const frame::RenderOptions render =
+        renderOptions(state, context, state.backPatch && backPatchAllowed);
 
-    // The cull stages are fixed when a CullFrame is made: rebuild it when they change.
-    const std::string cullConfig = state.anyCull() ? state.cullLabel() : "";
-    if (cullConfig != builtCull) {
-      cullFrame.reset();
-      if (!cullConfig.empty()) {
-        frame::CullFrameOptions fo;
-        fo.render = render;
-        fo.cull.frustum = state.frustum;
-        fo.cull.backPatch = state.backPatch ? state.backPatchMethod : "";
-        fo.cull.occlusion = state.occlusion ? "hiz" : "";
-        fo.cull.backPatchValidity = scene.backPatch;
-        cullFrame =
-            std::make_unique<frame::CullFrame>(context, renderer, *targets.view, meshes, fo);
-      }
-      builtCull = cullConfig;
+    // The cull stages are fixed when a CullFrame is made: make the player again when they
+    // change (with none, its CullFrame culls nothing and draws every patch).
+    if (!player || state.cullLabel() != builtCull) {
+      dropPlayer();
+      scene::ViewDescription& view = description.views.front();
+      view.width = extent.width;
+      view.height = extent.height;
+      frame::CullFrameOptions fo;
+      fo.render = render;
+      fo.cull.frustum = state.frustum;
+      fo.cull.backPatch = state.backPatch ? state.backPatchMethod : "";
+      fo.cull.occlusion = state.occlusion ? "hiz" : "";
+      player = std::make_unique<scene::ScenePlayer>(context, scene.scene, fo);
+      statusTarget = std::make_unique<frame::RenderTarget>(context, extent.width, extent.height);
+      builtCull = state.cullLabel();
+      shownFrame.reset();
+      timing.forget();
     }
+    const uint32_t sceneFrame = description.settings.frameStart + state.sceneFrame;
+    if (shownFrame != sceneFrame) {
+      player->seek(sceneFrame);
+      shownFrame = sceneFrame;
+    }
+    if (!framing) framing = player->bounds();
+    const frame::Camera camera =
+        state.sceneCamera ? player->camera(0)
+                          : viewCamera(state, *framing, scene, extent.width, extent.height);
 
     figures.cull = state.cullLabel() + (state.freezeCull ? " (cull camera frozen)" : "");
     figures.tessellation =
         state.adaptive ? "adaptive, " + std::to_string(state.pixelsPerSegment) + " px/segment"
                        : "uniform " + std::to_string(render.tessellation.uniformLevel);
-    figures.patches = scene.patches.patchCount();
+    figures.animation = frameCount < 2
+                            ? "no animation (one frame)"
+                            : "frame " + std::to_string(sceneFrame) + " (frames " +
+                                  std::to_string(description.settings.frameStart) + "-" +
+                                  std::to_string(description.settings.frameStart + frameCount - 1) +
+                                  "), " + (state.playing ? "playing" : "paused");
+    figures.camera = state.sceneCamera
+                         ? "scene camera '" + description.views.front().name + "'"
+                         : std::string("orbit") + (state.turntable ? " (turntable)" : "");
     figures.notes.clear();
-    frame::RenderTarget* shown = targets.view.get();
-    if (cullFrame) {
-      frame::CullFrameOptions fo = cullFrame->options();
-      fo.render = render;
-      cullFrame->setOptions(fo);
-      if (!state.freezeCull) {
-        const frame::CullFrameStats s = cullFrame->render(camera, occluders);
-        figures.drawnPass1 = s.drawnPass1;
-        figures.drawnPass2 = s.drawnPass2;
-        figures.culledFrustum = s.culledFrustum;
-        figures.culledBackPatch = s.culledBackPatch;
-        figures.culledOcclusion = s.culledOcclusion;
-        figures.tesInvocations =
-            s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations;
-        figures.pass1Ms = s.pass1Ms;
-        figures.pyramidMs = s.pyramidMs;
-        figures.cullMs = s.cullMs;
-        figures.pass2Ms = s.pass2Ms;
-      }
-      if (state.statusColors || state.freezeCull) {
-        // Every patch from the current camera, colored by what the (frozen) cull camera did.
-        cullFrame->renderStatusView(*targets.status, camera, occluders);
-        shown = targets.status.get();
-      }
-      figures.mode = state.freezeCull || state.statusColors ? "status colors" : "culled draw";
+    frame::CullFrame& cullFrame = player->cullFrame(0);
+    frame::CullFrameOptions fo = cullFrame.options();
+    fo.render = render;
+    if (!state.freezeCull || !state.anyCull()) {
+      // Most frames are one submission; a timed one splits the passes (PassTiming).
+      const bool timed = timing.due(f);
+      fo.timePasses = timed;
+      cullFrame.setOptions(fo);
+      const frame::CullFrameStats s = cullFrame.render(camera, player->occluders());
+      if (timed) timing.record(f, s.pass1Ms, s.pyramidMs, s.cullMs, s.pass2Ms);
+      figures.drawnPass1 = s.drawnPass1;
+      figures.drawnPass2 = s.drawnPass2;
+      figures.culledFrustum = s.culledFrustum;
+      figures.culledBackPatch = s.culledBackPatch;
+      figures.culledOcclusion = s.culledOcclusion;
+      figures.tesInvocations =
+          s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations;
     } else {
-      const frame::FrameStats s =
-          renderer.render(*targets.view, camera, {&draw, 1}, occluders, render);
-      figures.drawnPass1 = s.patchesDrawn;
-      figures.drawnPass2 = 0;
-      figures.culledFrustum = figures.culledBackPatch = figures.culledOcclusion = 0;
-      figures.tesInvocations = s.statistics.tessEvaluationInvocations;
-      figures.pass1Ms = s.wallMs;
-      figures.pyramidMs = figures.cullMs = figures.pass2Ms = 0;
-      figures.mode = "all patches";
+      fo.timePasses = false;
+      cullFrame.setOptions(fo);
+    }
+    figures.pass1Ms = timing.pass1Ms();
+    figures.pyramidMs = timing.pyramidMs();
+    figures.cullMs = timing.cullMs();
+    figures.pass2Ms = timing.pass2Ms();
+    figures.timing = timing.describe(f);
+    frame::RenderTarget* shown = &player->target(0);
+    if (state.anyCull() && (state.statusColors || state.freezeCull)) {
+      // Every patch from the current camera, colored by what the (frozen) cull camera did.
+      cullFrame.renderStatusView(*statusTarget, camera, player->occluders());
+      shown = statusTarget.get();
+      figures.mode = "status colors";
+    } else {
+      figures.mode = state.anyCull() ? "culled draw" : "all patches";
       if (state.statusColors)
         figures.notes.push_back("status colors need a cull stage (1, 2, 3 or c)");
     }
-    if (state.backPatch && !scene.backPatch.enabled)
-      figures.notes.push_back("back-patch culling off: " + scene.backPatch.reason);
+    if (state.backPatch)
+      for (const std::string& note : backPatchNotes) figures.notes.push_back(note);
 
     uint32_t image = 0;
     VkResult r = vkAcquireNextImageKHR(context.device(), swapchain.handle(), UINT64_MAX,
@@ -259,7 +329,7 @@ int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
     if (r == VK_ERROR_OUT_OF_DATE_KHR) {
       swapchain.recreate(w, h);
       hud.attach(swapchain);
-      makeTargets();
+      dropPlayer();
       continue;
     }
     if (r != VK_SUBOPTIMAL_KHR) OSD_CULL_VK(r);
@@ -267,7 +337,7 @@ int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
     window.setUiCapture(hud.wantsMouse(), hud.wantsKeyboard());
 
     const bool last = options.frames != 0 && f + 1 == options.frames;
-    const bool capture = last && options.screenshot.has_value();
+    const bool capture = (last || shot) && options.screenshot.has_value();
     vulkan::Buffer readback;
     if (capture)
       readback = vulkan::Buffer(context, VkDeviceSize{extent.width} * extent.height * 4,
@@ -350,20 +420,25 @@ int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
     if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) {
       swapchain.recreate(w, h);
       hud.attach(swapchain);
-      makeTargets();
+      dropPlayer();
     } else {
       OSD_CULL_VK(r);
     }
     figures.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 
-    if (options.printFrames)
+    if (options.printFrames) {
+      const std::string timedAt =
+          timing.lastTimed() ? "from frame " + std::to_string(*timing.lastTimed()) : "none";
       std::printf(
           "frame %u: cull %s, drawn %u of %u patches (pass 1 %u, pass 2 %u), culled frustum %u "
-          "back-patch %u occlusion %u, TES invocations %llu, %.1f ms\n",
+          "back-patch %u occlusion %u, TES invocations %llu, %.1f ms, scene frame %u of %u %s, "
+          "ms per pass %.3f %.3f %.3f %.3f %s\n",
           f, figures.cull.c_str(), figures.drawnPass1 + figures.drawnPass2, figures.patches,
           figures.drawnPass1, figures.drawnPass2, figures.culledFrustum, figures.culledBackPatch,
           figures.culledOcclusion, static_cast<unsigned long long>(figures.tesInvocations),
-          figures.frameMs);
+          figures.frameMs, state.sceneFrame, frameCount, state.playing ? "playing" : "paused",
+          figures.pass1Ms, figures.pyramidMs, figures.cullMs, figures.pass2Ms, timedAt.c_str());
+    }
     std::fflush(stdout);
     if (capture) {
       std::span<const uint8_t> bytes = readback.mappedAs<const uint8_t>();
@@ -371,8 +446,13 @@ int runViewer(const ViewerScene& scene, const ViewerOptions& options) {
       if (swapchain.bgr())
         for (size_t i = 0; i + 3 < rgba.size(); i += 4) std::swap(rgba[i], rgba[i + 2]);
       for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;
-      frame::writePng(*options.screenshot, frame::colorImage(extent.width, extent.height, rgba));
-      std::cout << "wrote " << *options.screenshot << "\n";
+      const frame::PngImage png = frame::colorImage(extent.width, extent.height, rgba);
+      for (const std::string& path :
+           {shot ? screenshotPath(*options.screenshot, f) : "", last ? *options.screenshot : ""}) {
+        if (path.empty()) continue;
+        frame::writePng(path, png);
+        std::cout << "wrote " << path << "\n";
+      }
     }
   }
   context.waitIdle();

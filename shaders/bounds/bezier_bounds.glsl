@@ -85,7 +85,8 @@ DirCone tangentCone(out float minNormal) {
 // (bound::normalPatch), each with the bound of its error: per product term
 // w ((|du| + e_du)(|dv| + e_dv) - |du| |dv|) from the inputs, and 64u w (|du| + e_du)
 // (|dv| + e_dv) for the cross product, the weights and the sum of at most 16 terms.
-// C(2, i), C(3, i), C(5, i) without constant arrays (see the scratch buffer's comment).
+// C(2, i), C(3, i), C(5, i) without constant arrays (see the comment on the shared scratch
+// of bounds_common.glsl).
 float binomial2(int i) { return i == 1 ? 2.0 : 1.0; }
 float binomial3(int i) { return i == 1 || i == 2 ? 3.0 : 1.0; }
 float binomial5(int i) { return i == 0 || i == 5 ? 1.0 : (i == 1 || i == 4 ? 5.0 : 10.0); }

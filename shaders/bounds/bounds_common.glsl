@@ -14,6 +14,8 @@ layout(push_constant) uniform Push { BoundsConstants pc; };
 
 #define POINTS_BINDING kBoundsBindingPoints  // read by common/control_points.glsl
 layout(std430, set = 0, binding = kBoundsBindingCones) writeonly buffer Cones { vec4 cones[]; };
+// (Dmin, Dmax) per patch, rounded outward on the host: copied into the displaced output.
+layout(std430, set = 0, binding = kBoundsBindingRanges) readonly buffer Ranges { vec2 ranges[]; };
 // kMaxVectors vec4 (xyz, error) per invocation: the vectors a cone is built from. Shared
 // memory, not a private array: lavapipe turns dynamically indexed private arrays into
 // select ladders and took minutes to compile this kernel with them.
@@ -187,6 +189,18 @@ void placeApex(inout DirCone cone, uint first, uint count, out vec3 apex, out fl
     apex = vec3(0.0);
     maxRadius = 0.0;
   }
+}
+
+// The displaced kernels' layout (shaders/cull/displaced_bound.glsl), as
+// frame::packDisplacedPatches packs host cones: (Dmin, Dmax, cos α, sin α), (axis, 1 with a
+// cone, 0 without). cosAngle is a lower bound of cos(asin(sinAngle)) within 6u of it, far
+// inside the kernel's kDeltaSlack (1e-5), which covers the host's rounding the same way.
+void writeDisplaced(uint p, DirCone cone) {
+  cones[kConeVec4s * p] = vec4(ranges[p], cone.valid ? cone.cosAngle : 1.0,
+                               cone.valid ? cone.sinAngle : 0.0);
+  cones[kConeVec4s * p + 1u] = vec4(cone.axis, cone.valid ? 1.0 : 0.0);
+  cones[kConeVec4s * p + 2u] = vec4(0.0);
+  cones[kConeVec4s * p + 3u] = vec4(0.0);
 }
 
 // The layout of cull_layout.h (kConeVec4s), as CullPass packs host cones.

@@ -1,7 +1,7 @@
 // The cone-of-normals back-patch test: fp32 mirror of bound::testConeOfNormals (Loop,
 // Niessner, Eisenacher, section 2: TCONE after Sederberg and Meyers, NCONE after Shirman
 // and Abi-Ezzi). Cones are built once per static mesh on the host in double and uploaded
-// (CullPass): Bezier patches carry the method's TCONE or NCONE, Gregory patches the Gregory
+// (CullPass), or per moved frame by the bounds pass (shaders/bounds/, DynamicPatchMesh): Bezier patches carry the method's TCONE or NCONE, Gregory patches the Gregory
 // TCONE (bound::buildGregoryConeFromTangentCones) for every back-patch method.
 //
 // Culled iff the eye E is in the cone's cull region, dot(a, E - l) + sin(g) |E - l| < 0,

@@ -4,12 +4,30 @@
 #define OSD_CULL_CULL_COMMON_GLSL
 #include <shared/cull_layout.h>
 
-layout(push_constant) uniform Push { CullConstants pc; };
+// The view-wide constants; the instance's (view · model, eye, snap) replace the push
+// constants' in `pc` at the start of main (loadInstance), so every stage reads its own
+// instance through pc.
+layout(push_constant) uniform Push { CullConstants pcView; };
+layout(std430, set = 0, binding = kCullBindingInstances) readonly buffer Instances {
+  uvec4 instanceHeader;  // x: instances in the dispatch
+  CullInstance instances[];
+};
+CullConstants pc;
+
+// Copies the view's constants and the values of instance `i` into pc.
+void loadInstance(uint i) {
+  pc = pcView;
+  pc.viewProjection = instances[i].viewProjection;
+  pc.eye = instances[i].eye;
+  pc.snapPerDistance = instances[i].snapPerDistance;
+}
 
 #define POINTS_BINDING kCullBindingPoints  // read by common/control_points.glsl
 layout(std430, set = 0, binding = kCullBindingCones) readonly buffer Cones { vec4 cones[]; };
 layout(std430, set = 0, binding = kCullBindingResults) writeonly buffer Results { uint results[]; };
-layout(std430, set = 0, binding = kCullBindingDrawList) writeonly buffer DrawList { uint drawList[]; };
+layout(std430, set = 0, binding = kCullBindingDrawList) writeonly buffer DrawList {
+  uint drawList[];
+};
 layout(std430, set = 0, binding = kCullBindingCounters) buffer Counters { uint counters[]; };
 layout(std430, set = 0, binding = kCullBindingTable) readonly buffer Table { uvec2 table[]; };
 
@@ -19,8 +37,8 @@ layout(std430, set = 0, binding = kCullBindingTable) readonly buffer Table { uve
 // (bound::clipPoint, bound::absClipPoint).
 vec4 clipPoint(vec3 p) { return pc.viewProjection * vec4(p, 1.0); }
 vec4 absClipPoint(vec3 p) {
-  mat4 a = mat4(abs(pc.viewProjection[0]), abs(pc.viewProjection[1]),
-                abs(pc.viewProjection[2]), abs(pc.viewProjection[3]));
+  mat4 a = mat4(abs(pc.viewProjection[0]), abs(pc.viewProjection[1]), abs(pc.viewProjection[2]),
+                abs(pc.viewProjection[3]));
   return a * vec4(abs(p), 1.0);
 }
 

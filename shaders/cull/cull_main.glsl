@@ -1,4 +1,5 @@
-// The cull kernel: one dispatch over all patches of a GpuPatchSet runs the enabled stages
+// The cull kernel: one dispatch over all patches of a GpuPatchSet, for every instance of it
+// (invocation = (instance, patch), shared/cull_layout.h CullInstance), runs the enabled stages
 // cheapest first (frustum, back-patch, occlusion), writes each patch's result code and
 // appends survivors to the compact draw list (Bezier from slot 0, Gregory from slot
 // bezierCount). The host composes the source (frame/cull_pass.cpp):
@@ -35,9 +36,21 @@ void main() {
   const uint lane = gl_LocalInvocationIndex % kLanes;
   const uint slot = gl_LocalInvocationIndex / kLanes;
   // The host spreads more than maxComputeWorkGroupCount[0] groups over y (vk/limits.h).
+  // Issue 10: the groups of instance i follow those of instance i - 1, each instance
+  // covering its patches with ceil(patchCount / kPatchesPerGroup) groups, so a whole
+  // workgroup belongs to one instance (the multi-lane barriers stay uniform).
   const uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-  const uint patchIndex = group * kPatchesPerGroup + slot;
-  const bool inRange = patchIndex < pc.patchCount;
+  const uint groupsPerInstance = (pcView.patchCount + kPatchesPerGroup - 1u) / kPatchesPerGroup;
+  const uint instance = group / max(groupsPerInstance, 1u);
+  const bool instanceInRange = instance < instanceHeader.x;
+  loadInstance(instanceInRange ? instance : 0u);
+#if CULL_DISPLACED
+  dview = dviews[instanceInRange ? instance : 0u];
+#endif
+  const uint patchIndex = (group - instance * groupsPerInstance) * kPatchesPerGroup + slot;
+  const bool inRange = instanceInRange && patchIndex < pc.patchCount;
+  const uint base = instance * pc.patchCount;  // the instance's results and draw list
+  const uint counterBase = instance * kCounterCount;
   uint result = kResultInitial;
   PatchClipBounds bounds;
   bounds.finite = false;
@@ -84,11 +97,12 @@ void main() {
   }
 #endif
 
-  results[patchIndex] = result;
+  results[base + patchIndex] = result;
   if (resultStage(result) != kStageNone) return;
   if (isBezier(patchIndex)) {
-    drawList[atomicAdd(counters[kCounterSurvivorsBezier], 1u)] = patchIndex;
+    drawList[base + atomicAdd(counters[counterBase + kCounterSurvivorsBezier], 1u)] = patchIndex;
   } else {
-    drawList[pc.bezierCount + atomicAdd(counters[kCounterSurvivorsGregory], 1u)] = patchIndex;
+    drawList[base + pc.bezierCount +
+             atomicAdd(counters[counterBase + kCounterSurvivorsGregory], 1u)] = patchIndex;
   }
 }

@@ -4,16 +4,17 @@
 // boundPointCount() / boundPoint() / boundClipPoint() / boundAbsClipPoint(): 8 corners of
 // the OOBB (world space, DISPLACED_BOX 0) or of the camera-aligned frustum (camera space,
 // DISPLACED_BOX 1), computed once per patch by prepareBound().
-// Per patch (cones[], shared/cull_layout.h kConeVec4s, filled by the host for displaced
-// kernels): cones[4p] = (Dmin, Dmax rounded outward, cos α, sin α), cones[4p + 1] =
+// Per patch (cones[], shared/cull_layout.h kConeVec4s, filled by the host for a static
+// displaced mesh, by the bounds pass, shaders/bounds/, for a deforming one): cones[4p] = (Dmin, Dmax rounded outward, cos α, sin α), cones[4p + 1] =
 // (axis.xyz, 1 with a cone, 0 without: Full, or a cone that could not be built).
 #ifndef OSD_CULL_CULL_DISPLACED_BOUND_GLSL
 #define OSD_CULL_CULL_DISPLACED_BOUND_GLSL
 #include "cull_common.glsl"
 
 layout(std430, set = 0, binding = kCullBindingDisplacedView) readonly buffer DisplacedViewBuffer {
-  DisplacedView dview;
+  DisplacedView dviews[];  // one per instance (shared/cull_layout.h CullInstance)
 };
+DisplacedView dview;  // the invocation's instance, set by cull_main.glsl
 
 // fp32 slack of every δ (products of rounded unit vectors and cos/sin of α: < 1e-6).
 const float kDeltaSlack = 1e-5;
@@ -45,8 +46,8 @@ float maxAbs3(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs(v.z)); }
 
 void setBoxCorners(vec3 lo, vec3 hi) {
   for (int i = 0; i < 8; ++i)
-    gBoundCorners[i] = vec3((i & 1) != 0 ? hi.x : lo.x, (i & 2) != 0 ? hi.y : lo.y,
-                            (i & 4) != 0 ? hi.z : lo.z);
+    gBoundCorners[i] =
+        vec3((i & 1) != 0 ? hi.x : lo.x, (i & 2) != 0 ? hi.y : lo.y, (i & 4) != 0 ? hi.z : lo.z);
 }
 
 void prepareBound(uint patchIndex) {
@@ -67,7 +68,8 @@ void prepareBound(uint patchIndex) {
   vec2 ey = axisExtension(cone, axis, vec3(0, 1, 0));
   vec2 ez = axisExtension(cone, axis, vec3(0, 0, 1));
   vec3 plus = vec3(ex.x, ey.x, ez.x), minus = vec3(ex.y, ey.y, ez.y);
-  float margin = kCullRelativeMargin * (max(maxAbs3(lo), maxAbs3(hi)) + maxAbs3(plus) + maxAbs3(minus));
+  float margin =
+      kCullRelativeMargin * (max(maxAbs3(lo), maxAbs3(hi)) + maxAbs3(plus) + maxAbs3(minus));
   setBoxCorners(lo - minus - margin, hi + plus + margin);
 #else
   // CAF: per-point boxes along the camera axes (rows of the view's linear part).

@@ -20,6 +20,8 @@ OSD_CULL_CONST uint kCullBindingParams = 7u;    // uint params[]: GpuPatchSet::p
                                                 // for transition edges (drawn-triangle bound)
 OSD_CULL_CONST uint kCullBindingDisplacedView = 8u;  // DisplacedView: per-view matrices of
                                                      // the displaced bounds (CULL_DISPLACED)
+OSD_CULL_CONST uint kCullBindingInstances = 9u;      // CullInstances: the instances culled in
+                                                     // one dispatch (their view · model)
 OSD_CULL_CONST uint kCullBindingTable = 6u;          // uvec2 table[]: the method's constant table
 // (CullMethod::table). The tangent-plane table: per term (target | j << 8 | k << 16 | l << 24,
 // floatBitsToUint(weight)). A buffer, not GLSL constants: lavapipe's LLVM backend needs
@@ -124,6 +126,21 @@ struct CullConstants {
   float snapPerDistance;       // bound::snapPerDistance of the draws (drawn-triangle bound)
 };
 
+// Instances (issue 10): one dispatch culls every instance of a patch set, invocation =
+// (instance, patch). Per instance the values of CullConstants that depend on the model
+// matrix, composed in double on the host (frame::instanceCamera) and rounded once; the
+// kernel reads them in place of CullConstants' (cull_main.glsl). Instance i's outputs:
+// results[i * patchCount + p], drawList[i * patchCount + slot], counters[i * kCounterCount +
+// k], commands[i * (patchCount + 2) + c]; the displaced view is DisplacedView[i].
+struct CullInstance {
+  mat4 viewProjection;    // object to clip space (CullConstants.viewProjection)
+  vec4 eye;               // CullConstants.eye in object space
+  float snapPerDistance;  // CullConstants.snapPerDistance
+  float pad0;
+  float pad1;
+  float pad2;
+};
+
 // What the displaced bounds (shaders/cull/displaced_bound.glsl) need of a view beyond
 // CullConstants.viewProjection: the camera-aligned frustum works in camera space.
 struct DisplacedView {
@@ -139,5 +156,6 @@ OSD_CULL_SHARED_END
 
 #ifdef __cplusplus
 static_assert(sizeof(osd_cull::shader::CullConstants) == 128);
+static_assert(sizeof(osd_cull::shader::CullInstance) == 96);
 #endif
 #endif

@@ -4,6 +4,7 @@
 /// (frame/cull/bounds_pass.h): the test oracle of the GPU bounds.
 
 #include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/bound/displaced_bounds.h"
 #include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/patch/patch_set.h"
 
@@ -35,5 +36,14 @@ struct BoundsCheck {
 /// - a valid GPU cone where the reference's points are not finite is a violation.
 BoundsCheck checkBounds(const PatchSet& set, bound::BackPatchMethod method,
                         std::span<const frame::PatchBounds> gpu);
+
+/// \brief The same for the bounds pass's displaced output (BoundsPass::readDisplaced) of
+/// `extension` against `ranges` (bound::displacementRanges) and the double reference
+/// (bound::displacementCone of the exact points): Dmin/Dmax rounded outward by at most one
+/// float step; Full without a cone; a valid cone holds every sampled normal and (CoN,
+/// Bézier) every normal-patch coefficient, and its cos α and sin α agree.
+BoundsCheck checkDisplacedBounds(const PatchSet& set, bound::DisplacedExtension extension,
+                                 std::span<const bound::DisplacementRange> ranges,
+                                 std::span<const bound::DisplacedPatch> gpu);
 
 }  // namespace osd_cull::test

@@ -1,5 +1,7 @@
 #include "support/displacement_test_maps.h"
 
+#include <glm/common.hpp>
+
 namespace osd_cull::test {
 
 std::vector<bound::DisplacementMap> extremeDisplacementMaps(double scale) {
@@ -13,6 +15,19 @@ std::vector<bound::DisplacementMap> extremeDisplacementMaps(double scale) {
   maps.emplace_back("all-min", 8, 8, std::vector<float>(64, 0.0f), scale, 0.5);
   maps.emplace_back("scale-0", 32, 32, step, 0.0, 0.5);
   return maps;
+}
+
+CageMesh withPlanarUVs(CageMesh cage) {
+  glm::dvec2 lo(1e300), hi(-1e300);
+  for (const glm::dvec3& p : cage.positions) {
+    lo = glm::min(lo, glm::dvec2(p));
+    hi = glm::max(hi, glm::dvec2(p));
+  }
+  const glm::dvec2 size = glm::max(hi - lo, glm::dvec2(1e-300));
+  cage.uvs.clear();
+  for (const glm::dvec3& p : cage.positions) cage.uvs.push_back((glm::dvec2(p) - lo) / size);
+  cage.faceUVs = cage.faceVertices;
+  return cage;
 }
 
 }  // namespace osd_cull::test

@@ -2,9 +2,11 @@
 
 #include "osd_cull/bound/patch_eval.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/draw/gpu_patch_set.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/limits.h"
 #include "osd_cull/vk/pipeline.h"
 #include "osd_cull/vk/shader_compiler.h"
 #include "osd_cull/vk/transfer.h"
@@ -24,7 +26,7 @@ namespace sh = osd_cull::shader;
 const vulkan::DescriptorBinding kBindings[] = {
     {sh::kBoundsBindingPoints, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kBoundsBindingCones, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-    {sh::kBoundsBindingScratch, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    {sh::kBoundsBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
 
 // The Gregory index tables of shaders/bounds/gregory_bounds.glsl, from the tables the
 // reference uses (bound::buildGregoryConeFromTangentCones enumerates the same vectors).
@@ -90,20 +92,82 @@ std::string gregoryTables() {
 
 double widen(float v) { return static_cast<double>(v); }
 
+uint32_t backPatchConeCode(bound::BackPatchMethod method) {
+  switch (method) {
+    case bound::BackPatchMethod::TCone:
+      return sh::kBoundsTCone;
+    case bound::BackPatchMethod::NCone:
+      return sh::kBoundsNCone;
+    case bound::BackPatchMethod::TangentPlane:
+      return sh::kBoundsTangentPlane;
+    default:
+      throw Error(std::string("BoundsPass: cull data exists for tcone, ncone and the tangent "
+                              "plane, not for '") +
+                  bound::toString(method) + "'");
+  }
+}
+
+// Nießner & Loop §4.2: ACoN is the cone of the tangent cones (TCONE), CoN the cone of the
+// normal patch (NCONE); Full needs none.
+uint32_t displacedConeCode(bound::DisplacedExtension extension) {
+  if (extension == bound::DisplacedExtension::ACoN) return sh::kBoundsTCone;
+  return extension == bound::DisplacedExtension::CoN ? sh::kBoundsNCone : sh::kBoundsNoCone;
+}
+
+std::vector<float> checkedRanges(std::span<const bound::DisplacementRange> ranges,
+                                 uint32_t patchCount) {
+  if (ranges.size() != patchCount)
+    throw Error("BoundsPass: " + std::to_string(ranges.size()) + " displacement ranges for " +
+                std::to_string(patchCount) + " patches");
+  for (size_t p = 0; p < ranges.size(); ++p) {
+    const bound::DisplacementRange& r = ranges[p];
+    if (!(std::isfinite(r.dmin) && std::isfinite(r.dmax) && r.dmin <= 0.0 && r.dmax >= 0.0))
+      throw Error("BoundsPass: the displacement range of patch " + std::to_string(p) + " is [" +
+                  std::to_string(r.dmin) + ", " + std::to_string(r.dmax) +
+                  "], not finite with Dmin <= 0 <= Dmax");
+  }
+  return packDisplacementRanges(ranges);
+}
+
 }  // namespace
+
+bool BoundsPass::hasCullData(bound::BackPatchMethod method) {
+  return method == bound::BackPatchMethod::TCone || method == bound::BackPatchMethod::NCone ||
+         method == bound::BackPatchMethod::TangentPlane;
+}
 
 BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu,
                        bound::BackPatchMethod method)
-    : context_(context), gpu_(gpu), method_(method) {
-  if (method != bound::BackPatchMethod::TCone && method != bound::BackPatchMethod::NCone)
-    throw Error(std::string("BoundsPass: cull data exists for the cone methods (tcone, ncone), "
-                            "not for '") +
-                bound::toString(method) + "'");
+    : BoundsPass(context, gpu, backPatchConeCode(method), sh::kBoundsOutputBackPatch, {}) {
+  method_ = method;
+}
+
+BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu,
+                       bound::DisplacedExtension extension,
+                       std::span<const bound::DisplacementRange> ranges)
+    : BoundsPass(context, gpu, displacedConeCode(extension), sh::kBoundsOutputDisplaced,
+                 checkedRanges(ranges, gpu.patchCount())) {
+  displaced_ = true;
+  extension_ = extension;
+}
+
+BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu, uint32_t coneCode,
+                       uint32_t outputKind, std::span<const float> ranges)
+    : context_(context), gpu_(gpu), coneCode_(coneCode), outputKind_(outputKind) {
   const size_t n = std::max<uint32_t>(1, gpu.patchCount());
+  const std::string of = " of " + std::to_string(gpu.patchCount()) + " patches";
+  vulkan::checkStorageBufferRange(context, n * sh::kConeVec4s * 4 * sizeof(float),
+                                  "BoundsPass: the cull data" + of);
+  vulkan::checkStorageBufferRange(context, n * 2 * sizeof(float),
+                                  "BoundsPass: the displacement ranges" + of);
+  vulkan::checkedGroups2D(context, vulkan::groupCount(gpu.patchCount(), sh::kBoundsGroupSize),
+                          "BoundsPass: the dispatch" + of);
   cones_ = vulkan::Buffer(context, n * sh::kConeVec4s * 4 * sizeof(float),
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  scratch_ = vulkan::Buffer(context, n * sh::kMaxVectors * 4 * sizeof(float),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  const std::vector<float> unused(2, 0.0f);
+  const std::span<const float> r = ranges.empty() ? std::span<const float>(unused) : ranges;
+  ranges_ = vulkan::Buffer(context, r.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<float>(context, ranges_, r);
   setLayout_ = vulkan::createDescriptorSetLayout(context, kBindings);
   const std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
   layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::BoundsConstants),
@@ -119,6 +183,8 @@ BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu,
   set_ = pool_->allocate(setLayout_.get());
 }
 
+bool BoundsPass::dependsOnPoints() const { return !(displaced_ && coneCode_ == sh::kBoundsNoCone); }
+
 BoundsPass::~BoundsPass() = default;
 
 void BoundsPass::record(VkCommandBuffer cmd, double pointError, float shrink) {
@@ -130,7 +196,7 @@ void BoundsPass::record(VkCommandBuffer cmd, double pointError, float shrink) {
     vulkan::DescriptorWriter()
         .buffer(sh::kBoundsBindingPoints, gpu_.pointBinding())
         .buffer(sh::kBoundsBindingCones, cones_)
-        .buffer(sh::kBoundsBindingScratch, scratch_)
+        .buffer(sh::kBoundsBindingRanges, ranges_)
         .update(context_.device(), set_);
     boundPoints_ = gpu_.pointBinding().handle();
   }
@@ -139,7 +205,8 @@ void BoundsPass::record(VkCommandBuffer cmd, double pointError, float shrink) {
   c.bezierCount = gpu_.bezierCount();
   c.pointStride = gpu_.pointStride();
   c.pointOffset = gpu_.pointOffset();
-  c.method = method_ == bound::BackPatchMethod::NCone ? sh::kBoundsNCone : sh::kBoundsTCone;
+  c.method = coneCode_;
+  c.outputKind = outputKind_;
   // Rounded up: the shader's margins assume at least this error.
   c.pointError = static_cast<float>(pointError) * (1.0f + 1e-6f);
   c.shrink = shrink;
@@ -151,7 +218,9 @@ void BoundsPass::record(VkCommandBuffer cmd, double pointError, float shrink) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
                             nullptr);
     vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
-    vkCmdDispatch(cmd, vulkan::groupCount(c.patchCount, sh::kBoundsGroupSize), 1, 1);
+    const vulkan::DispatchSize groups = vulkan::checkedGroups2D(
+        context_, vulkan::groupCount(c.patchCount, sh::kBoundsGroupSize), "BoundsPass");
+    vkCmdDispatch(cmd, groups.x, groups.y, 1);
     ++dispatches_;
   }
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kComputeRead);
@@ -165,7 +234,15 @@ double BoundsPass::run(double pointError, float shrink) {
 }
 
 std::vector<PatchBounds> BoundsPass::readBounds(vulkan::Context& context) const {
+  if (displaced_)
+    throw Error("BoundsPass::readBounds: this pass writes displaced cull data (readDisplaced)");
   return unpackCullData(vulkan::readback<float>(context, cones_), gpu_.patchCount());
+}
+
+std::vector<bound::DisplacedPatch> BoundsPass::readDisplaced(vulkan::Context& context) const {
+  if (!displaced_)
+    throw Error("BoundsPass::readDisplaced: this pass writes back-patch cull data (readBounds)");
+  return unpackDisplacedPatches(vulkan::readback<float>(context, cones_), gpu_.patchCount());
 }
 
 std::vector<PatchBounds> unpackCullData(std::span<const float> data, uint32_t patchCount) {

@@ -1,7 +1,8 @@
 // Registrations of the displaced kernels (shaders/cull/displaced_bound.glsl with the Hi-Z
 // stage of occlusion_hiz.glsl): Full, ACoN and CoN extensions of an OOBB or a
 // camera-aligned frustum (Niessner & Loop §4.2, Table 1). They run on displaced meshes only
-// (CullSettings::displacement); the per-patch Dmin/Dmax and cones are built on the host.
+// (CullSettings::displacement); the per-patch Dmin/Dmax and cones are built on the host for
+// a static mesh, by the per-frame bounds pass for a deforming one (DynamicPatchMesh).
 #include "osd_cull/frame/cull/cull_methods.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 

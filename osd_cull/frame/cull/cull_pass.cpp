@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -35,8 +36,8 @@ const vulkan::DescriptorBinding kBindings[] = {
     {sh::kCullBindingCommands, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingTable, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-    {sh::kCullBindingDisplacedView, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-     VK_SHADER_STAGE_COMPUTE_BIT}};
+    {sh::kCullBindingDisplacedView, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
 
 // What the outputs are read by after the pass: indirect draws, the patch draw shaders (draw
 // list) and the host (results, counters).
@@ -46,6 +47,22 @@ constexpr vulkan::Scope kAfterCull{
     VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT};
 
 uint32_t maxDraws(uint32_t count, uint32_t chunk) { return (count + chunk - 1) / chunk; }
+
+// Workgroups of the cull dispatch: each instance covers its patches with whole groups
+// (shaders/cull/cull_main.glsl), instance after instance.
+uint64_t cullGroups(uint32_t patches, uint32_t lanes, uint32_t instances) {
+  return uint64_t{vulkan::groupCount(patches, sh::kCullGroupSize / lanes)} * instances;
+}
+
+// vkCmdUpdateBuffer takes at most 65536 bytes a call.
+void updateBuffer(VkCommandBuffer cmd, const vulkan::Buffer& buffer, const void* data,
+                  size_t bytes) {
+  constexpr size_t kMaxUpdate = 65536;
+  const auto* p = static_cast<const uint8_t*>(data);
+  for (size_t offset = 0; offset < bytes; offset += kMaxUpdate)
+    vkCmdUpdateBuffer(cmd, buffer.handle(), offset, std::min(kMaxUpdate, bytes - offset),
+                      p + offset);
+}
 
 // A cone rounded to float toward "visible": sin of the half-angle rounded up; the apex and
 // axis round to nearest, which the kernel's test margin covers (shaders/cull/cone.glsl).
@@ -185,32 +202,35 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
                     " has no displacement map");
       displacedKernel_ = *m->displaced;
     }
-  if (displacedMesh)
+  // With external cull data (the bounds pass's displaced output of an animated mesh) the
+  // per-patch data is the GPU's; the host copy would be stale after one frame.
+  if (displacedMesh && cullData_ == &conesBuffer_)
     displaced_ = bound::buildDisplacedPatches(host, settings.uvCorners, *settings.displacementMap,
                                               displacedKernel_.extension);
 
+  if (settings.instanceCount == 0) throw Error("CullPass: " + host.source + ": 0 instances");
   const uint32_t n = host.patchCount();
   checkLimits(n);
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-  if (displacedMesh && cullData_ != &conesBuffer_)
-    throw Error("CullPass: " + host.source +
-                " is displaced; displaced bounds are built on the host for static meshes "
-                "(per-frame displaced bounds of animated meshes are not implemented)");
   if (cullData_ == &conesBuffer_) uploadHostCones(context);
-  displacedView_ = vulkan::Buffer(context, sizeof(sh::DisplacedView), storage);
+  const size_t instances = settings.instanceCount;
+  displacedView_ = vulkan::Buffer(context, instances * sizeof(sh::DisplacedView), storage);
+  instances_ = vulkan::Buffer(context, 16 + instances * sizeof(sh::CullInstance), storage);
   std::vector<uint32_t> table(2, 0u);
   for (const CullMethod* m : stages_)
     if (m->table) table = m->table();
   table_ = vulkan::Buffer(context, table.size() * sizeof(uint32_t), storage);
   vulkan::upload<uint32_t>(context, table_, table);
-  results_ =
-      vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage, vulkan::MemoryUse::Readback);
-  drawList_ = vulkan::Buffer(context, std::max<size_t>(1, n) * 4, storage);
-  counters_ = vulkan::Buffer(context, sh::kCounterCount * 4, indirect, vulkan::MemoryUse::Readback);
-  commands_ = vulkan::Buffer(context, (size_t{n} + 2) * sizeof(VkDrawIndirectCommand), indirect);
-  std::fill_n(results_.mappedAs<uint32_t>().begin(), std::max<uint32_t>(1, n), sh::kResultInitial);
-  std::fill_n(counters_.mappedAs<uint32_t>().begin(), sh::kCounterCount, 0u);
+  const size_t codes = std::max<size_t>(1, instances * n);
+  results_ = vulkan::Buffer(context, codes * 4, storage, vulkan::MemoryUse::Readback);
+  drawList_ = vulkan::Buffer(context, codes * 4, storage);
+  counters_ = vulkan::Buffer(context, instances * sh::kCounterCount * 4, indirect,
+                             vulkan::MemoryUse::Readback);
+  commands_ = vulkan::Buffer(context, instances * (size_t{n} + 2) * sizeof(VkDrawIndirectCommand),
+                             indirect);
+  std::fill_n(results_.mappedAs<uint32_t>().begin(), codes, sh::kResultInitial);
+  std::fill_n(counters_.mappedAs<uint32_t>().begin(), instances * sh::kCounterCount, 0u);
   buildPipelines(context);
 }
 
@@ -219,16 +239,21 @@ CullPass::~CullPass() = default;
 void CullPass::checkLimits(uint32_t n) const {
   // Everything the pass binds, dispatches or draws, named, before any buffer exists
   // (the points are GpuPatchSet's to check).
-  const std::string of = " of " + std::to_string(n) + " patches";
+  const uint64_t instances = settings_.instanceCount;
+  const std::string of = " of " + std::to_string(n) + " patches" +
+                         (instances > 1 ? " x " + std::to_string(instances) + " instances" : "");
   vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4 * sh::kConeVec4s * sizeof(float),
                                   "CullPass: the cones" + of);
-  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4, "CullPass: the result codes" + of);
-  vulkan::checkStorageBufferRange(context_, uint64_t{n} * 4, "CullPass: the draw list" + of);
-  vulkan::checkStorageBufferRange(context_, (uint64_t{n} + 2) * sizeof(VkDrawIndirectCommand),
+  vulkan::checkStorageBufferRange(context_, instances * n * 4, "CullPass: the result codes" + of);
+  vulkan::checkStorageBufferRange(context_, instances * n * 4, "CullPass: the draw list" + of);
+  vulkan::checkStorageBufferRange(context_,
+                                  instances * (uint64_t{n} + 2) * sizeof(VkDrawIndirectCommand),
                                   "CullPass: the draw commands" + of);
-  vulkan::checkedGroups2D(context_, vulkan::groupCount(n, sh::kCullGroupSize / lanes_),
+  vulkan::checkStorageBufferRange(context_, 16 + instances * sizeof(sh::CullInstance),
+                                  "CullPass: the instance matrices" + of);
+  vulkan::checkedGroups2D(context_, cullGroups(n, lanes_, settings_.instanceCount),
                           "CullPass: the cull dispatch" + of);
-  vulkan::checkedGroups1D(context_, vulkan::groupCount(n + 2, sh::kDrawsGroupSize),
+  vulkan::checkedGroupsXY(context_, vulkan::groupCount(n + 2, sh::kDrawsGroupSize), instances,
                           "CullPass: the draw-command dispatch" + of);
   vulkan::checkDrawIndirectCount(context_, n, "CullPass: the indirect draws" + of);
 }
@@ -315,6 +340,7 @@ void CullPass::buildPipelines(vulkan::Context& context) {
       .buffer(sh::kCullBindingTable, table_)
       .buffer(sh::kCullBindingParams, gpu_.params())
       .buffer(sh::kCullBindingDisplacedView, displacedView_)
+      .buffer(sh::kCullBindingInstances, instances_)
       .update(context.device(), set_);
 }
 
@@ -347,11 +373,10 @@ bound::CullTests CullPass::referenceTests(const Camera& camera,
   return t;
 }
 
-sh::CullConstants CullPass::constants(const Camera& camera,
-                                      const TessellationOptions& tessellation) const {
+sh::CullInstance CullPass::instanceValues(const Camera& camera) const {
   const glm::dmat4 viewProj = camera.viewProjection();
   const bound::CullView view = bound::makeCullView(viewProj);
-  sh::CullConstants c{};
+  sh::CullInstance c{};
   c.viewProjection = glm::mat4(viewProj);
   const float nan = std::numeric_limits<float>::quiet_NaN();
   c.eye = glm::vec4(nan, nan, nan, 0.0f);
@@ -361,16 +386,26 @@ sh::CullConstants CullPass::constants(const Camera& camera,
     const double invEw = 1.0 / std::abs(bound::homogeneousEye(viewProj).w);
     c.eye = glm::vec4(glm::vec3(*view.eye), static_cast<float>(invEw));
   }
+  c.snapPerDistance =
+      static_cast<float>(bound::snapPerDistance(viewProj, camera.width, camera.height,
+                                                context_.info().limits.subPixelPrecisionBits) *
+                         1.001);
+  return c;
+}
+
+sh::CullConstants CullPass::constants(const Camera& camera,
+                                      const TessellationOptions& tessellation) const {
+  const sh::CullInstance instance = instanceValues(camera);
+  sh::CullConstants c{};
+  c.viewProjection = instance.viewProjection;
+  c.eye = instance.eye;
+  c.snapPerDistance = instance.snapPerDistance;
   // The tessellation the draw shaders will use (Renderer applies effectiveOptions() too).
   const TessellationOptions t = effectiveOptions(tessellation, gpu_.hasTransitionEdges());
   c.viewport = glm::vec4(float(camera.width), float(camera.height), float(t.uniformLevel),
                          float(t.maxLevel));
   c.tessPixelsPerSegment =
       t.mode == TessellationOptions::Mode::Uniform ? 0.0f : float(t.pixelsPerSegment);
-  c.snapPerDistance =
-      static_cast<float>(bound::snapPerDistance(viewProj, camera.width, camera.height,
-                                                context_.info().limits.subPixelPrecisionBits) *
-                         1.001);
   c.patchCount = gpu_.patchCount();
   c.bezierCount = gpu_.bezierCount();
   c.pointStride = gpu_.pointStride();
@@ -382,18 +417,38 @@ sh::CullConstants CullPass::constants(const Camera& camera,
 
 void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
                       const TessellationOptions& tessellation, VkDescriptorSet stageSet) {
+  record(cmd, std::span<const Camera>(&camera, 1), tessellation, stageSet);
+}
+
+void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
+                      const TessellationOptions& tessellation, VkDescriptorSet stageSet) {
   if (pipelines_->stageSetLayout && stageSet == VK_NULL_HANDLE)
     throw Error("CullPass::record: the occlusion stage '" + settings_.occlusion +
                 "' needs its descriptor set");
-  const sh::CullConstants c = constants(camera, tessellation);
+  if (cameras.size() != settings_.instanceCount)
+    throw Error("CullPass::record: " + std::to_string(cameras.size()) + " cameras for " +
+                std::to_string(settings_.instanceCount) + " instances of " + host_.source);
+  const sh::CullConstants c = constants(cameras.front(), tessellation);
+  // The instances' view · model values (shared/cull_layout.h CullInstance) and, displaced,
+  // their camera-space matrices, written in the command buffer so frames in flight keep
+  // their own.
+  std::vector<uint8_t> instanceData(16 + cameras.size() * sizeof(sh::CullInstance), 0);
+  const uint32_t header[4] = {uint32_t(cameras.size()), 0u, 0u, 0u};
+  std::memcpy(instanceData.data(), header, sizeof(header));
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    const sh::CullInstance v = instanceValues(cameras[i]);
+    std::memcpy(instanceData.data() + 16 + i * sizeof(v), &v, sizeof(v));
+  }
   chunkBezier_ = c.drawChunkBezier;
   chunkGregory_ = c.drawChunkGregory;
   // Earlier readers of the outputs (draws, host) and writers of the points come first.
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
   vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+  updateBuffer(cmd, instances_, instanceData.data(), instanceData.size());
   if (displaced()) {
-    const sh::DisplacedView v = displacedView(camera);
-    vkCmdUpdateBuffer(cmd, displacedView_.handle(), 0, sizeof(v), &v);
+    std::vector<sh::DisplacedView> views;
+    for (const Camera& camera : cameras) views.push_back(displacedView(camera));
+    updateBuffer(cmd, displacedView_, views.data(), views.size() * sizeof(sh::DisplacedView));
   }
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kComputeReadWrite);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout.get(), 0, 1,
@@ -405,16 +460,19 @@ void CullPass::record(VkCommandBuffer cmd, const Camera& camera,
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->cull.get());
-    const vulkan::DispatchSize groups =
-        vulkan::checkedGroups2D(context_, vulkan::groupCount(n, sh::kCullGroupSize / lanes_),
-                                "CullPass: the cull dispatch");
+    const vulkan::DispatchSize groups = vulkan::checkedGroups2D(
+        context_, cullGroups(n, lanes_, settings_.instanceCount), "CullPass: the cull dispatch");
     vkCmdDispatch(cmd, groups.x, groups.y, 1);
+    ++dispatches_;
   }
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite, vulkan::scope::kComputeReadWrite);
   const uint32_t commandCount =
       maxDraws(gpu_.bezierCount(), chunkBezier_) + maxDraws(gpu_.gregoryCount(), chunkGregory_);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->draws.get());
-  vkCmdDispatch(cmd, std::max(1u, vulkan::groupCount(commandCount, sh::kDrawsGroupSize)), 1, 1);
+  const vulkan::DispatchSize rows =
+      vulkan::checkedGroupsXY(context_, vulkan::groupCount(commandCount, sh::kDrawsGroupSize),
+                              settings_.instanceCount, "CullPass: the draw-command dispatch");
+  vkCmdDispatch(cmd, rows.x, rows.y, 1);
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, kAfterCull);
 }
 
@@ -426,12 +484,19 @@ double CullPass::run(const Camera& camera, const TessellationOptions& tessellati
       .count();
 }
 
-std::span<const uint32_t> CullPass::results() const {
-  return results_.mappedAs<const uint32_t>().first(gpu_.patchCount());
+std::span<const uint32_t> CullPass::results(uint32_t instance) const {
+  if (instance >= settings_.instanceCount)
+    throw Error("CullPass::results: instance " + std::to_string(instance) + " of " +
+                std::to_string(settings_.instanceCount));
+  return results_.mappedAs<const uint32_t>().subspan(size_t{instance} * gpu_.patchCount(),
+                                                     gpu_.patchCount());
 }
 
-CullCounts CullPass::counts() const {
-  const auto c = counters_.mappedAs<const uint32_t>();
+CullCounts CullPass::counts(uint32_t instance) const {
+  if (instance >= settings_.instanceCount)
+    throw Error("CullPass::counts: instance " + std::to_string(instance) + " of " +
+                std::to_string(settings_.instanceCount));
+  const auto c = counters_.mappedAs<const uint32_t>().subspan(size_t{instance} * sh::kCounterCount);
   return {c[sh::kCounterSurvivorsBezier], c[sh::kCounterSurvivorsGregory],
           c[sh::kCounterDrawsBezier], c[sh::kCounterDrawsGregory]};
 }
@@ -447,6 +512,9 @@ std::vector<uint32_t> CullPass::survivors(vulkan::Context& context) const {
 
 uint32_t CullPass::recordDraws(VkCommandBuffer cmd, Renderer& renderer, const Camera& camera,
                                const RenderOptions& options, uint32_t itemBase) {
+  if (settings_.instanceCount != 1)
+    throw Error("CullPass::recordDraws: the pass culls " + std::to_string(settings_.instanceCount) +
+                " instances of " + host_.source + "; draw them through CullFrame");
   const uint32_t chunkB =
       indirectDrawChunk(options.tessellation, kBezierPoints, gpu_.bezierCount());
   const uint32_t chunkG =

@@ -64,6 +64,10 @@ struct CullSettings {
   const bound::DisplacementMap* displacementMap = nullptr;
   std::span<const glm::dvec2> uvCorners;
   CullMethod::Displaced displacedKernel;
+  /// Instances of the patch set culled by the pass's one dispatch (issue 10: "many
+  /// instances of one patch set share the control points and are culled in the same
+  /// dispatch"), each with its own camera (view · model), results, draw list and counters.
+  uint32_t instanceCount = 1;
 };
 
 struct CullPipelines;
@@ -97,7 +101,9 @@ class CullPass {
   /// patch, e.g. BoundsPass::cullData() of the same method, recomputed on the GPU when the
   /// points move) instead of building cones on the host. `cullData` is borrowed and must
   /// outlive the pass; cones() is then empty (the reference builds cones from the frame's
-  /// points: bound::buildPatchCones).
+  /// points: bound::buildPatchCones). A displaced mesh (settings.displacementMap) reads its
+  /// displaced data from `cullData` the same way (DynamicPatchMesh::displacedCullData() of
+  /// the kernel's extension); displacedPatches() is then empty.
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings, const vulkan::Buffer& cullData);
   ~CullPass();
@@ -111,8 +117,9 @@ class CullPass {
   bool backPatchEnabled() const;
   const std::string& backPatchNote() const { return backPatchNote_; }
   /// \brief Whether the frustum and occlusion stages test a displaced bound, which one, and
-  /// its per-patch data (Dmin/Dmax and cones, double, as uploaded before rounding).
-  bool displaced() const { return !displaced_.empty(); }
+  /// its per-patch data (Dmin/Dmax and cones, double, as uploaded before rounding; empty
+  /// with external cull data: the bounds pass's, BoundsPass::readDisplaced()).
+  bool displaced() const { return settings_.displacementMap != nullptr; }
   const CullMethod::Displaced& displacedKernel() const { return displacedKernel_; }
   std::span<const bound::DisplacedPatch> displacedPatches() const { return displaced_; }
   /// \brief Host copies (double) of the uploaded cones, empty when none are used.
@@ -136,15 +143,26 @@ class CullPass {
   /// descriptor set (set 1), required when one is enabled.
   void record(VkCommandBuffer cmd, const Camera& camera, const TessellationOptions& tessellation,
               VkDescriptorSet stageSet = VK_NULL_HANDLE);
+  /// \brief The same for every instance at once: `cameras[i]` is instance i's camera in the
+  /// patch set's object space (frame::instanceCamera(view camera, model i)), all with the
+  /// view's viewport. One cull dispatch over (instance, patch), then one draw-command
+  /// dispatch with a row per instance.
+  /// \throws osd_cull::Error when cameras.size() differs from instanceCount().
+  void record(VkCommandBuffer cmd, std::span<const Camera> cameras,
+              const TessellationOptions& tessellation, VkDescriptorSet stageSet = VK_NULL_HANDLE);
   /// \brief record() in its own submission; waits and returns the wall time in ms
   /// (timestamps are not trusted for compute after graphics on lavapipe, PLATFORM.md).
   double run(const Camera& camera, const TessellationOptions& tessellation = {},
              VkDescriptorSet stageSet = VK_NULL_HANDLE);
 
-  /// \brief Result codes of the last completed pass, one per patch (host-mapped memory).
-  std::span<const uint32_t> results() const;
-  /// \brief Counts of the last completed pass.
-  CullCounts counts() const;
+  /// \brief Result codes of the last completed pass, one per patch of instance `instance`
+  /// (host-mapped memory).
+  std::span<const uint32_t> results(uint32_t instance = 0) const;
+  /// \brief Counts of the last completed pass for instance `instance`.
+  CullCounts counts(uint32_t instance = 0) const;
+  uint32_t instanceCount() const { return settings_.instanceCount; }
+  /// \brief Cull dispatches recorded since construction (one per record()).
+  uint64_t dispatchCount() const { return dispatches_; }
   /// \brief The survivors of the last completed pass: Bézier then Gregory, each in the
   /// (unspecified) order the kernel appended them.
   std::vector<uint32_t> survivors(vulkan::Context& context) const;
@@ -152,12 +170,14 @@ class CullPass {
   /// \brief Records indirect draws of the survivors (inside a render pass, after record()
   /// in the same or an earlier submission). Returns the maximum number of draw commands.
   /// \throws osd_cull::Error when `options.tessellation` needs another draw chunking than
-  /// the commands were written for.
+  /// the commands were written for, or for a pass of several instances (CullFrame draws
+  /// those from their visibility status).
   uint32_t recordDraws(VkCommandBuffer cmd, Renderer& renderer, const Camera& camera,
                        const RenderOptions& options, uint32_t itemBase = 0);
 
-  /// \brief The result codes as a buffer (one uint per patch), e.g. for a pass that reads
-  /// them on the GPU after record() (the temporal visibility update of CullFrame).
+  /// \brief The result codes as a buffer (one uint per patch and instance, instance i from
+  /// uint i * patchCount), e.g. for a pass that reads them on the GPU after record() (the
+  /// temporal visibility update of CullFrame).
   const vulkan::Buffer& resultsBuffer() const { return results_; }
   const vulkan::Buffer& drawList() const { return drawList_; }
   const vulkan::Buffer& commands() const { return commands_; }
@@ -171,6 +191,7 @@ class CullPass {
   void uploadHostCones(vulkan::Context& context);
   shader::CullConstants constants(const Camera& camera,
                                   const TessellationOptions& tessellation) const;
+  shader::CullInstance instanceValues(const Camera& camera) const;
 
   vulkan::Context& context_;
   GpuPatchSet& gpu_;
@@ -182,7 +203,9 @@ class CullPass {
   std::vector<bound::ConeOfNormals> cones_;
   std::vector<bound::DisplacedPatch> displaced_;
   CullMethod::Displaced displacedKernel_;
-  vulkan::Buffer displacedView_;
+  vulkan::Buffer displacedView_;  // DisplacedView per instance
+  vulkan::Buffer instances_;      // header uvec4, then CullInstance per instance
+  uint64_t dispatches_ = 0;
 
   vulkan::Buffer conesBuffer_;                      // host-built cull data (unused if external)
   const vulkan::Buffer* cullData_ = &conesBuffer_;  // what the kernel reads

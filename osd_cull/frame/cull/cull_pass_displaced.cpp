@@ -1,10 +1,12 @@
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
 
 #include "osd_cull/bound/frustum.h"
+#include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace osd_cull::frame {
 namespace {
@@ -36,6 +38,36 @@ std::vector<float> packDisplacedPatches(std::span<const bound::DisplacedPatch> p
   return out;
 }
 
+std::vector<bound::DisplacedPatch> unpackDisplacedPatches(std::span<const float> data,
+                                                          uint32_t patchCount) {
+  constexpr size_t kFloats = 4 * shader::kConeVec4s;
+  if (data.size() < size_t{patchCount} * kFloats)
+    throw Error("unpackDisplacedPatches: " + std::to_string(data.size()) + " floats for " +
+                std::to_string(patchCount) + " patches");
+  std::vector<bound::DisplacedPatch> out(patchCount);
+  for (uint32_t p = 0; p < patchCount; ++p) {
+    const float* f = &data[kFloats * p];
+    bound::DisplacedPatch& d = out[p];
+    d.range = {double(f[0]), double(f[1])};
+    d.cone.sinAngle = double(f[3]);
+    d.cone.angle = std::atan2(double(f[3]), double(f[2]));
+    d.cone.axis = {double(f[4]), double(f[5]), double(f[6])};
+    d.cone.valid = f[7] != 0.0f;
+    d.cone.reason = bound::BackPatchVerdict::BackFacing;
+    if (!d.cone.valid) d.cone = {};
+  }
+  return out;
+}
+
+std::vector<float> packDisplacementRanges(std::span<const bound::DisplacementRange> ranges) {
+  std::vector<float> out(std::max<size_t>(1, ranges.size()) * 2, 0.0f);
+  for (size_t p = 0; p < ranges.size(); ++p) {
+    out[2 * p] = roundOutward(ranges[p].dmin, false);
+    out[2 * p + 1] = roundOutward(ranges[p].dmax, true);
+  }
+  return out;
+}
+
 shader::DisplacedView displacedView(const Camera& camera) {
   shader::DisplacedView v{};
   v.view = glm::mat4(camera.view);
@@ -47,7 +79,16 @@ shader::DisplacedView displacedView(const Camera& camera) {
 std::vector<uint32_t> displacedReferenceCull(const PatchSet& host, const CullPass& pass,
                                              const Camera& camera, const bound::HiZPyramid* hiz,
                                              bound::HiZLookup lookup) {
-  const auto data = pass.displacedPatches();
+  return displacedReferenceCull(host, pass, pass.displacedPatches(), camera, hiz, lookup);
+}
+
+std::vector<uint32_t> displacedReferenceCull(const PatchSet& host, const CullPass& pass,
+                                             std::span<const bound::DisplacedPatch> data,
+                                             const Camera& camera, const bound::HiZPyramid* hiz,
+                                             bound::HiZLookup lookup) {
+  if (data.size() != host.patchCount())
+    throw Error("displacedReferenceCull: displaced data for " + std::to_string(data.size()) +
+                " patches, the mesh has " + std::to_string(host.patchCount()));
   const CullMethod::Displaced kernel = pass.displacedKernel();
   std::vector<uint32_t> codes(host.patchCount(), shader::kResultInitial);
   for (uint32_t p = 0; p < host.patchCount(); ++p) {

@@ -86,7 +86,10 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
     settings.drawnEnumerate = options.drawnEnumerate;
     settings.displacementMap = options.displacementMap;
     settings.uvCorners = options.uvCorners;
-    m->pass = std::make_unique<CullPass>(context, gpu_, host, settings);
+    const auto data = options.cullData.find(run[i]->reference);
+    m->pass = run[i]->stage == CullStage::BackPatch && data != options.cullData.end()
+                  ? std::make_unique<CullPass>(context, gpu_, host, settings, *data->second)
+                  : std::make_unique<CullPass>(context, gpu_, host, settings);
     m->totals = &totals_[i];
     totals_[i].name = run[i]->name;
     totals_[i].stage = run[i]->stage;

@@ -24,6 +24,7 @@
 #include "osd_cull/frame/verify/visibility_oracle.h"
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -60,6 +61,10 @@ struct VerifyOptions {
   /// the dense sampling check (undisplaced samples) is off.
   const bound::DisplacementMap* displacementMap = nullptr;
   std::span<const glm::dvec2> uvCorners;
+  /// Per cone method (TCone, NCone): the cull data the GPU bounds pass computed for these
+  /// points (DynamicPatchMesh::cullData; borrowed), read by that method's pass instead of
+  /// cones built on the host, so the check covers what a deforming mesh is culled with.
+  std::map<bound::BackPatchMethod, const vulkan::Buffer*> cullData;
 };
 
 /// \brief Totals of one method over all views so far.

@@ -1,0 +1,325 @@
+// bench-plan: the effect plan (osd_cull/plan) against its two fixed alternatives, for
+// docs/results/plan.md. Per case and tessellation level, over the same orbit of cameras at
+// the same image size, three frames per camera back to back (interleaved): no culling
+// (Renderer::render), all culling (CullFrame: frustum, back-patch, Hi-Z occlusion, two
+// passes) and the planned frame (the stages the planner chose for that frame, learning the
+// rates as it plays). Back faces are culled by the rasterizer on all three sides where the
+// mesh is closed (like for like). Prints per level the medians, planned / min(none, all)
+// and whether it is within 5%, and the planner's predicted frame time against the measured
+// one and whether it is within 25%.
+//
+//   bench-plan [--cases builtin,bigguy,animated] [--tess 1,2,4,8,16,32] [--frames 4]
+//              [--warmup 4] [--width 1280] [--height 720] [--calibration FILE] [--csv FILE]
+//
+// The animated case deforms BigGuy's cage with a wave every frame; its control-point
+// update and bounds passes run before the three frames and are not in their times (the
+// same work on each side), nor in the prediction compared with them. The calibration is
+// this device's cached one (`osd-cull calibrate`), measured with --quick when there is none.
+#include "bench_support.h"
+#include "osd_cull/error.h"
+#include "osd_cull/frame/cull_frame.h"
+#include "osd_cull/frame/dynamic_patch_mesh.h"
+#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/plan/planner.h"
+#include "osd_cull/scene/default_scene.h"
+#include "osd_cull/scene/loaded_scene.h"
+#include "osd_cull/vk/context.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace osd_cull;
+using bench::median;
+
+struct Options {
+  std::string cases = "builtin,bigguy,animated";
+  std::vector<uint32_t> tess = {1, 2, 4, 8, 16, 32};
+  uint32_t frames = 4, warmup = 4, width = 1280, height = 720;
+  std::string calibration, csv;
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) throw Error(a + " needs a value (see the top of bench_plan.cpp)");
+    const std::string v = argv[++i];
+    if (a == "--cases")
+      o.cases = v;
+    else if (a == "--tess")
+      o.tess = bench::numberList(v);
+    else if (a == "--frames")
+      o.frames = std::max(1u, bench::numberList(v).at(0));
+    else if (a == "--warmup")
+      o.warmup = bench::numberList(v).at(0);
+    else if (a == "--width")
+      o.width = bench::numberList(v).at(0);
+    else if (a == "--height")
+      o.height = bench::numberList(v).at(0);
+    else if (a == "--calibration")
+      o.calibration = v;
+    else if (a == "--csv")
+      o.csv = v;
+    else
+      throw Error("unknown option " + a + " (see the top of bench_plan.cpp)");
+  }
+  return o;
+}
+
+void progress(const std::string& what) {
+  static const auto start = std::chrono::steady_clock::now();
+  const std::chrono::duration<double> t = std::chrono::steady_clock::now() - start;
+  std::fprintf(stderr, "[%7.1f s] %s\n", t.count(), what.c_str());
+}
+
+// A mesh to draw: static patches, or a deforming cage.
+struct Case {
+  std::string name;
+  PatchSet patches;  // static
+  std::unique_ptr<frame::DynamicPatchMesh> dynamic;
+  std::unique_ptr<scene::CageAnimation> animation;
+  std::vector<frame::TriangleMesh> occluders;
+  glm::dvec3 up{0, 0, 1}, viewDirection{0, 0, 1};
+  bound::BackPatchValidity validity;
+  const PatchSet& host() { return dynamic ? dynamic->patches() : patches; }
+};
+
+Case builtIn() {
+  scene::Scene s = scene::defaultScene();
+  Case c;
+  c.name = "built-in scene";
+  c.patches = std::move(s.patches);
+  c.occluders = std::move(s.occluders);
+  c.up = s.up;
+  c.viewDirection = s.viewDirection;
+  c.validity = {true, "built-in scene: closed, outward cages"};
+  return c;
+}
+
+Case bigGuy(vulkan::Context& context, bool animated) {
+  const auto file = bench::dataDir() / "characters" / "bigguy.obj";
+  bench::CullMesh m = bench::loadCullMesh(file, 2);
+  Case c;
+  c.name = animated ? "BigGuy level 2, wave" : "BigGuy level 2";
+  c.up = {0, 1, 0};
+  c.viewDirection = {0.3, 0.25, 1.0};
+  c.validity = m.validity;
+  if (!animated) {
+    c.patches = std::move(m.patches);
+    return c;
+  }
+  const CageMesh cage = adapters::loadCage(file);
+  PatchOptions po;
+  po.isolationLevel = 2;
+  c.dynamic = std::make_unique<frame::DynamicPatchMesh>(context, cage, po);
+  scene::AnimationSource wave;
+  wave.kind = scene::AnimationSource::Kind::Wave;
+  wave.deformer.amount = 0.05;
+  c.animation = scene::makeProceduralAnimation(wave, cage.positions);
+  return c;
+}
+
+// The frames of one stage choice on one case.
+struct Executor {
+  std::unique_ptr<frame::CullFrame> frame;  // with occlusion
+  std::unique_ptr<frame::CullPass> pass;    // without
+};
+
+struct Measured {
+  double ms = 0;
+  uint32_t frustum = 0, backPatch = 0, occlusion = 0;
+};
+
+struct Row {
+  std::vector<double> none, all, planned, predicted;
+  std::map<std::string, int> choices;
+};
+
+void runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Options& o,
+             FILE* csv) {
+  std::printf("\n### %s, %ux%u\n\n", c.name.c_str(), o.width, o.height);
+  std::printf(
+      "| tess | none ms | all ms | planned ms | planned choice (frames) | planned / best | "
+      "within 5%% | predicted ms | predicted / measured | within 25%% |\n");
+  std::printf("|---:|---:|---:|---:|---|---:|---|---:|---:|---|\n");
+  std::fflush(stdout);
+  frame::Renderer renderer(context);
+  frame::RenderTarget target(context, o.width, o.height);
+  std::vector<frame::GpuTriangleMesh> meshes;
+  for (const auto& m : c.occluders) meshes.emplace_back(context, m);
+  std::vector<const frame::GpuTriangleMesh*> occluders;
+  for (const auto& m : meshes) occluders.push_back(&m);
+  frame::GpuPatchSet* gpu = nullptr;
+  std::unique_ptr<frame::GpuPatchSet> staticGpu;
+  if (c.dynamic)
+    gpu = &c.dynamic->gpu();
+  else
+    gpu = (staticGpu = std::make_unique<frame::GpuPatchSet>(context, c.patches)).get();
+  const frame::Bounds rest = frame::boundsOf(c.host().points);
+  const frame::Camera framed =
+      frame::frameBounds(rest, c.viewDirection, c.up, 40.0, o.width, o.height);
+  const double d = glm::distance(framed.eye(), rest.center()), r = rest.radius();
+  const frame::Camera start =
+      frame::Camera::lookAt(framed.eye(), rest.center(), c.up, 40.0, o.width, o.height,
+                            std::max(d - 1.5 * r, d * 1e-3), d + 1.5 * r);
+  const std::string coneMethod = "tcone";
+  auto cullData = [&](const std::string& method) -> const vulkan::Buffer* {
+    if (!c.dynamic || method.empty()) return nullptr;
+    return &c.dynamic->cullData(frame::cullMethod(method).reference);
+  };
+  uint64_t frameNumber = 0;
+  for (uint32_t tess : o.tess) {
+    progress(c.name + ": tess " + std::to_string(tess));
+    frame::CullFrameOptions base;
+    base.render.tessellation.uniformLevel = tess;
+    base.render.cullBackFaces = c.validity.enabled;
+    base.cull.backPatchValidity = c.validity;
+    // All culling: the three stages in the two-pass frame.
+    frame::CullFrameOptions allOptions = base;
+    allOptions.cull = {true, c.dynamic ? coneMethod : "tangent-plane", "hiz", c.validity};
+    const frame::CullMesh allMesh[] = {
+        {gpu, &c.host(), cullData(c.dynamic ? coneMethod : ""), glm::dmat4(1.0), c.validity}};
+    frame::CullFrame all(context, renderer, target, allMesh, allOptions);
+    std::map<std::string, Executor> executors;
+    auto planned = [&](const plan::Plan& p, const frame::Camera& cam) {
+      Measured m;
+      const frame::RenderOptions& ro = base.render;
+      if (!p.culls()) {
+        const frame::PatchDraw draw{gpu, &c.host(), 0};
+        m.ms = renderer.render(target, cam, {&draw, 1}, occluders, ro).wallMs;
+        return m;
+      }
+      const frame::CullFrameOptions fo = plan::applyPlan(p, base);
+      Executor& e = executors[p.stages.describe()];
+      if (!p.stages.occlusion.empty()) {
+        if (!e.frame) {
+          const frame::CullMesh mesh[] = {
+              {gpu, &c.host(), cullData(p.stages.backPatch), glm::dmat4(1.0), c.validity}};
+          e.frame = std::make_unique<frame::CullFrame>(context, renderer, target, mesh, fo);
+        }
+        const frame::CullFrameStats s = e.frame->render(cam, occluders);
+        return Measured{s.frameMs, s.culledFrustum, s.culledBackPatch, s.culledOcclusion};
+      }
+      if (!e.pass) {
+        const vulkan::Buffer* data = cullData(p.stages.backPatch);
+        e.pass = data ? std::make_unique<frame::CullPass>(context, *gpu, c.host(), fo.cull, *data)
+                      : std::make_unique<frame::CullPass>(context, *gpu, c.host(), fo.cull);
+      }
+      m.ms = frame::renderCulled(renderer, target, cam, *e.pass, occluders, ro).wallMs;
+      for (uint32_t code : e.pass->results()) {
+        const uint32_t stage = bound::CullCode{code}.stage();
+        m.frustum += stage == shader::kStageFrustum;
+        m.backPatch += stage == shader::kStageBackPatch;
+      }
+      return m;
+    };
+    Row row;
+    const int first = -int(o.warmup);
+    for (int f = first; f < int(o.frames); ++f, ++frameNumber) {
+      const frame::Camera cam =
+          frame::orbit(start, rest.center(), c.up, 360.0 / o.frames * (f - first) + 7.0);
+      if (c.animation) {
+        std::vector<glm::dvec3> cage(c.animation->vertexCount());
+        c.animation->positions(double(frameNumber) / 24.0, cage);
+        c.dynamic->setCagePositions(cage);
+        c.dynamic->update();
+      }
+      plan::PlanInput in;
+      in.mesh = c.name;
+      in.view = "orbit";
+      in.bezier = c.host().bezierCount;
+      in.gregory = c.host().gregoryCount;
+      in.tess = tess;
+      in.objectBounds = frame::boundsOf(c.host().points);
+      in.camera = cam;
+      in.deforming = in.cageMoved = c.dynamic != nullptr;
+      in.backPatchValidity = c.validity;
+      in.occluders = !occluders.empty();
+      const frame::PatchDraw draw{gpu, &c.host(), 0};
+      const double none = renderer.render(target, cam, {&draw, 1}, occluders, base.render).wallMs;
+      const double allMs = all.render(cam, occluders).frameMs;
+      const plan::Plan p = planner.plan(c.name, in, frameNumber);
+      const Measured m = planned(p, cam);
+      planner.observe(c.name, p, m.frustum, m.backPatch, m.occlusion, c.host().patchCount());
+      if (f < 0) continue;
+      row.none.push_back(none);
+      row.all.push_back(allMs);
+      row.planned.push_back(m.ms);
+      row.predicted.push_back(p.predicted.totalMs() - p.predicted.updateMs);
+      ++row.choices[p.stages.describe() + (p.probe ? " [probe]" : "")];
+    }
+    const double none = median(row.none), allMs = median(row.all), plannedMs = median(row.planned),
+                 predicted = median(row.predicted);
+    const double best = std::min(none, allMs);
+    std::string choices;
+    for (const auto& [name, count] : row.choices)
+      choices += (choices.empty() ? "" : "; ") + name + " (" + std::to_string(count) + ")";
+    std::printf("| %u | %.1f | %.1f | %.1f | %s | %.2f | %s | %.1f | %.2f | %s |\n", tess, none,
+                allMs, plannedMs, choices.c_str(), plannedMs / best,
+                plannedMs <= 1.05 * best ? "yes" : "**no**", predicted, predicted / plannedMs,
+                std::abs(predicted / plannedMs - 1.0) <= 0.25 ? "yes" : "**no**");
+    std::fflush(stdout);
+    if (csv) {
+      std::fprintf(csv, "\"%s\",%u,%.4f,%.4f,%.4f,%.4f,\"%s\"\n", c.name.c_str(), tess, none, allMs,
+                   plannedMs, predicted, choices.c_str());
+      std::fflush(csv);
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    vulkan::Context context(vulkan::ContextOptions{});
+    plan::Calibration calibration;
+    try {
+      calibration = plan::deviceCalibration(context, o.calibration);
+    } catch (const Error& e) {
+      if (!o.calibration.empty()) throw;
+      progress("no cached calibration: measuring one (--quick)");
+      plan::CalibrateOptions co;
+      co.quick = true;
+      calibration = plan::calibrate(context, co);
+      plan::storeCalibration(calibration, plan::calibrationCacheFile(calibration.key));
+    }
+    plan::PlannerOptions po;
+    po.holdFrames = 2;  // the bench plays few frames per level
+    plan::Planner planner(calibration, po);
+    std::printf("bench-plan: %s, calibration %s%s\n", context.info().name.c_str(),
+                calibration.key.driver.c_str(), calibration.quick ? " (quick)" : "");
+    std::printf(
+        "\nMedians over %u frames per level after %u warm-up frames (the planner learns its "
+        "rates there); none, all and planned interleaved per camera.\n",
+        o.frames, o.warmup);
+    std::unique_ptr<FILE, int (*)(FILE*)> csv(nullptr, &std::fclose);
+    if (!o.csv.empty()) {
+      csv.reset(std::fopen(o.csv.c_str(), "w"));
+      if (!csv) throw Error("--csv: cannot write " + o.csv);
+      std::fprintf(csv.get(), "case,tess,none_ms,all_ms,planned_ms,predicted_ms,choices\n");
+    }
+    std::stringstream names(o.cases);
+    std::string name;
+    while (std::getline(names, name, ',')) {
+      Case c = name == "builtin"    ? builtIn()
+               : name == "bigguy"   ? bigGuy(context, false)
+               : name == "animated" ? bigGuy(context, true)
+                                    : throw Error("--cases: unknown case '" + name + "'");
+      runCase(context, c, planner, o, csv.get());
+    }
+    progress("done");
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench-plan: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,212 @@
+#include "osd_cull/plan/calibrate.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_methods.h"
+#include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/cull_frame.h"
+#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/dynamic_patch_mesh.h"
+#include "osd_cull/frame/hiz/hiz_pyramid.h"
+#include "osd_cull/plan/cost_model.h"
+#include "osd_cull/scene/procedural.h"
+#include "osd_cull/version.h"
+#include "osd_cull/vk/context.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <optional>
+
+namespace osd_cull::plan {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+double timed(const std::function<void()>& f) {
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+// Samples named by what they measure; each repeat adds one value to every name.
+using Samples = std::map<std::string, std::vector<double>>;
+
+}  // namespace
+
+CalibrationKey calibrationKey(const vulkan::Context& context) {
+  return {context.info().name, context.info().driver, libraryVersion()};
+}
+
+Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
+  auto progress = [&](const std::string& line) {
+    if (o.progress) o.progress(line);
+  };
+  Calibration c;
+  c.key = calibrationKey(context);
+  c.quick = o.quick;
+  c.repeats = o.repeats ? o.repeats : (o.quick ? 3 : 7);
+  const uint32_t width = o.quick ? 640 : 1280, height = o.quick ? 360 : 720;
+  const std::vector<uint32_t> levels = o.quick ? std::vector<uint32_t>{1, 4, 8, 16, 32}
+                                               : std::vector<uint32_t>{1, 2, 4, 8, 12, 16, 24, 32};
+
+  // The calibration mesh: a closed sphere of Bézier patches filling most of the view, and
+  // the same patches as Gregory patches; a six-patch sphere for the fixed dispatch cost.
+  const PatchSet sphere = frame::bezierSphere({0, 0, 0}, 1.0, o.quick ? 10 : 16);
+  const PatchSet gregory = frame::convertToGregory(sphere, [](uint32_t) { return true; });
+  const PatchSet tiny = frame::bezierSphere({0, 0, 0}, 1.0, 1);
+  // Culling costs a fraction of a microsecond per patch: measured on a finer sphere, so
+  // that the differences between kernels stand above the submission's noise.
+  const PatchSet many = frame::bezierSphere({0, 0, 0}, 1.0, o.quick ? 24 : 40);
+  c.patches = sphere.patchCount();
+  const double n = c.patches, nMany = many.patchCount();
+  frame::GpuPatchSet gpu(context, sphere), gpuGregory(context, gregory), gpuTiny(context, tiny),
+      gpuMany(context, many);
+  frame::Renderer renderer(context);
+  frame::RenderTarget target(context, width, height), small(context, width / 2, height / 2);
+  const frame::Bounds bounds = frame::boundsOf(sphere.points);
+  const frame::Camera camera =
+      frame::frameBounds(bounds, {0.3, 0.4, 1.0}, {0, 1, 0}, 40.0, width, height);
+  const frame::Camera smallCamera =
+      frame::frameBounds(bounds, {0.3, 0.4, 1.0}, {0, 1, 0}, 40.0, width / 2, height / 2);
+  // From the centre: every patch faces away (the rasterizer discards its triangles).
+  const frame::Camera inside =
+      frame::Camera::lookAt({0, 0, 0}, {0.3, 0.4, 1.0}, {0, 1, 0}, 90.0, width, height, 0.01, 10.0);
+  // Looking away: every patch is culled by the frustum (for RT0).
+  const frame::Camera away = frame::Camera::lookAt(camera.eye(), camera.eye() * 2.0, {0, 1, 0},
+                                                   40.0, width, height, 0.1, 100.0);
+  frame::RenderOptions render;
+  render.cullBackFaces = true;  // like for like: what culled and unculled frames both do
+  render.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
+  const bound::BackPatchValidity closed{true, "calibration sphere: closed, outward"};
+
+  // Cull passes: frustum alone, frustum + each back-patch method, and on the tiny mesh.
+  progress("building cull passes");
+  std::map<std::string, std::unique_ptr<frame::CullPass>> passes;
+  passes["frustum"] = std::make_unique<frame::CullPass>(context, gpuMany, many,
+                                                        frame::CullSettings{true, "", "", closed});
+  for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch))
+    passes[m] = std::make_unique<frame::CullPass>(context, gpuMany, many,
+                                                  frame::CullSettings{true, m, "", closed});
+  frame::CullPass tinyPass(context, gpuTiny, tiny, frame::CullSettings{true, "", "", closed});
+  // Two-pass frames: the diagnostic mode times the pyramid and the cull (Hi-Z stage
+  // included) at two image sizes; tess-factor-0 and filtered frames looking away give RT0.
+  const frame::CullMesh meshes[] = {{&gpuMany, &many}};
+  frame::CullFrameOptions fo;
+  fo.render = render;
+  fo.render.tessellation.uniformLevel = 1;
+  fo.cull = {true, "", "hiz", closed};
+  fo.timePasses = true;
+  frame::CullFrame diagnostic(context, renderer, target, meshes, fo);
+  frame::CullFrame diagnosticSmall(context, renderer, small, meshes, fo);
+  fo.timePasses = false;
+  frame::CullFrame filtered(context, renderer, target, meshes, fo);
+  fo.drawMode = frame::CullDrawMode::TessFactorZero;
+  frame::CullFrame factorZero(context, renderer, target, meshes, fo);
+
+  // Point updates and the bounds pass on a deforming torus cage.
+  progress("building point updates");
+  const CageMesh cage = scene::torus(24, 16);
+  frame::DynamicPatchMesh cpuMesh(context, cage, {}, frame::PointUpdatePath::Cpu);
+  frame::DynamicPatchMesh gpuMesh(context, cage, {}, frame::PointUpdatePath::Gpu);
+  cpuMesh.cullData(bound::BackPatchMethod::TCone);
+  const double cagePatches = cpuMesh.gpu().patchCount();
+  std::vector<glm::dvec3> moved(cage.positions.begin(), cage.positions.end());
+
+  Samples s;
+  std::vector<std::pair<uint32_t, double>> tes;
+  // Standalone pyramids over the two targets' depth (built again and again below).
+  frame::HiZPyramid pyramid(context, target.depth()), pyramidSmall(context, small.depth());
+  const frame::PatchDraw draw{&gpu, &sphere, 0}, drawGregory{&gpuGregory, &gregory, 0};
+  // Each sample is a difference of two submissions made back to back (paired), so that the
+  // load of other processes, which changes over seconds, cancels; the cheap ones are
+  // sampled `sub` times per repeat.
+  const uint32_t sub = 5;
+  for (uint32_t r = 0; r <= c.repeats; ++r) {  // repeat 0 warms up (pipelines, caches)
+    progress("repeat " + std::to_string(r) + " of " + std::to_string(c.repeats));
+    Samples one;
+    render.tessellation.uniformLevel = 1;
+    const double empty = renderer.render(target, camera, {}, {}, render).wallMs;
+    one["frame"].push_back(empty);
+    for (uint32_t level : levels) {
+      render.tessellation.uniformLevel = level;
+      const frame::FrameStats st = renderer.render(target, camera, {&draw, 1}, {}, render);
+      one["draw " + std::to_string(level)].push_back(
+          st.wallMs - renderer.render(target, camera, {}, {}, render).wallMs);
+      one["back " + std::to_string(level)].push_back(
+          renderer.render(target, inside, {&draw, 1}, {}, render).wallMs -
+          renderer.render(target, inside, {}, {}, render).wallMs);
+      if (r == 0) tes.push_back({level, double(st.statistics.tessEvaluationInvocations) / n});
+    }
+    render.tessellation.uniformLevel = 8;
+    const double bezier8 = renderer.render(target, camera, {&draw, 1}, {}, render).wallMs;
+    one["gregory 8"].push_back(
+        renderer.render(target, camera, {&drawGregory, 1}, {}, render).wallMs / bezier8);
+    double frustum = 0.0;
+    for (uint32_t k = 0; k < sub; ++k) {
+      const double submit = timed([&] { context.submit([](VkCommandBuffer) {}); });
+      const double tinyMs = tinyPass.run(camera, render.tessellation);
+      one["dispatch"].push_back(tinyMs - submit);
+      frustum = passes.at("frustum")->run(camera, render.tessellation);
+      one["cull frustum"].push_back(frustum - tinyMs);
+      for (auto& [name, pass] : passes)
+        if (name != "frustum")
+          one["cull " + name].push_back(pass->run(camera, render.tessellation) - frustum);
+      one["hiz build"].push_back(
+          timed([&] { pyramid.build(context, frame::RenderTarget::kDepthLayout); }));
+      one["hiz build small"].push_back(
+          timed([&] { pyramidSmall.build(context, frame::RenderTarget::kDepthLayout); }));
+    }
+    one["hiz cull"].push_back(diagnostic.render(camera, {}).cullMs - frustum);
+    diagnosticSmall.render(smallCamera, {});
+    one["away tf0"].push_back(factorZero.render(away, {}).frameMs -
+                              filtered.render(away, {}).frameMs);
+    for (glm::dvec3& p : moved) p *= r % 2 ? 1.001 : 1.0 / 1.001;
+    cpuMesh.setCagePositions(moved);
+    cpuMesh.update();
+    gpuMesh.setCagePositions(moved);
+    gpuMesh.update();
+    one["points cpu"].push_back(cpuMesh.lastTimes().pointsMs);
+    one["bounds"].push_back(cpuMesh.lastTimes().boundsMs);
+    one["points gpu"].push_back(gpuMesh.lastTimes().pointsMs);
+    if (r == 0) continue;
+    for (auto& [name, v] : one) s[name].insert(s[name].end(), v.begin(), v.end());
+  }
+
+  // Medians; a paired difference below zero (noise) counts as zero cost.
+  auto m = [&](const std::string& name) { return std::max(0.0, median(s.at(name))); };
+  c.submitMs = m("frame");
+  for (const auto& [level, tesPerPatch] : tes)
+    c.draw.push_back({level, m("draw " + std::to_string(level)) / n, tesPerPatch,
+                      m("back " + std::to_string(level)) / n});
+  c.gregoryDrawFactor = m("gregory 8");
+  // Each frame looking away draws every patch twice (both passes) with factor 0.
+  c.drawZeroMsPerPatch = m("away tf0") / (2.0 * nMany);
+  c.cullDispatchMs = m("dispatch");
+  for (const auto& [name, pass] : passes) c.cullMsPerPatch[name] = m("cull " + name) / nMany;
+  c.cullMsPerPatch["hiz"] = m("hiz cull") / nMany;
+  c.hizBuild = {{hizPixels(uint64_t(width / 2) * (height / 2), false), m("hiz build small")},
+                {hizPixels(uint64_t(width) * height, false), m("hiz build")}};
+  c.pointUpdateCpuMsPerPatch = m("points cpu") / cagePatches;
+  c.pointUpdateGpuMsPerPatch = m("points gpu") / cagePatches;
+  c.boundsMsPerPatch = m("bounds") / cagePatches;
+  return c;
+}
+
+Calibration deviceCalibration(const vulkan::Context& context, const std::string& file) {
+  if (!file.empty()) return loadCalibration(file);
+  const CalibrationKey key = calibrationKey(context);
+  if (std::optional<Calibration> cached = loadCachedCalibration(key)) return *cached;
+  const std::filesystem::path where = calibrationCacheFile(key);
+  throw Error(
+      "no calibration of device '" + key.device + "' (driver " + key.driver + ", osd_cull " +
+      key.library + ") " +
+      (where.empty() ? std::string("(the calibration cache is off)") : "in " + where.string()) +
+      ": run `osd-cull calibrate --quick` (under 30 s) or `osd-cull calibrate` first");
+}
+
+}  // namespace osd_cull::plan

@@ -1,0 +1,235 @@
+#include "osd_cull/plan/calibration.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/vk/spirv_disk_cache.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace osd_cull::plan {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kMagic = "osd_cull-calibration 2";
+
+std::string number(double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+// Linear interpolation of y over x through sorted samples; beyond the ends the nearest
+// segment's line (or, with one sample, y proportional to x).
+double interpolate(const std::vector<std::pair<double, double>>& s, double x) {
+  if (s.size() == 1) return s[0].first > 0 ? s[0].second * x / s[0].first : s[0].second;
+  size_t i = 1;
+  while (i + 1 < s.size() && s[i].first < x) ++i;
+  const auto [x0, y0] = s[i - 1];
+  const auto [x1, y1] = s[i];
+  const double t = x1 > x0 ? (x - x0) / (x1 - x0) : 0.0;
+  return std::max(0.0, y0 + t * (y1 - y0));
+}
+
+}  // namespace
+
+namespace {
+
+double drawCost(const std::vector<DrawCost>& draw, double tess, double DrawCost::*cost) {
+  if (draw.empty()) throw Error("calibration: no draw costs RT(tf) measured");
+  std::vector<std::pair<double, double>> s;
+  for (const DrawCost& d : draw) s.push_back({(d.tess + 1.0) * (d.tess + 1.0), d.*cost});
+  return interpolate(s, (tess + 1.0) * (tess + 1.0));
+}
+
+}  // namespace
+
+double Calibration::drawMs(double tess) const {
+  return drawCost(draw, tess, &DrawCost::msPerPatch);
+}
+
+double Calibration::backDrawMs(double tess) const {
+  return drawCost(draw, tess, &DrawCost::backMsPerPatch);
+}
+
+double Calibration::cullMs(const std::string& stage) const {
+  const auto it = cullMsPerPatch.find(stage);
+  if (it == cullMsPerPatch.end())
+    throw Error("calibration: no cull cost measured for stage '" + stage +
+                "' (run `osd-cull calibrate` again with this library)");
+  return it->second;
+}
+
+double Calibration::hizBuildMs(uint64_t pixels) const {
+  if (hizBuild.empty()) throw Error("calibration: no Hi-Z build cost measured");
+  std::vector<std::pair<double, double>> s;
+  for (const SizeCost& c : hizBuild) s.push_back({double(c.pixels), c.ms});
+  return interpolate(s, double(pixels));
+}
+
+std::string toText(const Calibration& c) {
+  std::ostringstream out;
+  out << kMagic << "\n";
+  out << "device " << c.key.device << "\n";
+  out << "driver " << c.key.driver << "\n";
+  out << "library " << c.key.library << "\n";
+  out << "quick " << (c.quick ? 1 : 0) << "\n";
+  out << "repeats " << c.repeats << "\n";
+  out << "patches " << c.patches << "\n";
+  for (const DrawCost& d : c.draw)
+    out << "draw " << d.tess << " " << number(d.msPerPatch) << " " << number(d.tesPerPatch) << " "
+        << number(d.backMsPerPatch) << "\n";
+  out << "gregory-draw-factor " << number(c.gregoryDrawFactor) << "\n";
+  out << "draw-zero " << number(c.drawZeroMsPerPatch) << "\n";
+  out << "submit " << number(c.submitMs) << "\n";
+  out << "cull-dispatch " << number(c.cullDispatchMs) << "\n";
+  for (const auto& [stage, ms] : c.cullMsPerPatch)
+    out << "cull " << stage << " " << number(ms) << "\n";
+  for (const SizeCost& h : c.hizBuild) out << "hiz " << h.pixels << " " << number(h.ms) << "\n";
+  out << "point-update-cpu " << number(c.pointUpdateCpuMsPerPatch) << "\n";
+  out << "point-update-gpu " << number(c.pointUpdateGpuMsPerPatch) << "\n";
+  out << "bounds " << number(c.boundsMsPerPatch) << "\n";
+  return out.str();
+}
+
+Calibration fromText(const std::string& text, const std::string& source) {
+  std::istringstream in(text);
+  std::string line;
+  int lineNumber = 0;
+  auto fail = [&](const std::string& what) -> Error {
+    return Error(source + ":" + std::to_string(lineNumber) + ": " + what);
+  };
+  if (!std::getline(in, line) || line != kMagic)
+    throw Error(source + ":1: not a calibration file (expected first line '" + kMagic + "')");
+  lineNumber = 1;
+  Calibration c;
+  bool sawDevice = false;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    if (line.empty()) continue;
+    const size_t space = line.find(' ');
+    const std::string name = line.substr(0, space);
+    const std::string rest = space == std::string::npos ? "" : line.substr(space + 1);
+    std::istringstream values(rest);
+    auto read = [&](auto& v, const char* what) {
+      if (!(values >> v)) throw fail("'" + name + "' needs " + what + ", got '" + rest + "'");
+      if constexpr (std::is_floating_point_v<std::remove_reference_t<decltype(v)>>)
+        if (!std::isfinite(v) || v < 0)
+          throw fail("'" + name + "': " + what + " must be finite and >= 0");
+    };
+    if (name == "device") {
+      c.key.device = rest;
+      sawDevice = true;
+    } else if (name == "driver")
+      c.key.driver = rest;
+    else if (name == "library")
+      c.key.library = rest;
+    else if (name == "quick") {
+      int q = 0;
+      read(q, "0 or 1");
+      c.quick = q != 0;
+    } else if (name == "repeats")
+      read(c.repeats, "a count");
+    else if (name == "patches")
+      read(c.patches, "a count");
+    else if (name == "draw") {
+      DrawCost d;
+      read(d.tess, "a tessellation level");
+      read(d.msPerPatch, "ms per patch");
+      read(d.tesPerPatch, "TES invocations per patch");
+      read(d.backMsPerPatch, "ms per back-facing patch");
+      if (!c.draw.empty() && d.tess <= c.draw.back().tess) throw fail("'draw' levels must ascend");
+      c.draw.push_back(d);
+    } else if (name == "gregory-draw-factor")
+      read(c.gregoryDrawFactor, "a factor");
+    else if (name == "draw-zero")
+      read(c.drawZeroMsPerPatch, "ms per patch");
+    else if (name == "submit")
+      read(c.submitMs, "ms");
+    else if (name == "cull-dispatch")
+      read(c.cullDispatchMs, "ms");
+    else if (name == "cull") {
+      std::string stage;
+      double ms = 0;
+      read(stage, "a stage name");
+      read(ms, "ms per patch");
+      c.cullMsPerPatch[stage] = ms;
+    } else if (name == "hiz") {
+      SizeCost h;
+      read(h.pixels, "a pixel count");
+      read(h.ms, "ms");
+      if (!c.hizBuild.empty() && h.pixels <= c.hizBuild.back().pixels)
+        throw fail("'hiz' sizes must ascend");
+      c.hizBuild.push_back(h);
+    } else if (name == "point-update-cpu")
+      read(c.pointUpdateCpuMsPerPatch, "ms per patch");
+    else if (name == "point-update-gpu")
+      read(c.pointUpdateGpuMsPerPatch, "ms per patch");
+    else if (name == "bounds")
+      read(c.boundsMsPerPatch, "ms per patch");
+    else
+      throw fail("unknown entry '" + name + "'");
+  }
+  if (!sawDevice) throw Error(source + ": no 'device' line");
+  if (c.draw.empty()) throw Error(source + ": no 'draw' lines (RT(tf))");
+  if (c.hizBuild.empty()) throw Error(source + ": no 'hiz' lines");
+  return c;
+}
+
+fs::path calibrationCacheDirectory() {
+  if (const char* dir = std::getenv("OSD_CULL_CALIBRATION_CACHE"); dir && *dir)
+    return std::string(dir) == "off" ? fs::path() : fs::path(dir);
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return fs::path(xdg) / "osd_cull" / "calibration";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return fs::path(home) / ".cache" / "osd_cull" / "calibration";
+  return {};
+}
+
+fs::path calibrationCacheFile(const CalibrationKey& key) {
+  const fs::path dir = calibrationCacheDirectory();
+  if (dir.empty()) return {};
+  char name[64];
+  std::snprintf(name, sizeof name, "%016llx.txt",
+                static_cast<unsigned long long>(
+                    vulkan::fnv1a64(key.device + "\n" + key.driver + "\n" + key.library)));
+  return dir / name;
+}
+
+Calibration loadCalibration(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(file.string() + ": cannot read the calibration file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return fromText(text.str(), file.string());
+}
+
+std::optional<Calibration> loadCachedCalibration(const CalibrationKey& key) {
+  const fs::path file = calibrationCacheFile(key);
+  if (file.empty() || !fs::exists(file)) return std::nullopt;
+  Calibration c = loadCalibration(file);
+  if (!(c.key == key)) return std::nullopt;
+  return c;
+}
+
+void storeCalibration(const Calibration& calibration, const fs::path& file) {
+  std::error_code ec;
+  if (file.has_parent_path()) fs::create_directories(file.parent_path(), ec);
+  const fs::path temporary = file.string() + ".tmp" + std::to_string(std::rand());
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!(out << toText(calibration)))
+      throw Error(file.string() + ": cannot write the calibration file");
+  }
+  fs::rename(temporary, file, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    throw Error(file.string() + ": cannot write the calibration file (" + ec.message() + ")");
+  }
+}
+
+}  // namespace osd_cull::plan

@@ -1,0 +1,437 @@
+#include "osd_cull/plan/planner.h"
+
+#include "osd_cull/bound/frustum.h"
+#include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_methods.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+namespace osd_cull::plan {
+namespace {
+
+const char* const kBackPatch = "back-patch";
+const char* const kOcclusion = "occlusion";
+const char* const kFrustum = "frustum";
+
+bool isConeMethod(const std::string& method) { return method == "tcone" || method == "ncone"; }
+
+std::string percent(double rate) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f%%", 100.0 * rate);
+  return text;
+}
+
+std::string ms(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f ms", v);
+  return text;
+}
+
+}  // namespace
+
+const char* toString(BoxInView box) {
+  switch (box) {
+    case BoxInView::Outside:
+      return "outside";
+    case BoxInView::Inside:
+      return "inside";
+    case BoxInView::Crossing:
+      return "crossing";
+  }
+  return "?";
+}
+
+BoxInView boxInView(const frame::Bounds& b, const glm::dmat4& model, const frame::Camera& camera) {
+  std::vector<glm::dvec3> corners;
+  for (int i = 0; i < 8; ++i)
+    corners.push_back({i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z});
+  const bound::ClipBounds clip = bound::clipBounds(corners, camera.viewProjection() * model);
+  if (!clip.finite) return BoxInView::Crossing;  // keep it: no pre-test verdict
+  if (clip.outsideAll != 0) return BoxInView::Outside;
+  if (clip.outsideAny == 0 && !clip.behindEye) return BoxInView::Inside;
+  return BoxInView::Crossing;
+}
+
+std::vector<std::pair<const char*, const Effect*>> Plan::effects() const {
+  return {{"frustum", &frustum},
+          {"back-patch", &backPatch},
+          {"occlusion", &occlusion},
+          {"passes", &passes},
+          {"hi-z", &hiz},
+          {"update", &update},
+          {"bounds", &bounds},
+          {"displacement", &displacement}};
+}
+
+Planner::Planner(Calibration calibration, PlannerOptions options)
+    : calibration_(std::move(calibration)), options_(std::move(options)) {
+  if (!(options_.margin >= 0.0 && options_.margin < 1.0))
+    throw Error("planner: margin must be in [0, 1), got " + std::to_string(options_.margin));
+  if (!(options_.learnWeight > 0.0 && options_.learnWeight <= 1.0))
+    throw Error("planner: learnWeight must be in (0, 1], got " +
+                std::to_string(options_.learnWeight));
+  calibration_.drawMs(1.0);  // throws without draw costs
+}
+
+std::string Planner::occlusionKernel(const PlanInput& input) const {
+  return input.displaced ? options_.displacedKernel : "hiz";
+}
+
+CostCase Planner::costCase(const PlanInput& input, const StageChoice& stages) const {
+  CostCase c;
+  c.bezier = input.bezier;
+  c.gregory = input.gregory;
+  c.tess = input.tess;
+  c.pixels = uint64_t(input.camera.width) * input.camera.height;
+  c.tessFactorZero = options_.tessFactorZero;
+  c.pointUpdate = input.deforming && input.cageMoved;
+  c.gpuPointUpdate = calibration_.pointUpdateGpuMsPerPatch < calibration_.pointUpdateCpuMsPerPatch;
+  c.boundsPass = c.pointUpdate && isConeMethod(stages.backPatch);
+  return c;
+}
+
+std::vector<StageChoice> Planner::candidates(const PlanInput& input) const {
+  std::vector<std::string> backPatch = {""};
+  if (input.backPatchValidity.enabled && !input.displaced)
+    for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch))
+      if (calibration_.cullMsPerPatch.count(m) && (!input.deforming || isConeMethod(m)))
+        backPatch.push_back(m);
+  std::vector<std::string> occlusion = {""};
+  if (input.occluders && calibration_.cullMsPerPatch.count(occlusionKernel(input)))
+    occlusion.push_back(occlusionKernel(input));
+  std::vector<StageChoice> out;
+  for (bool frustum : {false, true})
+    for (const std::string& b : backPatch)
+      for (const std::string& o : occlusion) {
+        StageChoice c{frustum, b, o};
+        out.push_back(c);
+        if (!o.empty() && options_.allowAggressive) {
+          c.aggressive = true;
+          out.push_back(c);
+        }
+      }
+  return out;
+}
+
+double Planner::stageRate(const State& state, const std::string& stage) const {
+  if (const auto it = state.rates.find(stage); it != state.rates.end()) return it->second;
+  if (const auto it = options_.priorRates.find(stage); it != options_.priorRates.end())
+    return it->second;
+  // A displaced kernel without its own prior: the Hi-Z one.
+  const auto hiz = options_.priorRates.find("hiz");
+  return hiz != options_.priorRates.end() ? hiz->second : 0.0;
+}
+
+CullRates Planner::ratesFor(const State& state, const StageChoice& stages, BoxInView box) const {
+  CullRates r;
+  r.frustum = box == BoxInView::Outside  ? 1.0
+              : box == BoxInView::Inside ? 0.0
+                                         : stageRate(state, kFrustum);
+  if (!stages.backPatch.empty()) r.backPatch = stageRate(state, stages.backPatch);
+  if (!stages.occlusion.empty()) r.occlusion = stageRate(state, stages.occlusion);
+  return r;
+}
+
+double Planner::rate(const std::string& key, const std::string& stage) const {
+  const auto it = states_.find(key);
+  static const State empty;
+  return stageRate(it == states_.end() ? empty : it->second, stage);
+}
+
+Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t frameNumber) {
+  State& s = states_[key];
+  if (s.current && frameNumber < s.lastFrame)
+    throw Error("planner: frame " + std::to_string(frameNumber) + " of '" + key +
+                "' comes after frame " + std::to_string(s.lastFrame));
+  s.lastFrame = frameNumber;
+  Plan p;
+  p.mesh = input.mesh;
+  p.view = input.view;
+  p.frame = frameNumber;
+  p.box = boxInView(input.objectBounds, input.model, input.camera);
+  auto total = [&](const StageChoice& c) {
+    return predict(calibration_, costCase(input, c), c, ratesFor(s, c, p.box)).totalMs();
+  };
+  const std::vector<StageChoice> all = candidates(input);
+  const StageChoice best = *std::min_element(
+      all.begin(), all.end(),
+      [&](const StageChoice& a, const StageChoice& b) { return total(a) < total(b); });
+  const bool valid = s.current && std::find(all.begin(), all.end(), *s.current) != all.end();
+  if (!valid) {
+    s.current = best;
+    s.since = frameNumber;
+  } else if (!(best == *s.current) && frameNumber - s.since >= options_.holdFrames &&
+             total(best) < (1.0 - options_.margin) * total(*s.current)) {
+    s.current = best;
+    s.since = frameNumber;
+  }
+  p.stages = *s.current;
+
+  // Re-probe one switched-off stage now and then: its rate is learned only while it runs.
+  for (const char* kind : {kFrustum, kBackPatch, kOcclusion})
+    if (!s.lastRun.count(kind)) s.lastRun[kind] = frameNumber;
+  if (options_.reprobeFrames > 0) {
+    std::string probeBackPatch;
+    double probeRate = -1.0;
+    for (const StageChoice& c : all)
+      if (!c.backPatch.empty() && stageRate(s, c.backPatch) > probeRate) {
+        probeRate = stageRate(s, c.backPatch);
+        probeBackPatch = c.backPatch;
+      }
+    auto due = [&](const char* kind) {
+      return frameNumber - s.lastRun[kind] >= options_.reprobeFrames;
+    };
+    if (!p.stages.frustum && p.box == BoxInView::Crossing && due(kFrustum)) {
+      p.stages.frustum = p.probe = true;
+    } else if (p.stages.backPatch.empty() && !probeBackPatch.empty() && due(kBackPatch)) {
+      p.stages.backPatch = probeBackPatch;
+      p.probe = true;
+    } else if (p.stages.occlusion.empty() && input.occluders &&
+               calibration_.cullMsPerPatch.count(occlusionKernel(input)) && due(kOcclusion)) {
+      p.stages.occlusion = occlusionKernel(input);
+      p.probe = true;
+    }
+  }
+  if (p.stages.frustum) s.lastRun[kFrustum] = frameNumber;
+  if (!p.stages.backPatch.empty()) s.lastRun[kBackPatch] = frameNumber;
+  if (!p.stages.occlusion.empty()) s.lastRun[kOcclusion] = frameNumber;
+
+  p.rates = ratesFor(s, p.stages, p.box);
+  p.predicted = predict(calibration_, costCase(input, p.stages), p.stages, p.rates);
+  p.predictedUnculled = predict(calibration_, costCase(input, {}), {}, p.rates);
+  explain(p, input, s);
+  return p;
+}
+
+void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
+  const CostCase base = costCase(input, p.stages);
+  const double n = std::max(1u, base.patches());
+  const double rt = drawMsPerPatch(calibration_, base);
+  const double rtBack = std::min(rt, backDrawMsPerPatch(calibration_, base));
+  const double rt0 = options_.tessFactorZero ? calibration_.drawZeroMsPerPatch : 0.0;
+  auto total = [&](const StageChoice& c) {
+    return predict(calibration_, costCase(input, c), c, ratesFor(s, c, p.box)).totalMs();
+  };
+  const double now = total(p.stages);
+  auto source = [&](const std::string& stage) {
+    return s.rates.count(stage) ? "measured" : "prior";
+  };
+  // The break-even rate of adding `with` to `without` (§6.3), fixed costs spread per patch;
+  // a patch the stage culls would have cost `saved` (RT, or RT of a back-facing patch).
+  auto breakEven = [&](const StageChoice& with, const StageChoice& without, double saved) {
+    const Prediction a = predict(calibration_, costCase(input, with), with, {});
+    const Prediction b = predict(calibration_, costCase(input, without), without, {});
+    const double ct = (a.cullMs + a.hizMs + a.updateMs - b.cullMs - b.hizMs - b.updateMs) / n;
+    return breakEvenRate(saved, rt0, ct);
+  };
+  auto stageReason = [&](const std::string& stage, double rate, const StageChoice& with,
+                         const StageChoice& without) {
+    const bool occlusion = with.occlusion != without.occlusion;
+    const double x = breakEven(with, without, occlusion ? rt : rtBack);
+    return std::string(source(stage)) + " rate " + percent(rate) +
+           (rate > x ? " above" : " below") + " break-even " +
+           (std::isfinite(x) ? percent(x) : std::string("(never)")) + " at tess " +
+           std::to_string(int(input.tess));
+  };
+  const char* probe = "re-probe: runs once to measure its rate; ";
+
+  // Frustum.
+  {
+    StageChoice off = p.stages, on = p.stages;
+    off.frustum = false;
+    on.frustum = true;
+    p.frustum.on = p.stages.frustum;
+    p.frustum.deltaMs = p.frustum.on ? now - total(off) : total(on) - now;
+    if (p.box == BoxInView::Outside)
+      p.frustum.reason = "object box outside the view (Sathe pre-test): culls every patch";
+    else if (p.box == BoxInView::Inside)
+      p.frustum.reason = "object box inside the view (Sathe pre-test): would cull nothing";
+    else
+      p.frustum.reason =
+          (p.probe && p.frustum.on && !s.current->frustum ? probe : "") +
+          stageReason(kFrustum, p.rates.frustum > 0 ? p.rates.frustum : stageRate(s, kFrustum), on,
+                      off);
+  }
+  // Back-patch.
+  {
+    p.backPatch.on = !p.stages.backPatch.empty();
+    p.backPatch.choice = p.stages.backPatch;
+    StageChoice off = p.stages;
+    off.backPatch.clear();
+    if (input.displaced)
+      p.backPatch.reason = "displaced mesh: the back-patch tests bound the undisplaced surface";
+    else if (!input.backPatchValidity.enabled)
+      p.backPatch.reason = input.backPatchValidity.reason;
+    else if (p.backPatch.on) {
+      p.backPatch.deltaMs = now - total(off);
+      p.backPatch.reason = (p.probe && s.current->backPatch.empty() ? probe : "") +
+                           stageReason(p.stages.backPatch, p.rates.backPatch, p.stages, off);
+    } else {
+      // The best method it could have run.
+      std::string bestMethod;
+      double bestTotal = std::numeric_limits<double>::infinity();
+      for (const StageChoice& c : candidates(input))
+        if (!c.backPatch.empty() && c.frustum == p.stages.frustum &&
+            c.occlusion == p.stages.occlusion && c.aggressive == p.stages.aggressive &&
+            total(c) < bestTotal) {
+          bestTotal = total(c);
+          bestMethod = c.backPatch;
+        }
+      if (bestMethod.empty()) {
+        p.backPatch.reason = input.deforming
+                                 ? "deforming mesh: no calibrated cone method (tcone, ncone) "
+                                   "with a bounds pass"
+                                 : "no back-patch method calibrated";
+      } else {
+        StageChoice with = p.stages;
+        with.backPatch = bestMethod;
+        p.backPatch.choice = bestMethod;
+        p.backPatch.deltaMs = bestTotal - now;
+        p.backPatch.reason = stageReason(bestMethod, stageRate(s, bestMethod), with, p.stages);
+      }
+    }
+  }
+  // Occlusion, passes, Hi-Z.
+  {
+    p.occlusion.on = !p.stages.occlusion.empty();
+    p.occlusion.choice = p.stages.occlusion;
+    const std::string kernel = occlusionKernel(input);
+    StageChoice with = p.stages, without = p.stages;
+    with.occlusion = kernel;
+    without.occlusion.clear();
+    if (!input.occluders) {
+      p.occlusion.reason = "nothing can hide it in this view (no occluders, no other instance)";
+    } else if (!calibration_.cullMsPerPatch.count(kernel)) {
+      p.occlusion.reason = "the cost of kernel " + kernel + " is not in the calibration";
+    } else {
+      p.occlusion.choice = kernel;
+      p.occlusion.deltaMs = p.occlusion.on ? now - total(without) : total(with) - now;
+      p.occlusion.reason =
+          (p.probe && p.occlusion.on && s.current->occlusion.empty() ? probe : "") +
+          stageReason(kernel, stageRate(s, kernel), with, without) + " (Hi-Z build included)";
+    }
+    p.passes.on = p.occlusion.on;
+    p.passes.choice = p.occlusion.on ? (p.stages.aggressive ? "aggressive" : "two-pass") : "one";
+    p.passes.reason = !p.occlusion.on ? "no occlusion: one pass"
+                      : p.stages.aggressive
+                          ? "aggressive (§3.1): newly visible patches appear a frame late"
+                          : "two-pass (§3): the same image as without culling";
+    const uint64_t pixels = uint64_t(input.camera.width) * input.camera.height;
+    p.hiz.on = p.occlusion.on;
+    p.hiz.choice = p.occlusion.on ? (p.stages.hizFull ? "full" : "half") : "";
+    p.hiz.deltaMs =
+        p.occlusion.on ? calibration_.hizBuildMs(hizPixels(pixels, p.stages.hizFull)) : 0.0;
+    p.hiz.reason = p.occlusion.on
+                       ? "level 0 at half resolution (paper §4): build " +
+                             ms(calibration_.hizBuildMs(hizPixels(pixels, false))) + ", full " +
+                             ms(calibration_.hizBuildMs(hizPixels(pixels, true)))
+                       : "no occlusion: no pyramid";
+  }
+  // Update and bounds.
+  {
+    p.update.on = base.pointUpdate;
+    p.update.choice = p.update.on ? (base.gpuPointUpdate ? "gpu" : "cpu") : "";
+    if (!input.deforming)
+      p.update.reason = "static mesh: control points computed once, never re-evaluated";
+    else if (!input.cageMoved)
+      p.update.reason = "the cage did not move since the last frame: nothing to update";
+    else {
+      p.update.deltaMs = n * std::min(calibration_.pointUpdateCpuMsPerPatch,
+                                      calibration_.pointUpdateGpuMsPerPatch);
+      p.update.reason = "cage moved: cpu " + ms(n * calibration_.pointUpdateCpuMsPerPatch) +
+                        ", gpu " + ms(n * calibration_.pointUpdateGpuMsPerPatch) +
+                        " (calibrated); the cheaper runs";
+    }
+    p.bounds.on = base.boundsPass;
+    p.bounds.choice = p.bounds.on ? p.stages.backPatch : "";
+    p.bounds.deltaMs = p.bounds.on ? n * calibration_.boundsMsPerPatch : 0.0;
+    p.bounds.reason = !base.pointUpdate ? "points did not move: the cones stay valid"
+                      : p.bounds.on     ? "recomputes the " + p.stages.backPatch +
+                                          " cones of the moved points (bounds pass)"
+                                    : "no cone method runs: no bounds pass";
+  }
+  // Displacement.
+  p.displacement.on = input.displaced;
+  if (!input.displaced)
+    p.displacement.reason = "no displacement map: no displacement kernel compiled or bound";
+  else {
+    p.displacement.choice = p.stages.any() ? options_.displacedKernel : "draw only";
+    p.displacement.reason = p.stages.any()
+                                ? "frustum and occlusion test the " + options_.displacedKernel +
+                                      " bound (Niessner & Loop Table 1: CoN with CAF culls most)"
+                                : "no cull stage: the map is used by the draw only";
+  }
+}
+
+void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
+                      uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total) {
+  if (total == 0) return;
+  State& s = states_[key];
+  auto learn = [&](const std::string& stage, uint32_t culled) {
+    const double measured = double(culled) / double(total);
+    const auto it = s.rates.find(stage);
+    s.rates[stage] = it == s.rates.end() ? measured
+                                         : (1.0 - options_.learnWeight) * it->second +
+                                               options_.learnWeight * measured;
+  };
+  // The frustum's rate is learned only where the pre-test leaves it open.
+  if (plan.stages.frustum && plan.box == BoxInView::Crossing) learn(kFrustum, culledFrustum);
+  if (!plan.stages.backPatch.empty()) learn(plan.stages.backPatch, culledBackPatch);
+  if (!plan.stages.occlusion.empty()) learn(plan.stages.occlusion, culledOcclusion);
+}
+
+frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base) {
+  base.cull.frustum = plan.stages.frustum;
+  base.cull.backPatch = plan.stages.backPatch;
+  base.cull.occlusion = plan.stages.occlusion;
+  base.aggressive = plan.stages.aggressive;
+  base.hiz.fullResolution = plan.stages.hizFull;
+  if (!plan.displacement.on) {
+    base.cull.displacementMap = nullptr;
+    base.cull.uvCorners = {};
+  } else if (!plan.stages.occlusion.empty()) {
+    if (const auto& d = frame::cullMethod(plan.stages.occlusion).displaced)
+      base.cull.displacedKernel = *d;
+  }
+  return base;
+}
+
+std::string planTable(std::span<const Plan> plans) {
+  std::ostringstream out;
+  out << "| mesh | view | frame | box | effect | on | choice | predicted ms | reason |\n"
+      << "|---|---|---:|---|---|---|---|---:|---|\n";
+  char line[64];
+  for (const Plan& p : plans) {
+    for (const auto& [name, e] : p.effects()) {
+      std::snprintf(line, sizeof line, "%+.2f", e->deltaMs);
+      out << "| " << p.mesh << " | " << p.view << " | " << p.frame << " | " << toString(p.box)
+          << " | " << name << " | " << (e->on ? "on" : "off") << " | "
+          << (e->choice.empty() ? "-" : e->choice) << " | " << line << " | " << e->reason << " |\n";
+    }
+    std::snprintf(line, sizeof line, "%.2f", p.predicted.totalMs());
+    out << "| " << p.mesh << " | " << p.view << " | " << p.frame << " | " << toString(p.box)
+        << " | **frame** | " << (p.culls() ? "cull" : "no cull") << " | " << p.stages.describe()
+        << (p.probe ? " (re-probe)" : "") << " | " << line << " | predicted "
+        << ms(p.predicted.totalMs()) << " against " << ms(p.predictedUnculled.totalMs())
+        << " without culling; " << percent(p.predicted.culled) << " not drawn |\n";
+  }
+  return out.str();
+}
+
+std::string planChange(const Plan& before, const Plan& after) {
+  std::string text;
+  const auto a = before.effects(), b = after.effects();
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].second->on != b[i].second->on ||
+        (b[i].second->on && a[i].second->choice != b[i].second->choice))
+      text += std::string(b[i].first) + " " + (b[i].second->on ? "on" : "off") +
+              (b[i].second->choice.empty() ? "" : " (" + b[i].second->choice + ")") + ": " +
+              b[i].second->reason + "\n";
+  return text;
+}
+
+}  // namespace osd_cull::plan

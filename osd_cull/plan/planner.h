@@ -1,0 +1,175 @@
+#pragma once
+/// \file planner.h
+/// \brief The effect plan (docs/algorithms/plan.md): per mesh instance and view, per frame,
+/// which work runs — the cull stages (none, frustum, which back-patch method, occlusion),
+/// two-pass or aggressive, the Hi-Z resolution, the control-point update (none, CPU, GPU)
+/// and its bounds pass, the displacement kernel — decided from a device Calibration and
+/// the cull rates measured on the mesh's recent frames.
+///
+/// Each frame the planner
+///  1. tests the object's box against the view first (Sathe §4, the per-object pre-test):
+///     a box outside the view is culled whole by the frustum stage; a box inside it makes
+///     the frustum stage useless;
+///  2. predicts every candidate stage choice with the cost model (cost_model.h: Zachmann's
+///     T = t + (1 - P)·R, Niessner & Loop §6.3) at the rates learned so far (priors before
+///     the first measurement) and takes the cheapest;
+///  3. keeps the current choice unless the new one is predicted cheaper by a margin and the
+///     current one has been held for some frames (hysteresis: no flipping every frame);
+///  4. now and then runs a stage that is switched off for one frame (a re-probe), because a
+///     rate can only be learned while its stage runs.
+/// observe() feeds the frame's measured per-stage cull counts back (a moving average).
+///
+/// The planner never touches the device: applyPlan() turns a plan into the options that
+/// the frame pipeline already takes (frame::CullFrameOptions, frame::CullSettings).
+
+#include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/frame/camera.h"
+#include "osd_cull/frame/cull_frame.h"
+#include "osd_cull/plan/cost_model.h"
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace osd_cull::plan {
+
+/// \brief Where an object's box lies against the view frustum (the per-object pre-test).
+enum class BoxInView { Outside, Inside, Crossing };
+const char* toString(BoxInView box);
+
+/// \brief Sathe's pre-test: the eight corners of `objectBounds` moved by `model` into the
+/// camera's clip space (in double). Outside: every corner is outside one plane (so every
+/// control point is, and the frustum stage culls every patch). Inside: all corners are in
+/// front of the eye and inside all planes (the frustum stage culls nothing). Else Crossing.
+BoxInView boxInView(const frame::Bounds& objectBounds, const glm::dmat4& model,
+                    const frame::Camera& camera);
+
+/// \brief One mesh instance in one view at one frame: what the plan is made from.
+struct PlanInput {
+  std::string mesh;  ///< names for the printed plan
+  std::string view;
+  uint32_t bezier = 0;
+  uint32_t gregory = 0;
+  double tess = 4.0;
+  frame::Bounds objectBounds;  ///< of the control points, object space
+  glm::dmat4 model{1.0};
+  frame::Camera camera;
+  bool deforming = false;  ///< the cage can move (animated)
+  bool cageMoved = false;  ///< ... and moved since the last frame
+  bool displaced = false;  ///< a displacement map is bound to the mesh
+  bound::BackPatchValidity backPatchValidity{false, "mesh validity not given"};
+  /// Something can hide this mesh in this view: triangle occluders or other instances.
+  bool occluders = false;
+};
+
+/// \brief One effect of a plan: on or off, the choice made (a method, "cpu"), why, and
+/// the predicted change of the frame time it makes (negative: it saves time).
+struct Effect {
+  bool on = false;
+  std::string choice;
+  std::string reason;
+  double deltaMs = 0.0;
+};
+
+/// \brief The plan of one mesh instance in one view for one frame.
+struct Plan {
+  std::string mesh, view;
+  uint64_t frame = 0;
+  BoxInView box = BoxInView::Crossing;
+  StageChoice stages;
+  Effect frustum, backPatch, occlusion, passes, hiz, update, bounds, displacement;
+  bool probe = false;            ///< a re-probe frame (a switched-off stage runs once)
+  CullRates rates;               ///< the rates the prediction used
+  Prediction predicted;          ///< this plan
+  Prediction predictedUnculled;  ///< no stage at all
+  /// \brief Whether anything is culled (else the mesh is drawn by the plain renderer).
+  bool culls() const { return stages.any(); }
+  /// \brief The effects with their names, in print order.
+  std::vector<std::pair<const char*, const Effect*>> effects() const;
+};
+
+/// \brief Tuning of the planner.
+struct PlannerOptions {
+  /// Hysteresis: a new stage choice replaces the current one only when predicted at least
+  /// this share cheaper ...
+  double margin = 0.05;
+  /// ... and the current one has run for at least this many frames.
+  uint32_t holdFrames = 8;
+  /// A stage switched off runs for one frame after this many frames, to re-measure its
+  /// rate (0: never).
+  uint32_t reprobeFrames = 48;
+  /// Weight of a new measurement in the moving average of a rate.
+  double learnWeight = 0.5;
+  /// Aggressive culling (§3.1) shows newly visible patches one frame late: only when
+  /// allowed.
+  bool allowAggressive = false;
+  /// Culled patches are drawn with tessellation factor 0 (CullDrawMode::TessFactorZero).
+  bool tessFactorZero = false;
+  /// Prior cull rates (share of all patches) before a stage's first measurement: per
+  /// back-patch method (tested on the drawn triangles; the held-out character at
+  /// tess 8: TCONE 12.7%, tangent plane 18.7%), occlusion, and the frustum stage of a box
+  /// that crosses the view.
+  std::map<std::string, double> priorRates = {
+      {"frustum", 0.3},           {"tcone", 0.12}, {"ncone", 0.15}, {"tangent-plane", 0.18},
+      {"tangent-plane-16", 0.18}, {"hiz", 0.10}};
+  /// The displaced kernel for a displaced mesh (Niessner & Loop Table 1: CoN with the
+  /// camera-aligned frustum culls most).
+  std::string displacedKernel = "con-caf";
+};
+
+/// \brief The planner. One per program; it keeps a state per key (instance and view).
+class Planner {
+ public:
+  explicit Planner(Calibration calibration, PlannerOptions options = {});
+
+  /// \brief The plan of `input` for frame `frame` under `key` (e.g. "view/instance").
+  /// Frames of one key must come in increasing order.
+  /// \throws osd_cull::Error when the calibration lacks a stage's cost.
+  Plan plan(const std::string& key, const PlanInput& input, uint64_t frame);
+
+  /// \brief Learns from a frame that ran `plan`: the per-stage culled counts over `total`
+  /// patches (CullFrameStats::culledFrustum, culledBackPatch, culledOcclusion).
+  void observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
+               uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total);
+
+  /// \brief The learned (or prior) rate of `stage` ("frustum" or a method name) for `key`.
+  double rate(const std::string& key, const std::string& stage) const;
+  const Calibration& calibration() const { return calibration_; }
+  const PlannerOptions& options() const { return options_; }
+
+ private:
+  struct State {
+    std::optional<StageChoice> current;
+    uint64_t since = 0;  // frame the current choice started
+    std::map<std::string, double> rates;
+    std::map<std::string, uint64_t> lastRun;  // stage kind → last frame it ran
+    uint64_t lastFrame = 0;
+  };
+  CostCase costCase(const PlanInput& input, const StageChoice& stages) const;
+  std::string occlusionKernel(const PlanInput& input) const;
+  std::vector<StageChoice> candidates(const PlanInput& input) const;
+  CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
+  double stageRate(const State& state, const std::string& stage) const;
+  void explain(Plan& plan, const PlanInput& input, const State& state) const;
+
+  Calibration calibration_;
+  PlannerOptions options_;
+  std::map<std::string, State> states_;
+};
+
+/// \brief `base` with the plan's stages, passes, Hi-Z resolution and displaced kernel.
+/// The back-patch validity and the displacement map of `base` are kept (a displaced mesh's
+/// map stays bound only when the plan says displacement is on).
+frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base);
+
+/// \brief The plans as a table: mesh, view, each effect on/off with its choice, reason
+/// and predicted ms, and the predicted frame against no culling.
+std::string planTable(std::span<const Plan> plans);
+
+/// \brief One line per effect that differs between `before` and `after` ("" when none).
+std::string planChange(const Plan& before, const Plan& after);
+
+}  // namespace osd_cull::plan

@@ -1,0 +1,76 @@
+#include "plan_options.h"
+
+#include "option_checks.h"
+
+#include "osd_cull/error.h"
+#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/vk/context.h"
+
+#include <cstdio>
+#include <ostream>
+
+namespace osd_cull::cli {
+
+void addPlanOptions(CLI::App& app, PlanArgs& args) {
+  app.add_option("--plan", args.mode,
+                 "auto: the effect plan chooses the cull stages each frame from this\n"
+                 "device's calibration (`osd-cull calibrate`) and the rates it measures,\n"
+                 "printing the plan when it changes (default; an explicit --cull or\n"
+                 "--plan off fixes the choice)")
+      ->type_name("MODE")
+      ->check(oneOf({"auto", "off"}))
+      ->group("Culling");
+  app.add_option("--plan-calibration", args.calibration,
+                 "plan with this calibration file instead of the device's cached one")
+      ->type_name("FILE.txt")
+      ->group("Culling");
+}
+
+std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::Context& context,
+                                           bool cullGiven, bool uniformTessellation,
+                                           std::ostream& out) {
+  if (args.mode == "off") {
+    out << "plan: off (--plan off)\n";
+    return nullptr;
+  }
+  if (cullGiven) {
+    out << "plan: off (--cull given: a fixed choice)\n";
+    return nullptr;
+  }
+  if (!uniformTessellation) {
+    out << "plan: off (--adaptive: the plan's cost model needs a uniform level)\n";
+    return nullptr;
+  }
+  if (args.calibration.empty() && !plan::loadCachedCalibration(plan::calibrationKey(context))) {
+    out << "plan: off, drawing without culling (no calibration of this device cached: run "
+           "`osd-cull calibrate --quick`, or give --plan-calibration FILE)\n";
+    return nullptr;
+  }
+  const plan::Calibration calibration = plan::deviceCalibration(context, args.calibration);
+  out << "plan: auto, calibration of " << calibration.key.device
+      << (calibration.quick ? " (quick)" : "") << "\n";
+  return std::make_unique<plan::Planner>(calibration);
+}
+
+void printPlanChange(const plan::Plan* last, const plan::Plan& p, std::ostream& out) {
+  char line[160];
+  std::snprintf(line, sizeof line,
+                "plan, frame %llu: %s%s (predicted %.2f ms, without culling %.2f ms)\n",
+                static_cast<unsigned long long>(p.frame), p.stages.describe().c_str(),
+                p.probe ? " [re-probe]" : "", p.predicted.totalMs(), p.predictedUnculled.totalMs());
+  out << line;
+  if (last) {
+    std::string changes = plan::planChange(*last, p);
+    for (size_t start = 0; start < changes.size();) {
+      const size_t end = changes.find('\n', start);
+      out << "  " << changes.substr(start, end - start) << "\n";
+      start = end + 1;
+    }
+    return;
+  }
+  for (const auto& [name, e] : p.effects())
+    out << "  " << name << " " << (e->on ? "on" : "off")
+        << (e->choice.empty() ? "" : " (" + e->choice + ")") << ": " << e->reason << "\n";
+}
+
+}  // namespace osd_cull::cli

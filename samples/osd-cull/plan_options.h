@@ -1,0 +1,41 @@
+#pragma once
+/// \file plan_options.h
+/// \brief `--plan auto|off` and `--plan-calibration FILE` of `osd-cull render`, and the
+/// planner they make (osd_cull/plan/planner.h).
+
+#include "command.h"
+
+#include "osd_cull/plan/planner.h"
+
+#include <iosfwd>
+#include <memory>
+#include <string>
+
+namespace osd_cull::vulkan {
+class Context;
+}
+
+namespace osd_cull::cli {
+
+/// \brief The plan options as given.
+struct PlanArgs {
+  std::string mode = "auto";  ///< auto or off
+  std::string calibration;    ///< a calibration file instead of the device's cached one
+};
+
+/// \brief Declares `--plan MODE` and `--plan-calibration FILE` in the "Culling" group.
+void addPlanOptions(CLI::App& app, PlanArgs& args);
+
+/// \brief The planner of a render, or null when the plan is off, with one line to `out`
+/// saying which and why: `--plan off`, an explicit `--cull` (a fixed choice), adaptive
+/// tessellation (the plan needs a uniform level), or no calibration of this device.
+/// \throws osd_cull::Error for a --plan-calibration file that does not load.
+std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::Context& context,
+                                           bool cullGiven, bool uniformTessellation,
+                                           std::ostream& out);
+
+/// \brief Prints a plan that differs from `last` (every effect when `last` is null):
+/// `plan, frame F: STAGES (predicted X ms, without culling Y ms)` and its changed effects.
+void printPlanChange(const plan::Plan* last, const plan::Plan& plan, std::ostream& out);
+
+}  // namespace osd_cull::cli

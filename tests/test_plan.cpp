@@ -1,0 +1,273 @@
+// The effect plan (osd_cull/plan): one test per rule, deterministic through a synthetic
+// calibration (no timing): the cost model's terms, the Sathe pre-test, the stage choice
+// for a far low-tess and a close high-tess mesh, static and deforming meshes' updates,
+// displacement, hysteresis and re-probing; and the calibration file's round trip and its
+// errors.
+#include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/plan/calibration.h"
+#include "osd_cull/plan/cost_model.h"
+#include "osd_cull/plan/planner.h"
+#include "support/plan_calibration.h"
+#include "support/temp_dir.h"
+#include "support/vk_test_context.h"
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+
+namespace osd_cull {
+namespace {
+
+using namespace osd_cull::plan;
+
+using test::syntheticCalibration;
+
+frame::Bounds unitBox() { return {{-1, -1, -1}, {1, 1, 1}}; }
+
+// A 2000-patch closed mesh in a unit box, seen from `distance` along +z.
+PlanInput meshAt(double distance, double tess) {
+  PlanInput in;
+  in.mesh = "ball";
+  in.view = "main";
+  in.bezier = 1800;
+  in.gregory = 200;
+  in.tess = tess;
+  in.objectBounds = unitBox();
+  in.camera = frame::Camera::lookAt({0, 0, distance}, {0, 0, 0}, {0, 1, 0}, 40.0, 1280, 720, 0.01,
+                                    distance + 10.0);
+  in.backPatchValidity = {true, "closed"};
+  return in;
+}
+
+TEST(CostModel, BreakEvenIsNiessnerLoopSection63) {
+  // x = (RT0 + CT) / (RT - RT0)
+  EXPECT_NEAR(breakEvenRate(1.0, 0.1, 0.2), 0.3 / 0.9, 1e-12);
+  EXPECT_TRUE(std::isinf(breakEvenRate(0.1, 0.1, 0.2)));
+}
+
+TEST(CostModel, PredictionIsZachmannTOfTestPlusUnculledRender) {
+  const Calibration c = syntheticCalibration();
+  CostCase k;
+  k.bezier = 1000;
+  k.tess = 4;
+  k.pixels = 1280 * 720;
+  const StageChoice tcone{true, "tcone", ""};
+  const Prediction p = predict(c, k, tcone, {0.1, 0.3, 0.0});
+  // t = N·CT + dispatch; the render cost N·RT(4) less the 40% culled by frustum and
+  // back-patch, each of which would have cost a back-facing patch's RT.
+  EXPECT_NEAR(p.cullMs, 1000 * (0.0002 + 0.00005) + 0.1, 1e-9);
+  EXPECT_NEAR(p.drawMs, 1000 * 0.005 - 0.4 * 1000 * 0.004, 1e-9);
+  EXPECT_NEAR(p.totalMs(), p.cullMs + p.drawMs + 0.2, 1e-9);
+  // RT(tf) is linear in (tf + 1)² between the measured levels: tf 6 lies between 4 and 8.
+  EXPECT_NEAR(c.drawMs(6), 0.005 + (49.0 - 25.0) / (81.0 - 25.0) * (0.016 - 0.005), 1e-12);
+  // Occlusion adds the Hi-Z build of the half-resolution level 0 and the second pass.
+  const Prediction o = predict(c, k, {true, "", "hiz"}, {0.1, 0.0, 0.2});
+  EXPECT_NEAR(o.hizMs, 3.0 + 0.2, 1e-9);
+}
+
+TEST(PlanPreTest, ObjectBoxAgainstTheViewFirst) {
+  const frame::Camera cam =
+      frame::Camera::lookAt({0, 0, 50}, {0, 0, 0}, {0, 1, 0}, 40.0, 1280, 720, 0.1, 100.0);
+  EXPECT_EQ(boxInView(unitBox(), glm::dmat4(1.0), cam), BoxInView::Inside);
+  const glm::dmat4 aside = glm::translate(glm::dmat4(1.0), glm::dvec3(0, 200, 0));
+  EXPECT_EQ(boxInView(unitBox(), aside, cam), BoxInView::Outside);
+  const glm::dmat4 edge = glm::translate(glm::dmat4(1.0), glm::dvec3(0, 18.2, 0));
+  EXPECT_EQ(boxInView(unitBox(), edge, cam), BoxInView::Crossing);
+}
+
+TEST(Plan, FarAwayLowTessMeshGetsCullingSwitchedOff) {
+  Planner planner(syntheticCalibration());
+  const Plan p = planner.plan("main/ball", meshAt(60.0, 1.0), 0);
+  EXPECT_EQ(p.box, BoxInView::Inside);
+  EXPECT_FALSE(p.culls()) << planTable({&p, 1});
+  EXPECT_FALSE(p.frustum.on);
+  EXPECT_FALSE(p.backPatch.on);
+  EXPECT_NE(p.frustum.reason.find("pre-test"), std::string::npos);
+  EXPECT_NE(p.backPatch.reason.find("below break-even"), std::string::npos) << p.backPatch.reason;
+  // Adding the best back-patch method would cost time, and the table says so.
+  EXPECT_GT(p.backPatch.deltaMs, 0.0);
+  EXPECT_LE(p.predicted.totalMs(), p.predictedUnculled.totalMs());
+}
+
+TEST(Plan, CloseHighTessMeshGetsCullingSwitchedOn) {
+  Planner planner(syntheticCalibration());
+  PlanInput in = meshAt(1.6, 32.0);
+  in.occluders = true;
+  const Plan p = planner.plan("main/ball", in, 0);
+  EXPECT_EQ(p.box, BoxInView::Crossing);
+  EXPECT_TRUE(p.frustum.on) << planTable({&p, 1});
+  EXPECT_TRUE(p.backPatch.on);
+  // At tess 32 the tangent plane's higher rate pays for its cost (0.18·0.176 - 0.003 per
+  // patch against 0.15·0.176 - 0.00006 for NCONE).
+  EXPECT_EQ(p.backPatch.choice, "tangent-plane");
+  EXPECT_TRUE(p.occlusion.on);
+  EXPECT_EQ(p.passes.choice, "two-pass");
+  EXPECT_EQ(p.hiz.choice, "half");
+  EXPECT_LT(p.predicted.totalMs(), 0.8 * p.predictedUnculled.totalMs());
+  // The plan becomes the options the frame pipeline takes.
+  const frame::CullFrameOptions o = applyPlan(p, {});
+  EXPECT_TRUE(o.cull.frustum);
+  EXPECT_EQ(o.cull.backPatch, "tangent-plane");
+  EXPECT_EQ(o.cull.occlusion, "hiz");
+  EXPECT_FALSE(o.aggressive);
+  EXPECT_FALSE(o.hiz.fullResolution);
+}
+
+TEST(Plan, StaticMeshMakesNoUpdateAndNoBoundsDispatch) {
+  Planner planner(syntheticCalibration());
+  const Plan still = planner.plan("main/ball", meshAt(1.6, 16.0), 0);
+  EXPECT_FALSE(still.update.on);
+  EXPECT_FALSE(still.bounds.on);
+  EXPECT_EQ(still.predicted.updateMs, 0.0);
+  EXPECT_NE(still.update.reason.find("static"), std::string::npos);
+  // A deforming mesh whose cage moved: the cheaper point update (GPU here) and the bounds
+  // pass of its cone method; its cage at rest the next frame: neither.
+  PlanInput moving = meshAt(1.6, 16.0);
+  moving.deforming = moving.cageMoved = true;
+  const Plan moved = planner.plan("main/dancer", moving, 0);
+  ASSERT_TRUE(moved.backPatch.on) << planTable({&moved, 1});
+  EXPECT_EQ(moved.backPatch.choice, "ncone");  // no tangent plane on a deforming mesh
+  EXPECT_TRUE(moved.update.on);
+  EXPECT_EQ(moved.update.choice, "gpu");
+  EXPECT_TRUE(moved.bounds.on);
+  EXPECT_NEAR(moved.predicted.updateMs, 2000 * (0.0002 + 0.0001), 1e-9);
+  moving.cageMoved = false;
+  const Plan rest = planner.plan("main/dancer", moving, 1);
+  EXPECT_FALSE(rest.update.on);
+  EXPECT_FALSE(rest.bounds.on);
+}
+
+class PlanDisplacement : public test::VkTest {};
+
+TEST_F(PlanDisplacement, UndisplacedMeshCompilesAndBindsNoDisplacementVariant) {
+  Planner planner(syntheticCalibration());
+  PlanInput in = meshAt(1.6, 16.0);
+  in.occluders = true;
+  const Plan p = planner.plan("main/ball", in, 0);
+  EXPECT_FALSE(p.displacement.on);
+  const frame::CullFrameOptions o = applyPlan(p, {});
+  EXPECT_EQ(o.cull.displacementMap, nullptr);
+  // The pass built from the plan runs no displaced kernel.
+  const PatchSet patches = frame::bezierSphere({0, 0, 0}, 1.0, 4);
+  frame::GpuPatchSet gpu(context(), patches);
+  frame::CullSettings settings = o.cull;
+  settings.occlusion.clear();  // the occlusion stage needs a pyramid; not this test's point
+  frame::CullPass pass(context(), gpu, patches, settings);
+  EXPECT_FALSE(pass.displaced());
+  for (const frame::CullMethod* m : pass.stages()) EXPECT_FALSE(m->displaced) << m->name;
+  // A displaced mesh gets the displaced kernel and no back-patch stage.
+  in.displaced = true;
+  const Plan d = planner.plan("main/rock", in, 0);
+  EXPECT_TRUE(d.displacement.on);
+  EXPECT_FALSE(d.backPatch.on);
+  EXPECT_EQ(d.occlusion.choice, "con-caf");
+}
+
+TEST(Plan, HysteresisHoldsAChoiceForHoldFrames) {
+  PlannerOptions options;
+  options.holdFrames = 8;
+  options.reprobeFrames = 0;
+  Calibration oneMethod = syntheticCalibration();  // NCONE the only back-patch method
+  oneMethod.cullMsPerPatch.erase("tcone");
+  oneMethod.cullMsPerPatch.erase("tangent-plane");
+  Planner planner(oneMethod, options);
+  // At tess 2 culling costs a fifth of the frame: when it culls nothing, dropping it is
+  // predicted 16% cheaper, above the 5% margin.
+  const PlanInput in = meshAt(1.6, 2.0);
+  Plan p = planner.plan("k", in, 0);
+  ASSERT_TRUE(p.backPatch.on) << planTable({&p, 1});
+  // Its back-patch stage turns out to cull nothing: switched off at frame 8, not before.
+  for (uint64_t f = 0; f < 12; ++f) {
+    if (f > 0) p = planner.plan("k", in, f);
+    EXPECT_EQ(p.backPatch.on, f < 8) << "frame " << f;
+    planner.observe("k", p, 0, 0, 0, 2000);
+  }
+  // A tessellation level that swings between 1 (culling does not pay) and 32 (it does)
+  // every frame: held, the choice changes at most once per holdFrames; without the
+  // hysteresis it changes every frame.
+  auto changes = [&](const PlannerOptions& o) {
+    Planner swinging(oneMethod, o);
+    int count = 0;
+    std::optional<StageChoice> last;
+    for (uint64_t f = 0; f < 64; ++f) {
+      const Plan q = swinging.plan("k", meshAt(60.0, f % 2 ? 1.0 : 32.0), f);
+      count += last && !(q.stages == *last);
+      last = q.stages;
+    }
+    return count;
+  };
+  EXPECT_LE(changes(options), 64 / 8);
+  PlannerOptions unheld = options;
+  unheld.holdFrames = 0;
+  unheld.margin = 0.0;
+  EXPECT_EQ(changes(unheld), 63);
+}
+
+TEST(Plan, SwitchedOffMeshIsReprobedAndTurnedOnWhenItPays) {
+  PlannerOptions options;
+  options.reprobeFrames = 16;
+  Planner planner(syntheticCalibration(), options);
+  const PlanInput in = meshAt(60.0, 2.0);
+  std::vector<uint64_t> probes;
+  for (uint64_t f = 0; f < 40; ++f) {
+    const Plan p = planner.plan("k", in, f);
+    if (p.probe) {
+      probes.push_back(f);
+      EXPECT_TRUE(p.backPatch.on);
+      EXPECT_NE(p.backPatch.reason.find("re-probe"), std::string::npos);
+    } else {
+      EXPECT_FALSE(p.culls()) << "frame " << f;
+    }
+    planner.observe("k", p, 0, 0, 0, 2000);  // the probes find nothing to cull
+  }
+  EXPECT_EQ(probes, (std::vector<uint64_t>{16, 32}));
+  // A probe that finds most patches culled switches culling on.
+  Plan p = planner.plan("k", in, 48);
+  ASSERT_TRUE(p.probe);
+  planner.observe("k", p, 0, 1900, 0, 2000);
+  p = planner.plan("k", in, 49);
+  EXPECT_FALSE(p.probe);
+  EXPECT_TRUE(p.backPatch.on) << planTable({&p, 1});
+}
+
+TEST(Calibration, TextRoundTripAndCacheKey) {
+  const Calibration c = syntheticCalibration();
+  const Calibration back = fromText(toText(c), "test");
+  EXPECT_EQ(back.key, c.key);
+  ASSERT_EQ(back.draw.size(), c.draw.size());
+  EXPECT_DOUBLE_EQ(back.draw[2].msPerPatch, c.draw[2].msPerPatch);
+  EXPECT_DOUBLE_EQ(back.cullMs("tangent-plane"), 0.003);
+  EXPECT_DOUBLE_EQ(back.hizBuildMs(921600), 10.0);
+  test::TempDir dir("osd_cull_plan_");
+  setenv("OSD_CULL_CALIBRATION_CACHE", dir.path().c_str(), 1);
+  EXPECT_FALSE(loadCachedCalibration(c.key));
+  storeCalibration(c, calibrationCacheFile(c.key));
+  ASSERT_TRUE(loadCachedCalibration(c.key));
+  CalibrationKey other = c.key;
+  other.driver = "another driver";
+  EXPECT_FALSE(loadCachedCalibration(other));  // keyed by device, driver and library
+  unsetenv("OSD_CULL_CALIBRATION_CACHE");
+}
+
+TEST(Calibration, BadFileNamesLineAndProblem) {
+  const std::string good = toText(syntheticCalibration());
+  try {
+    fromText(good + "draw 2 oops 4\n", "cal.txt");
+    FAIL() << "accepted a bad number";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cal.txt:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'draw' needs ms per patch"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(fromText("hello\n", "x"), Error);
+  EXPECT_THROW(fromText(good + "colour blue\n", "x"), Error);
+  EXPECT_THROW(syntheticCalibration().cullMs("no-such-stage"), Error);
+}
+
+}  // namespace
+}  // namespace osd_cull

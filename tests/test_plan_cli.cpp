@@ -1,0 +1,101 @@
+// `osd-cull plan`, `calibrate` and `render --plan`: the printed plan, its reasons and its
+// errors, with a synthetic calibration file (support/plan_calibration.h); ctest runs with
+// the calibration cache off (tests/CMakeLists.txt), so nothing depends on this machine's.
+#include "osd_cull/plan/calibration.h"
+#include "support/plan_calibration.h"
+#include "support/run_command.h"
+#include "support/temp_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace osd_cull {
+namespace {
+
+namespace fs = std::filesystem;
+
+class PlanCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+    calibration_ = dir_.path() / "synthetic.txt";
+    plan::storeCalibration(test::syntheticCalibration(), calibration_);
+  }
+  test::CommandResult run(const std::string& arguments) const {
+    return test::runCommand("OSD_CULL_CALIBRATION_CACHE=off " + test::osdCullProgram().string() +
+                            " " + arguments);
+  }
+  test::TempDir dir_{"osd_cull_plan_cli_"};
+  fs::path calibration_;
+};
+
+TEST_F(PlanCommand, PrintsEachInstancesEffectsWithReasons) {
+  const auto r = run("plan built-in:scene --tess 16 --calibration " + calibration_.string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  // The static default mesh: no update, no bounds pass; the skinned character: both.
+  EXPECT_NE(r.output.find("| default | main | 0 | inside | update | off | - | +0.00 | static mesh"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("| character | main | 0 | inside | update | on | gpu |"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("| character | main | 0 | inside | bounds | on | ncone |"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("no displacement map: no displacement kernel compiled or bound"),
+            std::string::npos);
+  EXPECT_NE(r.output.find("predicted:"), std::string::npos);
+}
+
+TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
+  const auto r = run("plan built-in:scene");
+  EXPECT_EQ(r.exitCode(), 1) << r.output;
+  EXPECT_NE(r.output.find("the calibration cache is off"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("osd-cull calibrate --quick"), std::string::npos) << r.output;
+  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 2\ndevice x\ndraw 1 fast\n");
+  const auto b = run("plan --calibration " + bad.string());
+  EXPECT_EQ(b.exitCode(), 1) << b.output;
+  EXPECT_NE(b.output.find("bad.txt:3: 'draw' needs ms per patch, got '1 fast'"), std::string::npos)
+      << b.output;
+}
+
+TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
+  const fs::path out = dir_.path() / "r.png";
+  auto r =
+      run("render --out " + out.string() + " --tess 8 --plan-calibration " + calibration_.string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  // The built-in scene at 640x480, tess 8: its box is inside the view (no frustum stage),
+  // NCONE pays (15% prior rate against a 2.9% break-even), occlusion does not.
+  EXPECT_NE(r.output.find("plan, frame 0: ncone (predicted"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("frustum off: object box inside the view (Sathe pre-test)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("back-patch on (ncone): prior rate 15.0% above break-even"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(": frustum 0, back-patch "), std::string::npos) << r.output;
+  // An explicit --cull, --plan off, or no calibration: a fixed choice, said so.
+  r = run("render --out " + out.string() + " --cull none --plan-calibration " +
+          calibration_.string());
+  EXPECT_NE(r.output.find("plan: off (--cull given: a fixed choice)"), std::string::npos)
+      << r.output;
+  r = run("render --out " + out.string() + " --plan off");
+  EXPECT_NE(r.output.find("plan: off (--plan off)"), std::string::npos) << r.output;
+  r = run("render --out " + out.string());
+  EXPECT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("no calibration of this device cached"), std::string::npos) << r.output;
+  r = run("render --out " + out.string() + " --plan sometimes");
+  EXPECT_EQ(r.exitCode(), 2) << r.output;
+}
+
+TEST_F(PlanCommand, CalibrateChecksItsOutputBeforeMeasuring) {
+  const auto r = run("calibrate --quick --out " + (dir_.path() / "cal.json").string());
+  EXPECT_EQ(r.exitCode(), 2) << r.output;
+  EXPECT_NE(r.output.find("--out"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(".txt"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace osd_cull
