@@ -4,10 +4,11 @@
 //   bench-cull [--mesh FILE] [--levels 1,2,3] [--views 20] [--tess 4,8,16]
 //              [--width 640] [--height 480] [--repeats 3] [--parts 12] [--device X]
 //              [--methods empty,tcone/surface,...]
-//              [--frame-modes tcone,tcone/surface,tcone/listed,...]
+//              [--frame-modes tcone,tcone/surface,tcone/listed,...] [--kernel-tess 4]
 //
 // Part 1: wall time of one cull submission (counter reset, cull dispatch, draw-command
-// dispatch, wait), median over views x repeats, per patch; "empty" is a pass with no test.
+// dispatch, wait), median over views x repeats, per patch; "empty" is a pass with no test;
+// per uniform tessellation level of --kernel-tess (the drawn-triangle tests depend on it).
 // The methods run interleaved: for each view and repeat every method once, so that the
 // load of a shared machine affects them alike. "compile ms" is the first pass of each
 // (pipeline creation, mostly lavapipe's shader compilation).
@@ -58,7 +59,8 @@ struct Options {
                                       "tangent-plane-16/surface"};
   std::vector<std::string> frameModes = {"tcone", "tcone/surface", "tangent-plane",
                                          "tangent-plane/surface", "all"};
-  std::string parts = "12";  ///< which parts run
+  std::vector<uint32_t> kernelTess = {4};  ///< part 1's tessellation levels
+  std::string parts = "12";                ///< which parts run
 };
 
 // False after --help.
@@ -71,6 +73,7 @@ bool parse(int argc, char** argv, Options& o) {
       .number("--views", o.views, 1)
       .names("--methods", o.methods)
       .names("--frame-modes", o.frameModes)
+      .numbers("--kernel-tess", o.kernelTess)
       .text("--parts", o.parts)
       .parse(argc, argv);
 }
@@ -99,8 +102,9 @@ frame::CullSettings settingsFor(std::string method, const bound::BackPatchValidi
 
 void kernelCost(vulkan::Context& context, const Options& o) {
   std::printf(
-      "\n| level | patches | method | cull rate | ns/patch (median) | ms/pass | compile ms |\n");
-  std::printf("|---|---|---|---|---|---|---|\n");
+      "\n| level | tess | patches | method | cull rate | ns/patch (median) | ms/pass | compile ms "
+      "|\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
   for (uint32_t level : o.levels) {
     const Mesh mesh = loadCullMesh(o.mesh, level);
     frame::GpuPatchSet gpu(context, mesh.patches);
@@ -112,30 +116,36 @@ void kernelCost(vulkan::Context& context, const Options& o) {
     const uint32_t n = mesh.patches.patchCount();
     std::vector<std::unique_ptr<frame::CullPass>> passes;
     std::vector<double> compileMs;
-    for (const std::string& method : o.methods) {
-      const auto start = std::chrono::steady_clock::now();
-      passes.push_back(std::make_unique<frame::CullPass>(context, gpu, mesh.patches,
-                                                         settingsFor(method, mesh.validity)));
-      passes.back()->run(cameras[0]);  // pipeline creation and the first dispatch compile
-      compileMs.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count());
+    for (uint32_t tess : o.kernelTess) {
+      frame::TessellationOptions tessellation;
+      tessellation.uniformLevel = tess;
+      passes.clear();
+      compileMs.clear();
+      for (const std::string& method : o.methods) {
+        const auto start = std::chrono::steady_clock::now();
+        passes.push_back(std::make_unique<frame::CullPass>(context, gpu, mesh.patches,
+                                                           settingsFor(method, mesh.validity)));
+        passes.back()->run(cameras[0], tessellation);  // pipeline creation, first compile
+        compileMs.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count());
+      }
+      std::vector<std::vector<double>> ms(passes.size());
+      std::vector<uint64_t> culled(passes.size(), 0);
+      for (const auto& camera : cameras)
+        for (uint32_t r = 0; r < o.repeats; ++r)
+          for (size_t m = 0; m < passes.size(); ++m) {
+            ms[m].push_back(passes[m]->run(camera, tessellation));
+            if (r == 0) culled[m] += n - passes[m]->counts().survivors();
+          }
+      for (size_t m = 0; m < passes.size(); ++m) {
+        std::printf("| %u | %u | %u | %s | %.1f%% | %.0f | %.3f | %.0f |\n", level, tess, n,
+                    o.methods[m].c_str(),
+                    100.0 * double(culled[m]) / double(n) / double(cameras.size()),
+                    median(ms[m]) * 1e6 / n, median(ms[m]), compileMs[m]);
+      }
+      std::fflush(stdout);
     }
-    std::vector<std::vector<double>> ms(passes.size());
-    std::vector<uint64_t> culled(passes.size(), 0);
-    for (const auto& camera : cameras)
-      for (uint32_t r = 0; r < o.repeats; ++r)
-        for (size_t m = 0; m < passes.size(); ++m) {
-          ms[m].push_back(passes[m]->run(camera));
-          if (r == 0) culled[m] += n - passes[m]->counts().survivors();
-        }
-    for (size_t m = 0; m < passes.size(); ++m) {
-      std::printf("| %u | %u | %s | %.1f%% | %.0f | %.3f | %.0f |\n", level, n,
-                  o.methods[m].c_str(),
-                  100.0 * double(culled[m]) / double(n) / double(cameras.size()),
-                  median(ms[m]) * 1e6 / n, median(ms[m]), compileMs[m]);
-    }
-    std::fflush(stdout);
   }
 }
 

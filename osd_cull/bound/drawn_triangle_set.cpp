@@ -125,7 +125,7 @@ double tessCoordError(const QuadTessLevels& levels) {
   double l = 1.0;
   for (int e = 0; e < 4; ++e) l = std::max(l, std::ceil(levels.lo[e]) + std::ceil(levels.hi[e]));
   // Inner levels average opposite outer levels, so they are at most the largest outer one.
-  return l * std::ldexp(1.0, -16) + std::ldexp(1.0, -20);
+  return (l + 1.0) * std::ldexp(1.0, -17);
 }
 
 bool triangleFacesAway(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,

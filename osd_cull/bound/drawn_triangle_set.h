@@ -50,8 +50,9 @@ void forEachDrawnTriangle(const QuadTessLevels& levels,
 
 /// \brief How far (per coordinate) a vertex the tessellator makes for `levels` can lie from
 /// its exact position k / n: the tessellator works in fixed point (lavapipe: 16 fractional
-/// bits) and steps k times by the rounded spacing, so vertex k is off by up to k 2^-17; we
-/// allow L 2^-16 + 2^-20, L the largest outer or inner level. Transition and outer-edge
+/// bits) and steps k times by the spacing rounded to 2^-16, so vertex k is off by up to
+/// k 2^-17; we allow (L + 1) 2^-17, L the largest outer or inner level (measured on lavapipe:
+/// at most 0.46 of it). Transition and outer-edge
 /// vertices are re-evaluated from round(t n) / n and exact, inner ones are not.
 /// tests/test_drawn_triangles.cpp checks every captured vertex against it.
 double tessCoordError(const QuadTessLevels& levels);

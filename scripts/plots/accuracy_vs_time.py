@@ -69,17 +69,8 @@ def load_points(folder):
 
 def load_frame_rows(folder):
     """bench-cull part 2 rows: (tess, mode) -> (patches drawn, frame ms, ratio to none)."""
-    rows = {}
-    path = os.path.join(folder, "frames.md")
-    if not os.path.exists(path):
-        return rows
-    with open(path) as f:
-        for line in f:
-            cells = [c.strip() for c in line.strip().strip("|").split("|")]
-            if len(cells) == 6 and cells[0].isdigit():
-                rows[(int(cells[0]), cells[1])] = (float(cells[2]), float(cells[4]),
-                                                   float(cells[5]))
-    return rows
+    return {(int(c[0]), c[1]): (float(c[2]), float(c[4]), float(c[5]))
+            for c in table_rows(folder, 6)}
 
 
 def load_frames(folder):
@@ -177,6 +168,7 @@ def plot(points, tess_levels, path):
 def main():
     folder, out = sys.argv[1], sys.argv[2]
     points = load_points(folder)
+    attach_bench_ns(points, load_kernel_ns(folder))
     ratios = load_frames(folder)
     breakeven_png = os.path.join(folder, "breakeven.png")
     breakeven = break_even(points, load_frame_rows(folder), breakeven_png)
@@ -192,7 +184,7 @@ def main():
         "<!-- written by scripts/plots/accuracy_vs_time.py from scripts/study.sh; edit those -->",
         "",
         f"Mesh {os.path.basename(first.get('mesh', 'bigguy.obj'))} ({first['patches']} patches), "
-        f"{first['views']} sphere views (seed 1) per run, {first['width']}x{first['height']}, "
+        f"sphere views (seed 1), {first['width']}x{first['height']}, "
         f"device {first['device']}. Reproduce: `scripts/study.sh` (environment variables in "
         "its header), then this page is written by `scripts/plots/accuracy_vs_time.py`.",
         "",
@@ -202,7 +194,8 @@ def main():
         "`oracle` the share the item-buffer oracle sees no pixel of on the same views (the "
         "ceiling of any conservative test), `false` culled patch-views with a pixel in the "
         "oracle, `!ref` GPU culls the double reference does not make, `ns/patch` the "
-        "kernel's median cost, `frame` the frame time culled / unculled (bench-cull, "
+        "kernel's median cost (bench-cull part 1, every kernel interleaved per view in one "
+        "run, where it timed the point; else verify's, marked *), `frame` the frame time culled / unculled (bench-cull, "
         "back faces culled by the rasterizer on both sides, interleaved per view; back-patch "
         "stages only), `front` on the Pareto front of its tessellation level.",
         "",
@@ -211,7 +204,11 @@ def main():
     for tess in tess_levels:
         front_ids |= {id(p) for p in pareto([p for p in points if p["tess"] == tess])}
     for tess in tess_levels:
+        nviews = sorted({p["views"] for p in points if p["tess"] == tess})
         lines += [f"## Tessellation {tess}", "",
+                  f"Views per verify run: {', '.join(map(str, nviews))} (back-patch runs the "
+                  "most; Hi-Z and displaced runs fewer, the first views of the same sequence).",
+                  "",
                   "| stage | method | option | cull | bezier | oracle | false | !ref | ns/patch "
                   "| frame | front |",
                   "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|"]
@@ -221,7 +218,7 @@ def main():
             lines.append(
                 f"| {p['stage']} | {p['method']} | {OPTIONS.get(p['option'], p['option'])} | "
                 f"{p['rate']:.1f}% | {p['rate_bezier']:.1f}% | {p['oracle']:.1f}% | "
-                f"{p['false']} | {p['outside_ref']} | {p['ns']:.0f} | "
+                f"{p['false']} | {p['outside_ref']} | {p['ns']:.0f}{'' if p.get('ns_source') else '*'} | "
                 f"{'' if r is None else f'{r:.2f}'} | {'yes' if id(p) in front_ids else ''} |")
         lines.append("")
     # The price of exactness: listed and bound against surface-exact, per method.

@@ -122,10 +122,12 @@ bool drawnTrianglesFaceAway(uint patchIndex) {
   for (uint k = 0u; k < 16u; ++k) gDrawnNet[k] = controlPoint(first + k);
   vec3 d = drawnDerivativeBounds(first);
   vec3 e3 = abs(pc.eye.xyz);
-  float coordError = maxLevel / 65536.0 + 1.0 / 1048576.0;  // bound::tessCoordError
+  float coordError = (maxLevel + 1.0) / 131072.0;  // bound::tessCoordError
+  // This kernel's own fp32 error: the 16-term Bernstein sum and the corner differences
+  // (below 24 ulps of the largest coordinate) and E - p0 (2 ulps of the eye).
   gDrawnEps = drawnVertexError(d.z, drawnMaxDistance(first)) +
               2.0 * d.x * coordError * kDrawnSafety +
-              64.0 / 16777216.0 * (d.z + max(e3.x, max(e3.y, e3.z)));
+              (24.0 * d.z + 2.0 * max(e3.x, max(e3.y, e3.z))) / 16777216.0;
   if (!isFiniteF(gDrawnEps)) return false;
   if (allOnes)
     return drawnCellFacesAway(gDrawnNet[0], gDrawnNet[3], gDrawnNet[15], gDrawnNet[12]);
