@@ -238,8 +238,9 @@ def main():
     for tess in tess_levels:
         nviews = sorted({p["views"] for p in points if p["tess"] == tess})
         lines += [f"## Tessellation {tess}", "",
-                  f"Views per verify run: {', '.join(map(str, nviews))} (back-patch runs the "
-                  "most; Hi-Z and displaced runs fewer, the first views of the same sequence).",
+                  f"Views per verify run: {', '.join(map(str, nviews))} (the first views of one "
+                  "seeded sequence; which run had how many: `oracle` differs with the count, "
+                  "and the commands at the end say).",
                   "",
                   "| stage | method | option | cull | bezier | oracle | false | !ref | ns/patch "
                   "| frame | front |",
