@@ -4,7 +4,12 @@
 // docs/results/draw.md.
 //
 //   bench-draw [--mesh FILE] [--width 1280] [--height 720] [--repeats 3]
-//              [--max-one-draw-level 16] [--device X]
+//              [--max-one-draw-level 16] [--depth-clamp-cost] [--device X]
+//
+// --depth-clamp-cost instead measures what clamping fragment depth to the control points
+// costs (RenderOptions::clampDepthToControlPoints, patch.tesc): at tessellation 1, 4 and 16,
+// frames with and without the clamp alternate (--repeats pairs after a warm-up of each),
+// and it prints the median wall ms of each and their ratio.
 //
 // FILE defaults to ../shared/data/characters/bigguy.obj beside the source tree; without it
 // (or with --mesh torus) a bicubic torus of BigGuy's size (--nu 96 --nv 58) stands in.
@@ -31,6 +36,7 @@ using namespace osd_cull;
 struct Options {
   uint32_t width = 1280, height = 720, repeats = 3, maxOneDrawLevel = 16, nu = 96, nv = 58;
   std::string device;
+  bool depthClampCost = false;
   std::string mesh = std::string(OSD_CULL_SOURCE_DIR) + "/../shared/data/characters/bigguy.obj";
 };
 
@@ -42,6 +48,7 @@ bool parse(int argc, char** argv, Options& o) {
       .number("--max-one-draw-level", o.maxOneDrawLevel)
       .number("--nu", o.nu)
       .number("--nv", o.nv)
+      .flag("--depth-clamp-cost", o.depthClampCost)
       .parse(argc, argv);
 }
 
@@ -74,6 +81,30 @@ Row measure(frame::Renderer& renderer, frame::VisibilityOracle& oracle, frame::R
   return row;
 }
 
+// --depth-clamp-cost: frames with and without the depth clamp, alternating.
+void depthClampCost(frame::Renderer& renderer, frame::RenderTarget& target,
+                    const frame::Camera& camera, const frame::GpuPatchSet& gpu,
+                    const PatchSet& host, uint32_t repeats) {
+  std::printf(
+      "| level | clamped ms | unclamped ms | clamped / unclamped |\n|---:|---:|---:|---:|\n");
+  const frame::PatchDraw draw{&gpu, &host, 0};
+  for (uint32_t level : {1u, 4u, 16u}) {
+    frame::RenderOptions options[2];
+    std::vector<double> wall[2];
+    for (int k = 0; k < 2; ++k) {
+      options[k].tessellation.uniformLevel = level;
+      options[k].clampDepthToControlPoints = k == 0;
+      renderer.render(target, camera, {&draw, 1}, {}, options[k]);  // warm-up (pipeline JIT)
+    }
+    for (uint32_t r = 0; r < repeats; ++r)
+      for (int k = 0; k < 2; ++k)
+        wall[k].push_back(renderer.render(target, camera, {&draw, 1}, {}, options[k]).wallMs);
+    std::printf("| %u | %.1f | %.1f | %.3f |\n", level, median(wall[0]), median(wall[1]),
+                median(wall[0]) / median(wall[1]));
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -104,6 +135,10 @@ int main(int argc, char** argv) {
         "device: %s\npatches: %s, %u Bezier + %u Gregory; image %ux%u; median of %u frames\n\n",
         context.info().name.c_str(), set.source.c_str(), set.bezierCount, set.gregoryCount, o.width,
         o.height, o.repeats);
+    if (o.depthClampCost) {
+      depthClampCost(renderer, target, camera, gpu, set, o.repeats);
+      return 0;
+    }
     std::printf(
         "| level | draws | frame ms (wall) | GPU ms | TES invocations | TES / patch | fragment "
         "inv. | patches with pixels | one draw: frame ms | one draw: TES | one draw: patches with "

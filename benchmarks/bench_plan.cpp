@@ -10,6 +10,7 @@
 //
 //   bench-plan [--cases builtin,bigguy,animated] [--tess 1,2,4,8,16,32] [--frames 4]
 //              [--warmup 4] [--width 1280] [--height 720] [--calibration FILE] [--csv FILE]
+//              [--device X]   (--repeats is accepted and unused: --frames sets the medians)
 //
 // The animated case deforms BigGuy's cage with a wave every frame; its control-point
 // update and bounds passes run before the three frames and are not in their times (the
@@ -40,44 +41,21 @@ using namespace osd_cull;
 using bench::median;
 
 struct Options {
-  std::string cases = "builtin,bigguy,animated";
+  std::vector<std::string> cases = {"builtin", "bigguy", "animated"};
   std::vector<uint32_t> tess = {1, 2, 4, 8, 16, 32};
-  uint32_t frames = 4, warmup = 4, width = 1280, height = 720;
-  std::string calibration, csv;
+  uint32_t frames = 4, warmup = 4, width = 1280, height = 720, repeats = 1;
+  std::string calibration, csv, device;
 };
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) throw Error(a + " needs a value (see the top of bench_plan.cpp)");
-    const std::string v = argv[++i];
-    if (a == "--cases")
-      o.cases = v;
-    else if (a == "--tess")
-      o.tess = bench::numberList(v);
-    else if (a == "--frames")
-      o.frames = std::max(1u, bench::numberList(v).at(0));
-    else if (a == "--warmup")
-      o.warmup = bench::numberList(v).at(0);
-    else if (a == "--width")
-      o.width = bench::numberList(v).at(0);
-    else if (a == "--height")
-      o.height = bench::numberList(v).at(0);
-    else if (a == "--calibration")
-      o.calibration = v;
-    else if (a == "--csv")
-      o.csv = v;
-    else
-      throw Error("unknown option " + a + " (see the top of bench_plan.cpp)");
-  }
-  return o;
-}
-
-void progress(const std::string& what) {
-  static const auto start = std::chrono::steady_clock::now();
-  const std::chrono::duration<double> t = std::chrono::steady_clock::now() - start;
-  std::fprintf(stderr, "[%7.1f s] %s\n", t.count(), what.c_str());
+bench::CommandLine commandLine(Options& o) {
+  return bench::CommandLine("bench-plan", "bench_plan.cpp")
+      .names("--cases", o.cases)
+      .numbers("--tess", o.tess)
+      .number("--frames", o.frames, 1)
+      .number("--warmup", o.warmup)
+      .imageAndDevice(o.width, o.height, o.repeats, o.device)
+      .text("--calibration", o.calibration)
+      .text("--csv", o.csv);
 }
 
 // A mesh to draw: static patches, or a deforming cage.
@@ -177,7 +155,7 @@ void runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Op
   };
   uint64_t frameNumber = 0;
   for (uint32_t tess : o.tess) {
-    progress(c.name + ": tess " + std::to_string(tess));
+    bench::progress(c.name + ": tess " + std::to_string(tess));
     frame::CullFrameOptions base;
     base.render.tessellation.uniformLevel = tess;
     base.render.cullBackFaces = c.validity.enabled;
@@ -248,7 +226,7 @@ void runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Op
       const double allMs = all.render(cam, occluders).frameMs;
       const plan::Plan p = planner.plan(c.name, in, frameNumber);
       const Measured m = planned(p, cam);
-      planner.observe(c.name, p, m.frustum, m.backPatch, m.occlusion, c.host().patchCount());
+      planner.observe(c.name, p, m.frustum, m.backPatch, m.occlusion, c.host().patchCount(), m.ms);
       if (f < 0) continue;
       row.none.push_back(none);
       row.all.push_back(allMs);
@@ -278,15 +256,16 @@ void runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Op
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const Options o = parse(argc, argv);
-    vulkan::Context context(vulkan::ContextOptions{});
+  return bench::run("bench-plan", [&] {
+    Options o;
+    if (!commandLine(o).parse(argc, argv)) return 0;
+    vulkan::Context context(bench::contextOptions(o.device));
     plan::Calibration calibration;
     try {
       calibration = plan::deviceCalibration(context, o.calibration);
-    } catch (const Error& e) {
+    } catch (const Error&) {
       if (!o.calibration.empty()) throw;
-      progress("no cached calibration: measuring one (--quick)");
+      bench::progress("no cached calibration: measuring one (--quick)");
       plan::CalibrateOptions co;
       co.quick = true;
       calibration = plan::calibrate(context, co);
@@ -301,25 +280,16 @@ int main(int argc, char** argv) {
         "\nMedians over %u frames per level after %u warm-up frames (the planner learns its "
         "rates there); none, all and planned interleaved per camera.\n",
         o.frames, o.warmup);
-    std::unique_ptr<FILE, int (*)(FILE*)> csv(nullptr, &std::fclose);
-    if (!o.csv.empty()) {
-      csv.reset(std::fopen(o.csv.c_str(), "w"));
-      if (!csv) throw Error("--csv: cannot write " + o.csv);
-      std::fprintf(csv.get(), "case,tess,none_ms,all_ms,planned_ms,predicted_ms,choices\n");
-    }
-    std::stringstream names(o.cases);
-    std::string name;
-    while (std::getline(names, name, ',')) {
+    const bench::CsvFile csv =
+        bench::openCsv(o.csv, "case,tess,none_ms,all_ms,planned_ms,predicted_ms,choices");
+    for (const std::string& name : o.cases) {
       Case c = name == "builtin"    ? builtIn()
                : name == "bigguy"   ? bigGuy(context, false)
                : name == "animated" ? bigGuy(context, true)
                                     : throw Error("--cases: unknown case '" + name + "'");
       runCase(context, c, planner, o, csv.get());
     }
-    progress("done");
+    bench::progress("done");
     return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bench-plan: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -4,7 +4,7 @@
 //
 //   bench-scale [--grids 100,316,700,1000] [--level 1] [--method tcone] [--views 3]
 //               [--repeats 3] [--tess 4] [--width 256] [--height 256] [--matrix]
-//               [--setup-only] [--device X]
+//               [--setup-only] [--cones] [--device X]
 //
 // Each grid size runs in its own child process (one after the other), so that its peak RSS
 // (VmHWM of /proc/self/status) is its own. Per size:
@@ -21,7 +21,12 @@
 //   repeats, per patch;
 // - draw: all patches at uniform tessellation --tess, median wall ms over the views, and the
 //   tessellation-evaluation invocations of the first view (exact).
+// --cones instead times the host cones of --method (bound::buildPatchCones, what CullPass
+// construction spends its time on): the exhaustive axis search on one thread, the filtered
+// search on one thread and on the hardware's threads, interleaved, --repeats rounds,
+// median wall and CPU ms each, and checks that all three give bit-identical cones.
 #include "bench_support.h"
+#include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/verify/view_sets.h"
@@ -32,8 +37,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <functional>
@@ -55,6 +63,7 @@ struct Options {
   uint32_t views = 3, repeats = 3, tess = 4, width = 256, height = 256;
   bool matrix = false;
   bool setupOnly = false;
+  bool cones = false;
   std::string device;
 };
 
@@ -74,8 +83,8 @@ Options parse(int argc, char** argv) {
       {"--device", [&](const std::string& v) { o.device = v; }}};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--matrix" || a == "--setup-only") {
-      (a == "--matrix" ? o.matrix : o.setupOnly) = true;
+    if (a == "--matrix" || a == "--setup-only" || a == "--cones") {
+      (a == "--matrix" ? o.matrix : a == "--cones" ? o.cones : o.setupOnly) = true;
       continue;
     }
     const auto it = valued.find(a);
@@ -101,6 +110,47 @@ double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+bool sameCones(const std::vector<bound::ConeOfNormals>& a,
+               const std::vector<bound::ConeOfNormals>& b) {
+  return a.size() == b.size() &&
+         std::equal(a.begin(), a.end(), b.begin(), [](const auto& x, const auto& y) {
+           return std::memcmp(&x, &y, offsetof(bound::ConeOfNormals, valid)) == 0 &&
+                  x.valid == y.valid && x.reason == y.reason;
+         });
+}
+
+// --cones: the three ways of building the host cones, interleaved (see the file comment).
+void timeCones(const Options& o, const PatchSet& set) {
+  const bound::BackPatchMethod method =
+      o.method == "ncone" ? bound::BackPatchMethod::NCone : bound::BackPatchMethod::TCone;
+  struct Variant {
+    const char* name;
+    bound::ConeSearch search;
+    unsigned threads;
+    std::vector<double> wall, cpu;
+    std::vector<bound::ConeOfNormals> cones;
+  };
+  Variant variants[] = {{"exhaustive, 1 thread", bound::ConeSearch::Exhaustive, 1, {}, {}, {}},
+                        {"filtered, 1 thread", bound::ConeSearch::Filtered, 1, {}, {}, {}},
+                        {"filtered, all threads", bound::ConeSearch::Filtered, 0, {}, {}, {}}};
+  for (uint32_t r = 0; r < o.repeats; ++r)
+    for (Variant& v : variants) {
+      const std::clock_t cpuStart = std::clock();
+      const auto start = Clock::now();
+      v.cones = bound::buildPatchCones(set, method, v.search, v.threads);
+      v.wall.push_back(msSince(start));
+      v.cpu.push_back(1000.0 * double(std::clock() - cpuStart) / CLOCKS_PER_SEC);
+    }
+  const bool same = sameCones(variants[0].cones, variants[1].cones) &&
+                    sameCones(variants[0].cones, variants[2].cones);
+  const double base = median(variants[0].wall);
+  for (const Variant& v : variants)
+    std::printf("| %u | %s | %s | %.0f | %.0f | %.2f | %s |\n", set.patchCount(), o.method.c_str(),
+                v.name, median(v.wall), median(v.cpu), base / median(v.wall), same ? "yes" : "NO");
+  std::fflush(stdout);
+  if (!same) throw Error("the cone searches disagree");
+}
+
 void runGrid(const Options& o, uint32_t grid) {
   vulkan::ContextOptions co;
   co.device = o.device;
@@ -124,6 +174,10 @@ void runGrid(const Options& o, uint32_t grid) {
                 n, st.topologyMs, st.refineMs, st.patchTableMs, st.stencilMs, st.matrixMs,
                 st.totalMs, setupCpuMs, statusBytes("VmHWM:") / 1048576.0);
     std::fflush(stdout);
+    return;
+  }
+  if (o.cones) {
+    timeCones(o, set);
     return;
   }
   std::vector<double> rss = {statusBytes("VmRSS:")};  // after each stage
@@ -188,13 +242,22 @@ int main(int argc, char** argv) {
         "draw at uniform tess %u in %ux%u, matrix %s\n\n",
         o.level, o.method.c_str(), o.views, o.repeats, o.tess, o.width, o.height,
         o.matrix ? "built" : "not built");
-    std::printf(
-        "| grid | patches | topology ms | refine ms | patch table ms | stencils ms | points ms | "
-        "set-up ms | set-up CPU ms | upload ms | cull pass ms | peak RSS MB | bytes/patch | above "
-        "baseline "
-        "B/patch | cull ns/patch | draw ms | TES invocations | RSS B/patch added by extraction / "
-        "upload / cull pass / runs |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    if (o.cones) {
+      std::printf("host cones (bound::buildPatchCones), %u interleaved rounds, medians\n\n",
+                  o.repeats);
+      std::printf(
+          "| patches | method | search | wall ms | CPU ms | speed-up (wall) | bit-identical "
+          "|\n|---|---|---|---|---|---|---|\n");
+    } else {
+      std::printf(
+          "| grid | patches | topology ms | refine ms | patch table ms | stencils ms | points ms | "
+          "set-up ms | set-up CPU ms | upload ms | cull pass ms | peak RSS MB | bytes/patch | "
+          "above "
+          "baseline "
+          "B/patch | cull ns/patch | draw ms | TES invocations | RSS B/patch added by extraction / "
+          "upload / cull pass / runs |\n");
+      std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    }
     std::fflush(stdout);
     int failures = 0;
     for (uint32_t grid : o.grids) {

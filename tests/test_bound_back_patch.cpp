@@ -2,19 +2,24 @@
 // front-facing point on a dense sampling of its surface, in any view; degenerate input.
 #include "osd_cull/bound/clip_space.h"
 #include "osd_cull/bound/cone_of_normals.h"
+#include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/bound/frustum.h"
 #include "osd_cull/bound/patch_eval.h"
 #include "osd_cull/bound/sampling.h"
 #include "osd_cull/bound/tangent_plane.h"
+#include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/procedural.h"
 #include "support/test_data.h"
 #include "test_bound_fixtures.h"
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 
 namespace osd_cull::bound {
 namespace {
@@ -153,6 +158,73 @@ Bezier flatGrid() {
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) b[4 * j + i] = {i / 3.0 - 0.5, j / 3.0 - 0.5, 0.0};
   return b;
+}
+
+// Every field of two cones, bit for bit (NaN equal to NaN).
+void expectSameCone(const ConeOfNormals& a, const ConeOfNormals& b, const std::string& what) {
+  auto bits = [](double x) { return std::bit_cast<uint64_t>(x); };
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(bits(a.apex[k]), bits(b.apex[k])) << what << " apex " << k;
+    EXPECT_EQ(bits(a.axis[k]), bits(b.axis[k])) << what << " axis " << k;
+  }
+  EXPECT_EQ(bits(a.sinAngle), bits(b.sinAngle)) << what;
+  EXPECT_EQ(bits(a.angle), bits(b.angle)) << what;
+  EXPECT_EQ(bits(a.maxRadius), bits(b.maxRadius)) << what;
+  EXPECT_EQ(bits(a.minNormal), bits(b.minNormal)) << what;
+  EXPECT_EQ(a.valid, b.valid) << what;
+  EXPECT_EQ(a.reason, b.reason) << what;
+}
+
+// The filtered axis search (atan2 only near the largest pseudo-angle) builds the same cones
+// as the exhaustive one, on every patch kind and scale, for TCONE, NCONE and Gregory TCONE.
+TEST(BoundBackPatch, FilteredConeSearchBuildsBitIdenticalCones) {
+  Rng rng(77);
+  int valid = 0, total = 0;
+  for (int n = 0; n < 3000; ++n) {
+    const auto kind = static_cast<test::PatchKind>(n % static_cast<int>(test::PatchKind::Count));
+    const double scale = std::pow(10.0, rng.uniform(-4.0, 5.0));
+    const Bezier b = test::transformed(test::randomBezier(rng, kind), rng, scale);
+    const std::string what = std::string(test::name(kind)) + " #" + std::to_string(n);
+    const ConeOfNormals t = buildConeFromTangentCones(b, ConeSearch::Filtered);
+    expectSameCone(t, buildConeFromTangentCones(b, ConeSearch::Exhaustive), what + " TCONE");
+    if (n % 10 == 0)
+      expectSameCone(buildConeOfNormals(b, ConeSearch::Filtered),
+                     buildConeOfNormals(b, ConeSearch::Exhaustive), what + " NCONE");
+    if (n % 5 == 0) {
+      const test::Gregory g =
+          test::gregoryFromBezier(b, rng, std::pow(10.0, rng.uniform(-3, -0.5)));
+      expectSameCone(buildGregoryConeFromTangentCones(g, ConeSearch::Filtered),
+                     buildGregoryConeFromTangentCones(g, ConeSearch::Exhaustive),
+                     what + " Gregory");
+    }
+    if (HasFailure()) return;
+    valid += t.valid;
+    ++total;
+  }
+  // Not only the "no cone" early exits: most TCONEs of these patches are valid.
+  EXPECT_GT(valid, total / 2);
+  expectSameCone(buildConeFromTangentCones(flatGrid(), ConeSearch::Filtered),
+                 buildConeFromTangentCones(flatGrid(), ConeSearch::Exhaustive), "flat grid");
+}
+
+// buildPatchCones over two threads with the filtered search equals one thread with the
+// exhaustive search, patch for patch (a torus large enough to be split).
+TEST(BoundBackPatch, PatchConesOverTwoThreadsEqualTheExhaustiveSingleThreadedCones) {
+  PatchOptions po;
+  po.isolationLevel = 1;
+  const PatchSet set = extractPatches(scene::torus(130, 130), po).patches;
+  ASSERT_GE(set.patchCount(), kParallelConePatches);
+  const auto fast = buildPatchCones(set, BackPatchMethod::TCone, ConeSearch::Filtered, 2);
+  const auto slow = buildPatchCones(set, BackPatchMethod::TCone, ConeSearch::Exhaustive, 1);
+  ASSERT_EQ(fast.size(), set.patchCount());
+  ASSERT_EQ(slow.size(), set.patchCount());
+  size_t valid = 0;
+  for (uint32_t p = 0; p < set.patchCount(); ++p) {
+    expectSameCone(fast[p], slow[p], "patch " + std::to_string(p));
+    if (HasFailure()) return;
+    valid += fast[p].valid;
+  }
+  EXPECT_EQ(valid, set.patchCount());  // smooth torus patches all have a cone
 }
 
 TEST(BoundBackPatch, PlanarPatchIsKeptFromJustInFrontAndCulledFromJustBehind) {

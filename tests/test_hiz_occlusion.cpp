@@ -16,6 +16,7 @@
 #include "support/vk_test_images.h"
 
 #include <gtest/gtest.h>
+#include <osd_cull/shared/draw_layout.h>
 
 #include <cstdio>
 
@@ -129,21 +130,73 @@ TEST_F(HiZOcclusionTest, PatchesBehindAWallAreCulledExactlyWhereTheyShouldBe) {
 
 // Sub-pixel patches (docs/algorithms/occlusion.md, "Sub-pixel patches"): a 100 x 100 torus
 // at level 1 (10,000 patches) on a 32 x 32 image, a fraction of a pixel each, reproduces
-// the false culls of the 700 x 700 torus at 256 x 256. Without kHiZExtrapolationPixels, view 19 of
-// these views has a patch whose rasterized depth lies below all its control points' depths
-// and the reference and the kernel both cull it.
-TEST_F(HiZOcclusionTest, SubPixelPatchesOfAClosedTorusAreNeverFalselyCulled) {
+// the false culls of the 700 x 700 torus at 256 x 256: without the depth clamp of the patch
+// draw (patch.tesc, patch.frag), view 19 of these views has a patch whose rasterized depth
+// lies below all its control points' depths (lavapipe extrapolates depth past its thin
+// triangles), and the reference and the kernel, which bound depth by the control points,
+// both cull it.
+PatchSet subPixelTorus() {
   PatchOptions po;
   po.isolationLevel = 1;
-  const PatchSet set = extractPatches(scene::torus(100, 100), po).patches;
+  return extractPatches(scene::torus(100, 100), po).patches;
+}
+
+std::vector<frame::Camera> subPixelTorusViews(const PatchSet& set) {
+  frame::ViewSetOptions vo;
+  vo.count = 30;
+  vo.width = vo.height = 32;
+  return frame::randomViews(frame::boundsOf(set.points), vo);
+}
+
+// The property the cull rests on, pixel by pixel: the depth stored for a pixel a patch owns
+// is never in front of that patch's nearest depth as the reference bounds it
+// (bound::hizScreenBox, HiZFragmentDepth::ClampedToPoints), and the pixel lies in its box.
+// Fails without the clamp (view 19: depth 0.823346 where the control points start at
+// 0.823423).
+TEST_F(HiZOcclusionTest, NoFragmentOfASubPixelPatchLiesInFrontOfItsControlPoints) {
+  const PatchSet set = subPixelTorus();
+  ASSERT_EQ(set.patchCount(), 10000u);
+  const auto cameras = subPixelTorusViews(set);
+  frame::GpuPatchSet gpu(context(), set);
+  frame::RenderTarget target(context(), 32, 32);
+  frame::Renderer renderer(context());
+  frame::VisibilityOracle oracle(context());
+  frame::TessellationOptions tess;
+  tess.uniformLevel = 4;
+  uint32_t pixels = 0, clampedAtTheBound = 0;
+  for (uint32_t v = 17; v < 22; ++v) {
+    const frame::Camera& camera = cameras[v];
+    oracle.query(renderer, target, camera, gpu, &set, {}, tess);
+    const std::vector<uint32_t> items = target.readItems(context());
+    const std::vector<float> depth = target.readDepth(context());
+    const glm::dmat4 vp = camera.viewProjection();
+    for (uint32_t i = 0; i < items.size(); ++i) {
+      if (items[i] == shader::kItemBackground) continue;
+      const uint32_t p = items[i] - 1;
+      ASSERT_LT(p, set.patchCount());
+      const bound::HiZScreenBox box = bound::hizScreenBox(set.controlPoints(p), vp, 32, 32);
+      ASSERT_TRUE(box.valid) << "view " << v << " patch " << p;
+      const uint32_t x = i % 32, y = i / 32;
+      EXPECT_TRUE(x >= box.x0 && x <= box.x1 && y >= box.y0 && y <= box.y1)
+          << "view " << v << " patch " << p << " pixel " << x << ", " << y;
+      EXPECT_GE(double{depth[i]}, box.nearestDepth)
+          << "view " << v << " patch " << p << " pixel " << x << ", " << y;
+      ++pixels;
+      clampedAtTheBound += double{depth[i]} - box.nearestDepth < 1e-5;
+    }
+  }
+  std::printf("%u pixels checked, %u within 1e-5 of their patch's nearest depth\n", pixels,
+              clampedAtTheBound);
+  EXPECT_GT(pixels, 5u * 32 * 32 / 10);  // the torus fills much of each view
+}
+
+TEST_F(HiZOcclusionTest, SubPixelPatchesOfAClosedTorusAreNeverFalselyCulled) {
+  const PatchSet set = subPixelTorus();
   ASSERT_EQ(set.patchCount(), 10000u);  // one regular patch per quad
   frame::VerifyOptions options;
   options.tessellation.uniformLevel = 4;
   frame::CullVerifier verifier(context(), set, {"hiz"}, {true, "closed torus"}, options);
-  frame::ViewSetOptions vo;
-  vo.count = 30;
-  vo.width = vo.height = 32;
-  const auto cameras = frame::randomViews(frame::boundsOf(set.points), vo);
+  const auto cameras = subPixelTorusViews(set);
   for (uint32_t v = 17; v < 22; ++v) verifier.verifyView(cameras[v]);
   const frame::MethodTotals& t = verifier.totals().at(0);
   EXPECT_EQ(t.falseCulls, 0u);

@@ -235,6 +235,21 @@ TEST(Plan, SwitchedOffMeshIsReprobedAndTurnedOnWhenItPays) {
   EXPECT_TRUE(p.backPatch.on) << planTable({&p, 1});
 }
 
+TEST(Plan, PredictionFollowsTheMeasuredFrameTime) {
+  Planner planner(syntheticCalibration());
+  const PlanInput in = meshAt(1.6, 16.0);
+  const Plan first = planner.plan("k", in, 0);
+  EXPECT_EQ(first.timeScale, 1.0);
+  // The frame took twice the prediction (a loaded machine): the next prediction moves
+  // halfway there (learnWeight 0.5); the choice, made on relative costs, stays.
+  planner.observe("k", first, 600, 300, 0, 2000, 2.0 * first.predicted.totalMs());
+  const Plan second = planner.plan("k", in, 1);
+  EXPECT_NEAR(second.timeScale, 1.5, 1e-12);
+  EXPECT_TRUE(second.stages == first.stages);
+  const Plan unscaled = Planner(syntheticCalibration()).plan("k", in, 0);
+  EXPECT_NEAR(second.predictedUnculled.totalMs(), 1.5 * unscaled.predictedUnculled.totalMs(), 1e-9);
+}
+
 TEST(Calibration, TextRoundTripAndCacheKey) {
   const Calibration c = syntheticCalibration();
   const Calibration back = fromText(toText(c), "test");

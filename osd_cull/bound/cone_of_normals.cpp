@@ -24,9 +24,21 @@ void requireSize(std::span<const glm::dvec3> points, size_t expected, const char
                 " control points, got " + std::to_string(points.size()));
 }
 
+// The terms of the angle between unit vectors a and b: |a x b|² and a . b
+// (glm::length(v) is std::sqrt(glm::dot(v, v)), so sqrt(s2) is bit for bit |a x b|).
+struct AngleTerms {
+  double s2, d;
+};
+
+AngleTerms angleTerms(const glm::dvec3& a, const glm::dvec3& b) {
+  const glm::dvec3 c = glm::cross(a, b);
+  return {glm::dot(c, c), glm::dot(a, b)};
+}
+
 // Angle between unit vectors, accurate near 0 and pi (unlike acos of a dot product).
 double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
-  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+  const AngleTerms t = angleTerms(a, b);
+  return std::atan2(std::sqrt(t.s2), t.d);
 }
 
 // A cone of directions: every vector it was built from lies within `angle` of `axis`.
@@ -37,31 +49,90 @@ struct DirectionCone {
   BackPatchVerdict reason = BackPatchVerdict::NoNormal;
 };
 
+// The largest of atan2(s_i, d_i) + slack_i over the unit vectors (the angle of the widest
+// one from `axis`, widened by its uncertainty), and in *farthest the last index that
+// reaches it (left as it is when no angle compares >= 0, i.e. all are NaN).
+//
+// Exhaustive: one atan2 per vector, the definition. Filtered (ConeSearch::Filtered, when
+// every slack is 0, as for TCONE and the Gregory cones): the same value and index with
+// atan2 (and the square root) only for the few vectors that can be the largest, identified
+// by the key k(θ) = sin²θ for d >= 0 and 2 - sin²θ for d < 0, computed as
+// s2 / (s2 + d²) from s2 = |a x u|², d = a . u. Proof that it returns the same: k is
+// increasing on [0, π] with |k'| = |sin 2θ| <= min(2θ, 1), and k(θ) >= (2θ/π)² on
+// [0, π/2], k >= 1 beyond. Let j be an index of the largest computed angle
+// A_j = atan2(sqrt(s2_j), d_j) and m one of the largest key. atan2 and sqrt are within a few
+// ulps (relative error e <= 1e-15) of the exact angle θ_i of the computed terms, so
+// θ_j >= θ_m (1 - 2e), hence k(θ_m) - k(θ_j) <= 2e θ_m min(2θ_m, 1) <= 10 e k(θ_m); the
+// computed keys are within 4 ulps of k. So key_j > key_m (1 - 1e-9): every index that can
+// reach the largest angle (ties included) passes the filter, in the same order, and the
+// vectors filtered out have smaller angles and could never be the last to reach it. A NaN
+// key falls back to the exhaustive loop.
+double widestExhaustive(const glm::dvec3& axis, std::span<const glm::dvec3> units,
+                        std::span<const double> slack, size_t* farthest) {
+  double worst = 0.0;
+  for (size_t i = 0; i < units.size(); ++i) {
+    const double a = angleBetween(axis, units[i]) + slack[i];
+    if (a >= worst) worst = a, *farthest = i;
+  }
+  return worst;
+}
+
+constexpr double kPseudoAngleFilter = 1e-9;
+
+double widestFiltered(const glm::dvec3& axis, std::span<const glm::dvec3> units,
+                      std::span<const double> slack, std::span<AngleTerms> terms,
+                      std::span<double> pseudo, size_t* farthest) {
+  double top = 0.0;
+  for (size_t i = 0; i < units.size(); ++i) {
+    const AngleTerms t = angleTerms(axis, units[i]);
+    const double sin2 = t.s2 / (t.s2 + t.d * t.d);
+    const double q = t.d >= 0.0 ? sin2 : 2.0 - sin2;
+    if (!(q >= 0.0)) return widestExhaustive(axis, units, slack, farthest);
+    terms[i] = t;
+    pseudo[i] = q;
+    top = std::max(top, q);
+  }
+  const double threshold = top * (1.0 - kPseudoAngleFilter);
+  double worst = 0.0;
+  for (size_t i = 0; i < units.size(); ++i) {
+    if (pseudo[i] < threshold) continue;
+    const double a = std::atan2(std::sqrt(terms[i].s2), terms[i].d) + slack[i];
+    if (a >= worst) worst = a, *farthest = i;
+  }
+  return worst;
+}
+
 // Bounds the directions of `vectors`, each known up to an absolute error `errors[i]`
 // (|computed - exact| <= error): exact zeros are skipped (they add nothing to a
 // non-negative combination); a vector not longer than its error has an unknown direction.
 // The axis is the better of the normalized mean and a few Badoiu-Clarkson steps toward the
 // farthest direction (an approximate minimal enclosing cone).
-DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<const double> errors) {
-  std::vector<glm::dvec3> units;
-  std::vector<double> slack;  // angular uncertainty of each direction
-  units.reserve(vectors.size());
+DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<const double> errors,
+                              ConeSearch search) {
+  // Scratch buffers of this thread, reused from call to call (no allocation per patch).
+  thread_local std::vector<glm::dvec3> units;
+  thread_local std::vector<double> slack;  // angular uncertainty of each direction
+  thread_local std::vector<AngleTerms> terms;
+  thread_local std::vector<double> pseudo;
+  units.clear();
+  slack.clear();
   for (size_t i = 0; i < vectors.size(); ++i) {
     const double len = glm::length(vectors[i]);
     if (len == 0.0 && errors[i] == 0.0) continue;
     if (!(len > errors[i])) return {glm::dvec3(0.0), 0.0, false, BackPatchVerdict::WideCone};
     units.push_back(vectors[i] / len);
-    slack.push_back(std::asin(errors[i] / len));
+    // asin(0) is +0: skipped for exact vectors.
+    slack.push_back(errors[i] == 0.0 ? 0.0 : std::asin(errors[i] / len));
   }
   if (units.empty()) return {};
 
+  const bool filtered = search == ConeSearch::Filtered &&
+                        std::all_of(slack.begin(), slack.end(), [](double x) { return x == 0.0; });
+  terms.resize(filtered ? units.size() : 0);
+  pseudo.resize(terms.size());
   auto widest = [&](const glm::dvec3& axis, size_t* farthest) {
-    double worst = 0.0;
-    for (size_t i = 0; i < units.size(); ++i) {
-      const double a = angleBetween(axis, units[i]) + slack[i];
-      if (a >= worst) worst = a, *farthest = i;
-    }
-    return worst;
+    return filtered ? widestFiltered(axis, units, slack, terms, pseudo, farthest)
+                    : widestExhaustive(axis, units, slack, farthest);
   };
   glm::dvec3 sum(0.0);
   for (const glm::dvec3& u : units) sum += u;
@@ -70,13 +141,16 @@ DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<con
   size_t far = 0;
   double angle = widest(axis, &far);
   // Badoiu-Clarkson on the tips of the unit vectors: centre += (farthest - centre)/(k+1).
+  // The farthest vector from normalize(centre) is the one found for the previous
+  // candidate (the same vector, bit for bit), so each step evaluates one direction.
   glm::dvec3 centre = axis;
+  size_t f = 0;
+  widest(glm::normalize(centre), &f);
   for (int k = 1; k <= 8; ++k) {
-    size_t f = 0;
-    widest(glm::normalize(centre), &f);
     centre += (units[f] - centre) / static_cast<double>(k + 1);
     if (!(glm::length(centre) > 0.0)) break;
     const glm::dvec3 candidate = glm::normalize(centre);
+    f = 0;
     const double a = widest(candidate, &f);
     if (a < angle) angle = a, axis = candidate;
   }
@@ -180,13 +254,14 @@ double tangentConesMinNormal(std::span<const glm::dvec3> du, std::span<const glm
 //     component >= h - ρ along a and <= P + ρ across it (P = max perpendicular part of the
 //     d_k), so G_u is within atan((P + ρ) / (h - ρ)) of a;
 // (B) G_u is a non-negative combination of the d_k and r_m: the cone of their directions.
-DirectionCone gregoryTangentCone(const std::vector<glm::dvec3>& d,
-                                 const std::vector<glm::dvec3>& r) {
+DirectionCone gregoryTangentCone(const std::vector<glm::dvec3>& d, const std::vector<glm::dvec3>& r,
+                                 ConeSearch search) {
   std::vector<glm::dvec3> all = d;
   all.insert(all.end(), r.begin(), r.end());
   const std::vector<double> zeros(all.size(), 0.0);
-  DirectionCone best = boundDirections(all, zeros);
-  const DirectionCone main = boundDirections(d, std::span<const double>(zeros).first(d.size()));
+  DirectionCone best = boundDirections(all, zeros, search);
+  const DirectionCone main =
+      boundDirections(d, std::span<const double>(zeros).first(d.size()), search);
   if (!main.valid) return best;
   double rho = 0.0;
   for (const glm::dvec3& v : r) rho += glm::length(v);
@@ -231,7 +306,7 @@ std::array<glm::dvec3, 36> normalPatch(std::span<const glm::dvec3> bezier) {
   return n;
 }
 
-ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier) {
+ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier, ConeSearch search) {
   requireSize(bezier, 16, "bicubic Bézier");
   if (!allFinite(bezier)) return invalidCone(BackPatchVerdict::NonFinite);
   const std::array<glm::dvec3, 36> n = normalPatch(bezier);
@@ -250,7 +325,7 @@ ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier) {
         }
     }
   for (double& e : err) e *= kRelativeMargin;
-  const DirectionCone cone = boundDirections(n, err);
+  const DirectionCone cone = boundDirections(n, err, search);
   if (!cone.valid) return invalidCone(cone.reason);
   ConeOfNormals result = withApex(cone.axis, cone.angle, bezier);
   // N(u,v) is a convex combination of the coefficients: N . a >= min (n_k . a - err_k).
@@ -261,7 +336,7 @@ ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier) {
   return result;
 }
 
-ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier) {
+ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier, ConeSearch search) {
   requireSize(bezier, 16, "bicubic Bézier");
   if (!allFinite(bezier)) return invalidCone(BackPatchVerdict::NonFinite);
   std::array<glm::dvec3, 12> du, dv;
@@ -273,13 +348,15 @@ ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier) {
   // Differences of doubles are exact to an ulp: their directions are covered by the angle
   // margin, so no per-vector error is needed.
   const std::array<double, 12> zero{};
-  const DirectionCone cu = boundDirections(du, zero), cv = boundDirections(dv, zero);
+  const DirectionCone cu = boundDirections(du, zero, search),
+                      cv = boundDirections(dv, zero, search);
   ConeOfNormals result = combineTangentCones(cu, cv, bezier);
   if (result.valid) result.minNormal = tangentConesMinNormal(du, dv, cu, cv);
   return result;
 }
 
-ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> gregory) {
+ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> gregory,
+                                               ConeSearch search) {
   requireSize(gregory, 20, "Gregory");
   if (!allFinite(gregory)) return invalidCone(BackPatchVerdict::NonFinite);
   // Candidates of each 4x4 Bézier-net position: its boundary point, or both interior points.
@@ -333,7 +410,8 @@ ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> grego
     addBlendDerivative(g, true, ru);
     addBlendDerivative(g, false, rv);
   }
-  return combineTangentCones(gregoryTangentCone(du, ru), gregoryTangentCone(dv, rv), gregory);
+  return combineTangentCones(gregoryTangentCone(du, ru, search), gregoryTangentCone(dv, rv, search),
+                             gregory);
 }
 
 BackPatchResult testConeOfNormals(const ConeOfNormals& cone, const glm::dvec3& eye) {

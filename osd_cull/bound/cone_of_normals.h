@@ -31,6 +31,15 @@ namespace osd_cull::bound {
 /// direction and angle computations (below 1e-13 rad) with a wide margin.
 inline constexpr double kConeAngleMargin = 1e-9;
 
+/// \brief How a cone's axis search finds the widest direction from a candidate axis
+/// (cone_of_normals.cpp, widestFiltered): both give bit-identical cones.
+enum class ConeSearch {
+  /// atan2 only for the directions whose pseudo-angle is within 1e-9 of the largest
+  /// (those without an error term: TCONE, Gregory TCONE); NCONE falls back to Exhaustive.
+  Filtered,
+  Exhaustive,  ///< atan2 of every direction (the definition; kept for tests and benchmarks)
+};
+
 /// \brief A bounding cone of a patch's normals with its apex (see the file comment).
 struct ConeOfNormals {
   glm::dvec3 apex{0.0};
@@ -55,18 +64,21 @@ std::array<glm::dvec3, 36> normalPatch(std::span<const glm::dvec3> bezier);
 
 /// \brief NCONE: the cone of normals of a bicubic Bézier patch (Shirman and Abi-Ezzi),
 /// bounding the normal-patch coefficients; precompute it for static meshes.
-ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier);
+ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier,
+                                 ConeSearch search = ConeSearch::Filtered);
 
 /// \brief TCONE: a cone of normals from the tangent cone (12 control vectors of Bu) and
 /// bitangent cone (12 of Bv) of a bicubic Bézier patch, combined as Sederberg and Meyers:
 /// axis a_u x a_v, sin γ = sqrt(sin²α + 2 sinα sinβ |cos θ| + sin²β) / sin θ.
-ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier);
+ConeOfNormals buildConeFromTangentCones(std::span<const glm::dvec3> bezier,
+                                        ConeSearch search = ConeSearch::Filtered);
 
 /// \brief TCONE for a 20-point Gregory-basis patch. Its tangent Gu at every (u,v) is a
 /// non-negative combination of the differences of the Bézier-net candidates (boundary
 /// points, and both Fp and Fm on interior positions) and of the signed Fp - Fm
 /// differences from the derivatives of the rational blends, so the tangent cones bound it.
-ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> gregory);
+ConeOfNormals buildGregoryConeFromTangentCones(std::span<const glm::dvec3> gregory,
+                                               ConeSearch search = ConeSearch::Filtered);
 
 /// \brief Tests a cone against the eye: culled (BackFacing) iff the eye is in the cull
 /// region, with a margin of kRelativeMargin (|E| + |l|) toward "visible". Invalid cone:

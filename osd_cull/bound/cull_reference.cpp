@@ -8,9 +8,12 @@
 
 #include <osd_cull/shared/cull_layout.h>
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <string>
+#include <thread>
 
 namespace osd_cull::bound {
 
@@ -43,18 +46,47 @@ const char* toString(BackPatchMethod method) {
   return "?";
 }
 
-std::vector<ConeOfNormals> buildPatchCones(const PatchSet& patches, BackPatchMethod method) {
+std::vector<ConeOfNormals> buildPatchCones(const PatchSet& patches, BackPatchMethod method,
+                                           ConeSearch search, unsigned threads) {
   std::vector<ConeOfNormals> cones(patches.patchCount());
   if (method == BackPatchMethod::None) return cones;
-  for (uint32_t p = 0; p < patches.patchCount(); ++p) {
-    const auto points = patches.controlPoints(p);
-    if (patches.type(p) == PatchType::Gregory)
-      cones[p] = buildGregoryConeFromTangentCones(points);
-    else if (method == BackPatchMethod::TCone)
-      cones[p] = buildConeFromTangentCones(points);
-    else if (method == BackPatchMethod::NCone)
-      cones[p] = buildConeOfNormals(points);
+  auto build = [&](uint32_t begin, uint32_t end) {
+    for (uint32_t p = begin; p < end; ++p) {
+      const auto points = patches.controlPoints(p);
+      if (patches.type(p) == PatchType::Gregory)
+        cones[p] = buildGregoryConeFromTangentCones(points, search);
+      else if (method == BackPatchMethod::TCone)
+        cones[p] = buildConeFromTangentCones(points, search);
+      else if (method == BackPatchMethod::NCone)
+        cones[p] = buildConeOfNormals(points, search);
+    }
+  };
+  const uint32_t n = patches.patchCount();
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min(threads, 16u);
+  if (n < kParallelConePatches || threads <= 1) {
+    build(0, n);
+    return cones;
   }
+  // Each patch's cone depends on its own points only: equal chunks, one per thread.
+  std::vector<std::exception_ptr> errors(threads);
+  std::vector<std::thread> workers;
+  for (unsigned t = 1; t < threads; ++t)
+    workers.emplace_back([&, t] {
+      try {
+        build(uint32_t(uint64_t{n} * t / threads), uint32_t(uint64_t{n} * (t + 1) / threads));
+      } catch (...) {
+        errors[t] = std::current_exception();
+      }
+    });
+  try {
+    build(0, uint32_t(uint64_t{n} / threads));
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
+  for (std::thread& w : workers) w.join();
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   return cones;
 }
 

@@ -42,8 +42,15 @@ const char* toString(BackPatchMethod method);
 
 /// \brief The cones a back-patch method tests, one per patch: Bézier patches get the TCONE
 /// or NCONE of `method` (an invalid placeholder for None and TangentPlane, which use none),
-/// Gregory patches the Gregory TCONE (for every method but None).
-std::vector<ConeOfNormals> buildPatchCones(const PatchSet& patches, BackPatchMethod method);
+/// Gregory patches the Gregory TCONE (for every method but None). Sets of at least
+/// kParallelConePatches patches are split over up to `threads` threads (0: the hardware's
+/// concurrency); the result does not depend on the split.
+std::vector<ConeOfNormals> buildPatchCones(const PatchSet& patches, BackPatchMethod method,
+                                           ConeSearch search = ConeSearch::Filtered,
+                                           unsigned threads = 0);
+
+/// \brief Smallest patch count buildPatchCones splits over threads.
+inline constexpr uint32_t kParallelConePatches = 16384;
 
 /// \brief What the tests need of a view, computed once per view.
 struct CullView {

@@ -83,7 +83,8 @@ HiZPyramid buildHiZPyramid(std::span<const float> depth, uint32_t width, uint32_
 }
 
 HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
-                          uint32_t width, uint32_t height, double marginScale) {
+                          uint32_t width, uint32_t height, double marginScale,
+                          HiZFragmentDepth depth) {
   HiZScreenBox box;
   if (points.empty() || width == 0 || height == 0 || !allFinite(viewProj)) return box;
   constexpr double inf = std::numeric_limits<double>::infinity();
@@ -119,9 +120,18 @@ HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& 
   box.x1 = pixel(px1, width);
   box.y0 = pixel(py0, height);
   box.y1 = pixel(py1, height);
-  // The rasterizer may extrapolate depth past a triangle (kHiZExtrapolationPixels says why).
-  const double n = std::max((hi.x - lo.x) * 0.5 * width, (hi.y - lo.y) * 0.5 * height);
-  const double extrapolation = n > kHiZExtrapolationPixels ? kHiZExtrapolationPixels / n : 1.0;
+  // Niessner & Loop §4.1.1 with the fragment depth of the draw. ClampedToPoints: the draw
+  // writes max(interpolated depth, P) with P the smallest fp32 z/w of the control points
+  // (patch.tesc), and P >= min(ndc.z - err.z) because err bounds the fp32 rounding of each
+  // z/w (the same argument as for the box); so no fragment lies in front of `nearest`,
+  // whatever the rasterizer's depth interpolation does (docs/algorithms/occlusion.md).
+  // Extrapolated: the rasterizer may extrapolate depth past a triangle
+  // (kHiZExtrapolationPixels says why); an estimate, not a bound.
+  double extrapolation = 0.0;
+  if (depth == HiZFragmentDepth::Extrapolated) {
+    const double n = std::max((hi.x - lo.x) * 0.5 * width, (hi.y - lo.y) * 0.5 * height);
+    extrapolation = n > kHiZExtrapolationPixels ? kHiZExtrapolationPixels / n : 1.0;
+  }
   box.nearestDepth =
       nearest - extrapolation * (highest - lowest) - double{kHiZDepthBias} * marginScale;
   return box;
@@ -151,10 +161,11 @@ HiZFootprint hizFootprint(const HiZLayout& layout, const HiZScreenBox& box, HiZL
 }
 
 OcclusionResult hizOcclusionTest(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
-                                 const HiZPyramid& pyramid, HiZLookup lookup) {
+                                 const HiZPyramid& pyramid, HiZLookup lookup,
+                                 HiZFragmentDepth depth) {
   OcclusionResult r;
   const HiZLayout& l = pyramid.layout;
-  const HiZScreenBox box = hizScreenBox(points, viewProj, l.width, l.height);
+  const HiZScreenBox box = hizScreenBox(points, viewProj, l.width, l.height, 1.0, depth);
   if (!box.valid) return r;
   r.tested = true;
   r.nearestDepth = box.nearestDepth;

@@ -65,14 +65,27 @@ HiZPyramid buildHiZPyramid(std::span<const float> depth, uint32_t width, uint32_
                            bool fullResolution);
 
 /// \brief The screen box of a patch: inclusive pixel ranges and the nearest depth.
+/// \brief How the draw writes the depth of a patch's fragments, which decides the margin of
+/// the nearest depth (docs/algorithms/occlusion.md, "Sub-pixel patches").
+enum class HiZFragmentDepth {
+  /// The undisplaced patch draw (shaders/patch/patch.frag): every fragment's depth is at
+  /// least the smallest fp32 z/w of the patch's control points (the draw clamps it there),
+  /// so the control points' nearest depth bounds it with no extrapolation term.
+  ClampedToPoints,
+  /// The displaced draw: fragment depth as the rasterizer interpolates it, which can lie in
+  /// front of its triangle (extrapolation past snapped vertices); the nearest depth is
+  /// lowered by min(1, kHiZExtrapolationPixels / n) times the points' depth range. Not a
+  /// proven bound (a sliver triangle can extrapolate further).
+  Extrapolated,
+};
+
 struct HiZScreenBox {
   bool valid = false;  ///< false: a point with w <= 0, non-finite input, or off screen
   uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< pixels [x0, x1] x [y0, y1], clamped
   /// Lower bound of the patch's rasterized depth: the smallest z/w of the points, each
-  /// widened by its rounding margin, minus min(1, kHiZExtrapolationPixels / n) times the
-  /// depth range of the points, n the larger side of the box in pixels (the rasterizer's
-  /// depth extrapolation) and kHiZDepthBias (times the margin
-  /// scale).
+  /// widened by its rounding margin, minus kHiZDepthBias (times the margin scale) and, for
+  /// HiZFragmentDepth::Extrapolated, minus min(1, kHiZExtrapolationPixels / n) times the
+  /// depth range of the points, n the larger side of the box in pixels.
   double nearestDepth = 0.0;
 };
 
@@ -80,7 +93,8 @@ struct HiZScreenBox {
 /// scaled by `marginScale` (1 for the reference). Invalid when some point has w <= the
 /// margin (at or behind the eye plane), on NaN/Inf, or when the box misses the screen.
 HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
-                          uint32_t width, uint32_t height, double marginScale = 1.0);
+                          uint32_t width, uint32_t height, double marginScale = 1.0,
+                          HiZFragmentDepth depth = HiZFragmentDepth::ClampedToPoints);
 
 /// \brief Which level a box is looked up at (shared/hiz_layout.h kHiZLookup*).
 enum class HiZLookup {
@@ -114,6 +128,7 @@ struct OcclusionResult {
 /// 20 Gregory). Culled iff every fragment the patch can produce in its box would fail a
 /// LESS depth test against the depths the pyramid was built from.
 OcclusionResult hizOcclusionTest(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
-                                 const HiZPyramid& pyramid, HiZLookup lookup = HiZLookup::Paper);
+                                 const HiZPyramid& pyramid, HiZLookup lookup = HiZLookup::Paper,
+                                 HiZFragmentDepth depth = HiZFragmentDepth::ClampedToPoints);
 
 }  // namespace osd_cull::bound

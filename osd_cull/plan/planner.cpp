@@ -17,6 +17,15 @@ const char* const kBackPatch = "back-patch";
 const char* const kOcclusion = "occlusion";
 const char* const kFrustum = "frustum";
 
+Prediction scaled(Prediction p, double scale) {
+  p.drawMs *= scale;
+  p.cullMs *= scale;
+  p.hizMs *= scale;
+  p.updateMs *= scale;
+  p.fixedMs *= scale;
+  return p;
+}
+
 bool isConeMethod(const std::string& method) { return method == "tcone" || method == "ncone"; }
 
 std::string percent(double rate) {
@@ -201,8 +210,10 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   if (!p.stages.occlusion.empty()) s.lastRun[kOcclusion] = frameNumber;
 
   p.rates = ratesFor(s, p.stages, p.box);
-  p.predicted = predict(calibration_, costCase(input, p.stages), p.stages, p.rates);
-  p.predictedUnculled = predict(calibration_, costCase(input, {}), {}, p.rates);
+  p.timeScale = s.scale;
+  p.predicted =
+      scaled(predict(calibration_, costCase(input, p.stages), p.stages, p.rates), s.scale);
+  p.predictedUnculled = scaled(predict(calibration_, costCase(input, {}), {}, p.rates), s.scale);
   explain(p, input, s);
   return p;
 }
@@ -214,7 +225,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
   const double rtBack = std::min(rt, backDrawMsPerPatch(calibration_, base));
   const double rt0 = options_.tessFactorZero ? calibration_.drawZeroMsPerPatch : 0.0;
   auto total = [&](const StageChoice& c) {
-    return predict(calibration_, costCase(input, c), c, ratesFor(s, c, p.box)).totalMs();
+    return s.scale * predict(calibration_, costCase(input, c), c, ratesFor(s, c, p.box)).totalMs();
   };
   const double now = total(p.stages);
   auto source = [&](const std::string& stage) {
@@ -238,6 +249,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
            std::to_string(int(input.tess));
   };
   const char* probe = "re-probe: runs once to measure its rate; ";
+  const double k = s.scale;  // the effects' ms in this machine's measured time
 
   // Frustum.
   {
@@ -326,7 +338,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     p.hiz.deltaMs =
         p.occlusion.on ? calibration_.hizBuildMs(hizPixels(pixels, p.stages.hizFull)) : 0.0;
     p.hiz.reason = p.occlusion.on
-                       ? "level 0 at half resolution (paper §4): build " +
+                       ? "level 0 at half resolution (Niessner & Loop §4.1): build " +
                              ms(calibration_.hizBuildMs(hizPixels(pixels, false))) + ", full " +
                              ms(calibration_.hizBuildMs(hizPixels(pixels, true)))
                        : "no occlusion: no pyramid";
@@ -340,15 +352,16 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     else if (!input.cageMoved)
       p.update.reason = "the cage did not move since the last frame: nothing to update";
     else {
-      p.update.deltaMs = n * std::min(calibration_.pointUpdateCpuMsPerPatch,
-                                      calibration_.pointUpdateGpuMsPerPatch);
+      p.update.deltaMs =
+          k * n *
+          std::min(calibration_.pointUpdateCpuMsPerPatch, calibration_.pointUpdateGpuMsPerPatch);
       p.update.reason = "cage moved: cpu " + ms(n * calibration_.pointUpdateCpuMsPerPatch) +
                         ", gpu " + ms(n * calibration_.pointUpdateGpuMsPerPatch) +
                         " (calibrated); the cheaper runs";
     }
     p.bounds.on = base.boundsPass;
     p.bounds.choice = p.bounds.on ? p.stages.backPatch : "";
-    p.bounds.deltaMs = p.bounds.on ? n * calibration_.boundsMsPerPatch : 0.0;
+    p.bounds.deltaMs = p.bounds.on ? k * n * calibration_.boundsMsPerPatch : 0.0;
     p.bounds.reason = !base.pointUpdate ? "points did not move: the cones stay valid"
                       : p.bounds.on     ? "recomputes the " + p.stages.backPatch +
                                           " cones of the moved points (bounds pass)"
@@ -368,9 +381,15 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
 }
 
 void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
-                      uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total) {
+                      uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
+                      double measuredMs) {
   if (total == 0) return;
   State& s = states_[key];
+  const double predicted = (plan.predicted.totalMs() - plan.predicted.updateMs) / plan.timeScale;
+  if (measuredMs > 0.0 && predicted > 0.0 && std::isfinite(measuredMs)) {
+    const double ratio = std::clamp(measuredMs / predicted, 0.05, 20.0);
+    s.scale = (1.0 - options_.learnWeight) * s.scale + options_.learnWeight * ratio;
+  }
   auto learn = [&](const std::string& stage, uint32_t culled) {
     const double measured = double(culled) / double(total);
     const auto it = s.rates.find(stage);

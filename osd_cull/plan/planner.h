@@ -7,7 +7,8 @@
 /// the cull rates measured on the mesh's recent frames.
 ///
 /// Each frame the planner
-///  1. tests the object's box against the view first (Sathe §4, the per-object pre-test):
+///  1. tests the object's box against the view first (Sathe, last paragraph of the results: the
+///  per-object pre-test):
 ///     a box outside the view is culled whole by the frustum stage; a box inside it makes
 ///     the frustum stage useless;
 ///  2. predicts every candidate stage choice with the cost model (cost_model.h: Zachmann's
@@ -81,8 +82,11 @@ struct Plan {
   BoxInView box = BoxInView::Crossing;
   StageChoice stages;
   Effect frustum, backPatch, occlusion, passes, hiz, update, bounds, displacement;
-  bool probe = false;            ///< a re-probe frame (a switched-off stage runs once)
-  CullRates rates;               ///< the rates the prediction used
+  bool probe = false;  ///< a re-probe frame (a switched-off stage runs once)
+  CullRates rates;     ///< the rates the prediction used
+  /// Measured / predicted frame time learned on this key's recent frames (1 before the
+  /// first): the calibration's relative costs, scaled to what this machine does now.
+  double timeScale = 1.0;
   Prediction predicted;          ///< this plan
   Prediction predictedUnculled;  ///< no stage at all
   /// \brief Whether anything is culled (else the mesh is drawn by the plain renderer).
@@ -131,9 +135,13 @@ class Planner {
   Plan plan(const std::string& key, const PlanInput& input, uint64_t frame);
 
   /// \brief Learns from a frame that ran `plan`: the per-stage culled counts over `total`
-  /// patches (CullFrameStats::culledFrustum, culledBackPatch, culledOcclusion).
+  /// patches (CullFrameStats::culledFrustum, culledBackPatch, culledOcclusion) and, when
+  /// `measuredMs` > 0, the frame's wall time without point update and bounds pass, which
+  /// sets Plan::timeScale (the load of a shared machine, caches: what the calibration did
+  /// not see).
   void observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
-               uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total);
+               uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
+               double measuredMs = 0.0);
 
   /// \brief The learned (or prior) rate of `stage` ("frustum" or a method name) for `key`.
   double rate(const std::string& key, const std::string& stage) const;
@@ -147,6 +155,7 @@ class Planner {
     std::map<std::string, double> rates;
     std::map<std::string, uint64_t> lastRun;  // stage kind → last frame it ran
     uint64_t lastFrame = 0;
+    double scale = 1.0;  // Plan::timeScale
   };
   CostCase costCase(const PlanInput& input, const StageChoice& stages) const;
   std::string occlusionKernel(const PlanInput& input) const;

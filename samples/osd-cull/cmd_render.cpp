@@ -294,7 +294,7 @@ int run(const RenderArgs& args) {
       const frame::CullFrameStats stats = cullFrame->render(view, occluders);
       if (planner)
         planner->observe("render", *lastPlan, stats.culledFrustum, stats.culledBackPatch,
-                         stats.culledOcclusion, stats.patchesTotal);
+                         stats.culledOcclusion, stats.patchesTotal, stats.frameMs);
       std::printf("%s\n", cullFrameLine(f, stats).c_str());
       jsonFrames.push_back(cullFrameJson(f, stats));
     } else {
@@ -313,7 +313,7 @@ int run(const RenderArgs& args) {
         for (uint32_t code : pass->results()) ++byStage[bound::CullCode{code}.stage() & 3u];
         if (planner)
           planner->observe("render", *lastPlan, byStage[1], byStage[2], 0,
-                           scene.patches.patchCount());
+                           scene.patches.patchCount(), stats.wallMs);
         std::printf("  culled %u of %u: frustum %u, back-patch %u\n",
                     scene.patches.patchCount() - stats.patchesDrawn, scene.patches.patchCount(),
                     byStage[1], byStage[2]);
@@ -349,7 +349,7 @@ int run(const RenderArgs& args) {
                        {"scene", scene.patches.source},
                        {"width", width},
                        {"height", height},
-                       {"cull", cull.mode},
+                       {"cull", planner ? std::string("plan") : cull.mode},
                        {"frames", jsonFrames}};
     if (cullFrame)
       doc["options"] = {

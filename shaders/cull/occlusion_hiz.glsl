@@ -25,7 +25,14 @@ uint occlusionVerdict(uint patchIndex, PatchClipBounds bounds) {
   int level;
   ivec2 t0, t1;
   if (!hizFootprint(box, hizParams, level, t0, t1)) return kOcclusionVerdictUntested;
-  if (hizOccluded(box, hizParams, hizPyramid)) return kOcclusionVerdictOccluded;
+  // Undisplaced draws clamp fragment depth to the control points' nearest (patch.frag);
+  // the displaced draw does not, and keeps the extrapolation estimate.
+#if CULL_DISPLACED
+  const bool extrapolated = true;
+#else
+  const bool extrapolated = false;
+#endif
+  if (hizOccluded(box, hizParams, hizPyramid, extrapolated)) return kOcclusionVerdictOccluded;
   return kOcclusionVerdictVisible | (uint(level) << kOcclusionVerdictLevelShift);
 }
 #endif

@@ -8,6 +8,8 @@ layout(push_constant) uniform Push { DrawConstants pc; };
 layout(location = 0) in vec3 tePosition;
 layout(location = 1) in vec3 teNormal;
 layout(location = 2) flat in uint tePatch;
+// Smallest depth of the patch's control points, 0 for none (patch.tesc says why).
+layout(location = 3) flat in float teNearestDepth;
 
 layout(location = 0) out vec4 outColor;
 // ITEM_BUFFER 0: a target without an item buffer (the application's color and depth).
@@ -49,6 +51,12 @@ void main() {
 #endif
   float z = gl_FragCoord.z;
   float slope = max(abs(dFdx(z)), abs(dFdy(z)));
+  // Never in front of the patch's control points (Niessner & Loop §4.1.1's bound made
+  // exact for the rasterizer; proof in patch.tesc). Both only move depth back, so
+  // depth_greater holds (clipping keeps z <= 1); depths stay at most 1, the far value no
+  // stored depth exceeds, so a fragment clamped to 1 still fails LESS where it was culled.
+  float clamped = min(max(z, teNearestDepth), 1.0);
   bool pushBack = !gl_FrontFacing && (pc.flags & kFlagFrontWinsTies) != 0u;
-  gl_FragDepth = pushBack ? min(1.0, z + slope + z * (1.0 / 4194304.0) + 1.0e-30) : z;
+  gl_FragDepth =
+      pushBack ? min(1.0, clamped + slope + clamped * (1.0 / 4194304.0) + 1.0e-30) : clamped;
 }

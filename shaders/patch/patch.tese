@@ -16,10 +16,12 @@ layout(location = 0) in vec3 tcPoint[];
 layout(location = 1) patch in uint tcPatch;
 layout(location = 2) patch in vec4 tcLo;
 layout(location = 3) patch in vec4 tcHi;
+layout(location = 4) patch in float tcNearestDepth;  // patch.tesc
 
 layout(location = 0) out vec3 tePosition;
 layout(location = 1) out vec3 teNormal;
 layout(location = 2) flat out uint tePatch;
+layout(location = 3) flat out float teNearestDepth;
 
 // Equal-spacing form of OpenSubdiv's OsdGetTessTransitionSplit: the first `lo` segments
 // of a transition edge cover [0, 1/2], the last `hi` cover [1/2, 1].
@@ -95,6 +97,7 @@ void main() {
   tePosition = P;
   teNormal = n;
   tePatch = tcPatch;
+  teNearestDepth = tcNearestDepth;
   if ((pc.flags & kFlagPatchTypeColors) != 0u) {
     // The status field carries the patch type to the fragment stage: 0 regular, 1 one
     // boundary edge, 2 corner, 3 Gregory (OsdGetPatchBoundaryMask: bits 7..10 of field 1).

@@ -20,6 +20,9 @@ OSD_CULL_CONST uint kFlagDebugColors = 1u;      // color each patch by a hash of
 OSD_CULL_CONST uint kFlagStatusColors = 2u;     // color each patch by its draw-list status field
 OSD_CULL_CONST uint kFlagFrontWinsTies = 4u;    // push back-facing fragments back (patch.frag)
 OSD_CULL_CONST uint kFlagPatchTypeColors = 8u;  // regular/boundary/corner/Gregory (patch.tese)
+// No clamp of fragment depth to the control points (patch.tesc): for measuring what the clamp
+// costs only; Hi-Z occlusion culls of such a draw are not proven (docs/algorithms/occlusion.md).
+OSD_CULL_CONST uint kFlagNoDepthClamp = 16u;
 
 // A draw-list entry: the patch index in the low 28 bits, a status for the debug view in
 // bits 28-30 (kDrawStatus*) and, in bit 31, "culled": the control shader sets every

@@ -16,6 +16,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <string>
 
 namespace osd_cull::frame {
@@ -131,6 +133,40 @@ std::vector<float> checkedRanges(std::span<const bound::DisplacementRange> range
 
 }  // namespace
 
+// The pipeline: one kernel for every method and output (push constants choose), so every
+// pass on a device shares it (creating it runs lavapipe's LLVM for about 2 s).
+struct BoundsPipeline {
+  vulkan::UniqueDescriptorSetLayout setLayout;
+  vulkan::UniquePipelineLayout layout;
+  vulkan::UniquePipeline pipeline;
+};
+
+namespace {
+
+std::shared_ptr<const BoundsPipeline> sharedPipeline(vulkan::Context& context) {
+  static std::mutex mutex;
+  static std::map<VkDevice, std::weak_ptr<const BoundsPipeline>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::weak_ptr<const BoundsPipeline>& slot = cache[context.device()];
+  if (auto existing = slot.lock()) return existing;
+  auto p = std::make_shared<BoundsPipeline>();
+  p->setLayout = vulkan::createDescriptorSetLayout(context, kBindings);
+  const std::vector<VkDescriptorSetLayout> layouts = {p->setLayout.get()};
+  p->layout = vulkan::createPipelineLayout(context, layouts, sizeof(sh::BoundsConstants),
+                                           VK_SHADER_STAGE_COMPUTE_BIT);
+  const std::string text = "#version 450\n#extension GL_EXT_control_flow_attributes : require\n" +
+                           std::string("#define OSD_CULL_POINTS_BDA ") +
+                           pointsByAddressDefine(context) + "\n" + gregoryTables() +
+                           "#include \"bounds/patch_bounds_main.glsl\"\n";
+  p->pipeline = vulkan::createComputePipeline(
+      context, p->layout.get(),
+      vulkan::compileGlsl(text, "bounds/patch_bounds.comp", VK_SHADER_STAGE_COMPUTE_BIT));
+  slot = p;
+  return p;
+}
+
+}  // namespace
+
 bool BoundsPass::hasCullData(bound::BackPatchMethod method) {
   return method == bound::BackPatchMethod::TCone || method == bound::BackPatchMethod::NCone ||
          method == bound::BackPatchMethod::TangentPlane;
@@ -168,19 +204,9 @@ BoundsPass::BoundsPass(vulkan::Context& context, const GpuPatchSet& gpu, uint32_
   const std::span<const float> r = ranges.empty() ? std::span<const float>(unused) : ranges;
   ranges_ = vulkan::Buffer(context, r.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   vulkan::upload<float>(context, ranges_, r);
-  setLayout_ = vulkan::createDescriptorSetLayout(context, kBindings);
-  const std::vector<VkDescriptorSetLayout> layouts = {setLayout_.get()};
-  layout_ = vulkan::createPipelineLayout(context, layouts, sizeof(sh::BoundsConstants),
-                                         VK_SHADER_STAGE_COMPUTE_BIT);
-  const std::string text = "#version 450\n#extension GL_EXT_control_flow_attributes : require\n" +
-                           std::string("#define OSD_CULL_POINTS_BDA ") +
-                           pointsByAddressDefine(context) + "\n" + gregoryTables() +
-                           "#include \"bounds/patch_bounds_main.glsl\"\n";
-  pipeline_ = vulkan::createComputePipeline(
-      context, layout_.get(),
-      vulkan::compileGlsl(text, "bounds/patch_bounds.comp", VK_SHADER_STAGE_COMPUTE_BIT));
+  pipeline_ = sharedPipeline(context);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
-  set_ = pool_->allocate(setLayout_.get());
+  set_ = pool_->allocate(pipeline_->setLayout.get());
 }
 
 bool BoundsPass::dependsOnPoints() const { return !(displaced_ && coneCode_ == sh::kBoundsNoCone); }
@@ -214,10 +240,10 @@ void BoundsPass::record(VkCommandBuffer cmd, double pointError, float shrink) {
   // (a cull) come first.
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kComputeReadWrite);
   if (c.patchCount > 0) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
-                            nullptr);
-    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->pipeline.get());
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_->layout.get(), 0, 1,
+                            &set_, 0, nullptr);
+    vkCmdPushConstants(cmd, pipeline_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
     const vulkan::DispatchSize groups = vulkan::checkedGroups2D(
         context_, vulkan::groupCount(c.patchCount, sh::kBoundsGroupSize), "BoundsPass");
     vkCmdDispatch(cmd, groups.x, groups.y, 1);

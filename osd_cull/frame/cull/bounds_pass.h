@@ -46,6 +46,7 @@ class Context;
 namespace osd_cull::frame {
 
 class GpuPatchSet;
+struct BoundsPipeline;
 
 /// \brief One patch's bounds as the pass wrote them, widened to double (tests, reports).
 struct PatchBounds {
@@ -116,9 +117,7 @@ class BoundsPass {
   uint32_t outputKind_ = 0;  // kBoundsOutput{BackPatch,Displaced}
   vulkan::Buffer cones_;
   vulkan::Buffer ranges_;  // (Dmin, Dmax) float pairs; one unused pair for back-patch data
-  vulkan::UniqueDescriptorSetLayout setLayout_;
-  vulkan::UniquePipelineLayout layout_;
-  vulkan::UniquePipeline pipeline_;
+  std::shared_ptr<const BoundsPipeline> pipeline_;  // shared by the passes of a device
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkBuffer boundPoints_ = VK_NULL_HANDLE;  // the points buffer the set was written with

@@ -105,7 +105,10 @@ std::vector<uint32_t> displacedReferenceCull(const PatchSet& host, const CullPas
         continue;
       }
     }
-    if (hiz && bound::hizOcclusionTest(b.corners, b.toClip, *hiz, lookup).culled)
+    // The displaced draw does not clamp its fragment depth (patch.tesc): the estimate.
+    if (hiz && bound::hizOcclusionTest(b.corners, b.toClip, *hiz, lookup,
+                                       bound::HiZFragmentDepth::Extrapolated)
+                   .culled)
       code = (code & ~0xFu) | shader::kStageOcclusion;
   }
   return codes;

@@ -29,6 +29,7 @@ shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& o
   c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
             (options.statusColors ? shader::kFlagStatusColors : 0u) |
             (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
+            (options.clampDepthToControlPoints ? 0u : shader::kFlagNoDepthClamp) |
             (options.patchTypeColors && !options.statusColors ? shader::kFlagPatchTypeColors : 0u);
   return c;
 }
@@ -96,7 +97,8 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
   std::vector<vulkan::ShaderDefine> defines = {
       {"PATCH_POINTS", points}, {"OSD_CULL_POINTS_BDA", pointsByAddressDefine(context_)}};
   std::vector<vulkan::ShaderDefine> evalDefines = defines;
-  // Only the displaced variant's evaluation stage has displacement code (displace.glsl).
+  // Only the displaced variant's evaluation stage has displacement code (displace.glsl);
+  // its control stage leaves fragment depth unclamped (patch.tesc).
   if (displaced) evalDefines.push_back({"PATCH_DISPLACED", "1"});
   const std::vector<vulkan::ShaderDefine> fragment = {
       {"ITEM_BUFFER", format.items != VK_FORMAT_UNDEFINED ? "1" : "0"}};
@@ -104,7 +106,7 @@ VkPipeline Renderer::patchPipeline(PatchType type, bool cullBackFaces, bool wire
   d.stages.push_back(
       {VK_SHADER_STAGE_VERTEX_BIT, vulkan::compileShader({"patch/patch.vert", defines}), {}});
   d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
-                      vulkan::compileShader({"patch/patch.tesc", defines}),
+                      vulkan::compileShader({"patch/patch.tesc", evalDefines}),
                       {}});
   d.stages.push_back({VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
                       vulkan::compileShader({"patch/patch.tese", evalDefines}),

@@ -46,6 +46,11 @@ struct RenderOptions {
   /// winning silhouette-edge pixels, which the item-buffer oracle would count as visible.
   /// Off only to read exact depths of back faces.
   bool frontFacesWinTies = true;
+  /// Fragment depth of undisplaced patches is clamped to their nearest control point
+  /// (shaders/patch/patch.tesc), which the Hi-Z occlusion bound needs on a rasterizer that
+  /// extrapolates depth. Off only to measure what the clamp costs (bench-draw
+  /// --depth-clamp-cost): Hi-Z culls are then not proven for what is drawn.
+  bool clampDepthToControlPoints = true;
   /// Clear the target first; false draws over its contents (a second pass).
   bool clear = true;
   glm::vec3 background{0.12f, 0.12f, 0.14f};
