@@ -15,7 +15,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <map>
 #include <set>
 
 namespace osd_cull {
@@ -47,20 +49,27 @@ class CullKernelTest : public test::VkTest {};
 // Surface-exact tests (the papers' tests) on a coarse sphere, and the tests that respect the
 // drawn triangles (the default, bound/drawn_triangles.h) on a finer one: at tessellation 4
 // the chords of the coarse sphere's 30-degree patches deviate too far for them to cull much.
-void expectSubsetOfReference(vulkan::Context& context, bool drawnTriangles, double minRate) {
+// `enumerate` adds the listed-triangle test (bound/drawn_triangle_set.h). Returns the GPU
+// cull count per method.
+std::map<std::string, uint64_t> expectSubsetOfReference(vulkan::Context& context,
+                                                        bool drawnTriangles, double minRate,
+                                                        bool enumerate = false,
+                                                        uint32_t viewCount = 12) {
   const PatchSet set = drawnTriangles
                            ? frame::convertToGregory(frame::bezierSphere({0.2, -0.1, 0.3}, 1.5, 8),
                                                      [](uint32_t p) { return p % 7 == 3; })
                            : sphereWithGregory();
   frame::GpuPatchSet gpu(context, set);
   frame::ViewSetOptions vo;
-  vo.count = 12;
+  vo.count = viewCount;
   const auto views = frame::randomViews(frame::boundsOf(set.points), vo);
+  std::map<std::string, uint64_t> culls;
   for (const std::string& method : frame::cullMethodNames(frame::CullStage::BackPatch)) {
     CullSettings settings = backPatchOnly(method);
     settings.drawnTriangles = drawnTriangles;
+    settings.drawnEnumerate = enumerate;
     CullPass pass(context, gpu, set, settings);
-    ASSERT_TRUE(pass.backPatchEnabled()) << method;
+    EXPECT_TRUE(pass.backPatchEnabled()) << method;
     uint64_t gpuCulled = 0, cpuCulled = 0, agree = 0, total = 0;
     for (const auto& camera : views) {
       pass.run(camera);
@@ -71,7 +80,7 @@ void expectSubsetOfReference(vulkan::Context& context, bool drawnTriangles, doub
                                pass.referenceTests(camera, {}, shapes), pass.cones());
       for (uint32_t p = 0; p < set.patchCount(); ++p) {
         const CullCode g{results[p]}, c{codes[p]};
-        ASSERT_TRUE(!g.culled() || c.culled())
+        EXPECT_TRUE(!g.culled() || c.culled())
             << method << " patch " << p << ": GPU " << bound::describe(g) << ", reference "
             << bound::describe(c);
         EXPECT_EQ(g.frustum(), sh::kNotRun);
@@ -85,7 +94,9 @@ void expectSubsetOfReference(vulkan::Context& context, bool drawnTriangles, doub
     EXPECT_GT(double(gpuCulled) / double(total), minRate) << method;
     EXPECT_GT(double(agree) / double(total), 0.97) << method;
     EXPECT_LE(gpuCulled, cpuCulled) << method;
+    culls[method] = gpuCulled;
   }
+  return culls;
 }
 
 TEST_F(CullKernelTest, EveryBackPatchMethodCullsASubsetOfItsReferenceAndCullsSomething) {
@@ -94,6 +105,18 @@ TEST_F(CullKernelTest, EveryBackPatchMethodCullsASubsetOfItsReferenceAndCullsSom
 
 TEST_F(CullKernelTest, DrawnTriangleBoundCullsASubsetOfItsReferenceAndCullsSomething) {
   expectSubsetOfReference(context(), true, 0.1);
+}
+
+// The listed-triangle test culls a subset of its reference, and more than the bound alone
+// (it only ever adds culls to the bound's).
+TEST_F(CullKernelTest, ListedDrawnTrianglesCullASubsetOfTheirReferenceAndMoreThanTheBound) {
+  const auto bound = expectSubsetOfReference(context(), true, 0.1, false, 3);
+  const auto listed = expectSubsetOfReference(context(), true, 0.1, true, 3);
+  for (const auto& [method, n] : bound) {
+    EXPECT_GT(listed.at(method), n) << method;
+    std::printf("%s: bound %llu, listed %llu culls\n", method.c_str(), (unsigned long long)n,
+                (unsigned long long)listed.at(method));
+  }
 }
 
 TEST_F(CullKernelTest, TangentPlaneWithOneAndSixteenThreadsGiveTheSameVerdicts) {
@@ -237,6 +260,51 @@ TEST_F(CullKernelTest, UnknownOrMisplacedMethodsAreRejected) {
   }
   s.backPatch = "frustum";
   EXPECT_THROW(CullPass(context(), gpu, set, s), Error);
+}
+
+// The fp64 cone kernels: the cull-region test in double with a tenth of the fp32 margin, so
+// every fp32 cull is an fp64 cull (both are subsets of the reference, checked above).
+TEST_F(CullKernelTest, Fp64ConeKernelsCullEveryPatchTheFp32KernelsCull) {
+  if (!context().info().optional.shaderFloat64) GTEST_SKIP() << "no shaderFloat64";
+  const PatchSet set = sphereWithGregory();
+  frame::GpuPatchSet gpu(context(), set);
+  frame::ViewSetOptions vo;
+  vo.count = 8;
+  const auto views = frame::randomViews(frame::boundsOf(set.points), vo);
+  for (const std::string method : {"tcone", "ncone"}) {
+    CullSettings fp32 = backPatchOnly(method), fp64 = backPatchOnly(method + "-fp64");
+    fp32.drawnTriangles = fp64.drawnTriangles = false;  // many culls to compare
+    CullPass single(context(), gpu, set, fp32), dbl(context(), gpu, set, fp64);
+    uint64_t culled32 = 0, culled64 = 0;
+    for (const auto& camera : views) {
+      single.run(camera);
+      dbl.run(camera);
+      for (uint32_t p = 0; p < set.patchCount(); ++p) {
+        const CullCode a{single.results()[p]}, b{dbl.results()[p]};
+        EXPECT_TRUE(!a.culled() || b.culled()) << method << " patch " << p;
+        culled32 += a.culled();
+        culled64 += b.culled();
+      }
+    }
+    EXPECT_GT(culled32, set.patchCount() * views.size() / 5) << method;
+    EXPECT_GE(culled64, culled32) << method;
+  }
+}
+
+TEST(CullKernel, Fp64MethodsNameTheMissingFeature) {
+  auto log = std::make_shared<vulkan::ValidationLog>();
+  vulkan::ContextOptions options = test::validatedContextOptions(log);
+  options.adjustDeviceInfo = [](vulkan::DeviceInfo& info) { info.optional.shaderFloat64 = false; };
+  vulkan::Context context(options);
+  const PatchSet set = frame::bezierSphere({0, 0, 0}, 1.0, 1);
+  frame::GpuPatchSet gpu(context, set);
+  try {
+    CullPass pass(context, gpu, set, backPatchOnly("tcone-fp64"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("shaderFloat64"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("tcone-fp64"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

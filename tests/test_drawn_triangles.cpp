@@ -4,8 +4,10 @@
 
 #include "osd_cull/bound/clip_space.h"
 #include "osd_cull/bound/cone_of_normals.h"
+#include "osd_cull/bound/drawn_triangle_set.h"
 #include "osd_cull/bound/patch_eval.h"
 #include "osd_cull/bound/tangent_plane.h"
+#include "osd_cull/error.h"
 #include "support/tessellator_capture.h"
 #include "support/vk_test_context.h"
 
@@ -14,9 +16,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <random>
+#include <set>
+#include <string>
 
 namespace osd_cull {
 namespace {
@@ -51,6 +57,14 @@ std::vector<QuadTessLevels> levelSweep() {
   return sets;
 }
 
+std::string describeLevels(const QuadTessLevels& l) {
+  std::string s = "levels lo";
+  for (int e = 0; e < 4; ++e) s += (e ? "," : " ") + std::to_string(l.lo[e]);
+  s += " hi";
+  for (int e = 0; e < 4; ++e) s += (e ? "," : " ") + std::to_string(l.hi[e]);
+  return s;
+}
+
 TEST_F(DrawnTrianglesTest, ShapeBoundHoldsForTheDevicesTessellator) {
   if (!context().info().optional.geometryShader) GTEST_SKIP() << "no geometry shaders";
   test::TessellatorCapture capture(context());
@@ -60,11 +74,7 @@ TEST_F(DrawnTrianglesTest, ShapeBoundHoldsForTheDevicesTessellator) {
     ASSERT_FALSE(triangles.empty());
     const TriangleShape bound = bound::triangleShape(l);
     const TriangleShape measured = test::measuredShape(triangles);
-    const std::string where = "levels lo " + std::to_string(l.lo[0]) + "," +
-                              std::to_string(l.lo[1]) + "," + std::to_string(l.lo[2]) + "," +
-                              std::to_string(l.lo[3]) + " hi " + std::to_string(l.hi[0]) + "," +
-                              std::to_string(l.hi[1]) + "," + std::to_string(l.hi[2]) + "," +
-                              std::to_string(l.hi[3]);
+    const std::string where = describeLevels(l);
     EXPECT_LE(measured.phi, bound.phi * (1 + 1e-6)) << where;
     EXPECT_LE(measured.psi, bound.psi * (1 + 1e-6)) << where;
     EXPECT_GE(measured.minEdge, bound.minEdge * (1 - 1e-6)) << where;
@@ -95,6 +105,41 @@ std::array<glm::dvec3, 16> randomCap(std::mt19937& rng, double curvature) {
       b[4 * j + i] = glm::dvec3(x, y, -curvature * (x * x + y * y) + jitter(rng));
     }
   return b;
+}
+
+// A view of a randomCap() from below, some distance away: at a random elevation, or, with
+// `silhouette`, just past the surface tangent-plane test's limit.
+glm::dmat4 capView(std::mt19937& rng, const std::array<glm::dvec3, 16>& b, bool silhouette) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), angle(-1.3, -0.05);
+  const double dir = 3.14159 * unit(rng), dist = 3.0 + 20.0 * (unit(rng) + 1);
+  auto viewAt = [&](double a) {
+    const glm::dvec3 eye(dist * std::cos(a) * std::cos(dir), dist * std::cos(a) * std::sin(dir),
+                         dist * std::sin(a) - 0.3);
+    return glm::perspective(1.2, 1.0, 0.05, 200.0) *
+           glm::lookAt(eye, glm::dvec3(0.0), glm::dvec3(0, 0, 1));
+  };
+  double a = angle(rng);
+  if (silhouette) {
+    double culledAt = -1.5, keptAt = 0.3;
+    for (int it = 0; it < 40; ++it) {
+      const double mid = 0.5 * (culledAt + keptAt);
+      const glm::dmat4 m = viewAt(mid);
+      (bound::tangentPlaneTest(b, m, bound::clipSpaceEyeSign(m)).culled ? culledAt : keptAt) = mid;
+    }
+    a = culledAt - 1e-3 * (unit(rng) + 1.0);
+  }
+  return viewAt(a);
+}
+
+// Whether a captured triangle (corners in the tessellator's order) faces the eye, corners
+// evaluated in double.
+bool facesEye(const std::array<glm::dvec3, 16>& b, const test::ParamTriangle& t,
+              const glm::dvec3& eye) {
+  glm::dvec3 p[3];
+  for (int k = 0; k < 3; ++k) p[k] = bound::evaluateBezier(b, t[k].x, t[k].y).position;
+  const glm::dvec2 d1 = t[1] - t[0], d2 = t[2] - t[0];
+  const double orient = d1.x * d2.y - d1.y * d2.x > 0 ? 1.0 : -1.0;
+  return orient * glm::dot(eye - p[0], glm::cross(p[1] - p[0], p[2] - p[0])) > 0.0;
 }
 
 // (E - B) . (Bu x Bv) at (u, v) from the 64 tangent-plane coefficients, and directly.
@@ -132,46 +177,19 @@ TEST_F(DrawnTrianglesTest, CulledPatchesHaveNoFrontFacingDrawnTriangle) {
       {{1, 1, 1, 1}, {0, 0, 0, 0}}, {{2, 2, 2, 2}, {0, 0, 0, 0}}, {{4, 4, 4, 4}, {0, 0, 0, 0}},
       {{3, 7, 2, 5}, {0, 0, 0, 0}}, {{2, 4, 2, 4}, {2, 0, 0, 3}}, {{16, 16, 16, 16}, {0, 0, 0, 0}}};
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0), angle(-1.3, -0.05);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
   uint64_t culled[3] = {}, surfaceOnlyViolations = 0;
   for (const QuadTessLevels& levels : levelSets) {
     const auto triangles = capture.capture(levels);
     const TriangleShape shape = bound::triangleShape(levels);
     for (int trial = 0; trial < 300; ++trial) {
       const auto b = randomCap(rng, 0.05 + 0.2 * (unit(rng) + 1.0));
-      // An eye below the cap, some distance away: at a random elevation on half the trials,
-      // just past the surface test's limit (the silhouette case) on the others.
-      const double dir = 3.14159 * unit(rng), dist = 3.0 + 20.0 * (unit(rng) + 1);
-      auto viewAt = [&](double a) {
-        const glm::dvec3 eye(dist * std::cos(a) * std::cos(dir), dist * std::cos(a) * std::sin(dir),
-                             dist * std::sin(a) - 0.3);
-        return glm::perspective(1.2, 1.0, 0.05, 200.0) *
-               glm::lookAt(eye, glm::dvec3(0.0), glm::dvec3(0, 0, 1));
-      };
-      double a = angle(rng);
-      if (trial % 2 == 1) {
-        double culledAt = -1.5, keptAt = 0.3;
-        for (int it = 0; it < 40; ++it) {
-          const double mid = 0.5 * (culledAt + keptAt);
-          const glm::dmat4 m = viewAt(mid);
-          (bound::tangentPlaneTest(b, m, bound::clipSpaceEyeSign(m)).culled ? culledAt : keptAt) =
-              mid;
-        }
-        a = culledAt - 1e-3 * (unit(rng) + 1.0);
-      }
-      const glm::dmat4 vp = viewAt(a);
+      const glm::dmat4 vp = capView(rng, b, trial % 2 == 1);
       const double sigma = bound::clipSpaceEyeSign(vp);
       const double ew = std::abs(bound::homogeneousEye(vp).w);
       const glm::dvec3 e = *bound::eyePosition(vp);
       bool anyFront = false;
-      for (const auto& t : triangles) {
-        glm::dvec3 p[3];
-        for (int k = 0; k < 3; ++k) p[k] = bound::evaluateBezier(b, t[k].x, t[k].y).position;
-        const glm::dvec2 d1 = t[1] - t[0], d2 = t[2] - t[0];
-        const double orient = d1.x * d2.y - d1.y * d2.x > 0 ? 1.0 : -1.0;
-        if (orient * glm::dot(e - p[0], glm::cross(p[1] - p[0], p[2] - p[0])) > 0.0)
-          anyFront = true;
-      }
+      for (const auto& t : triangles) anyFront = anyFront || facesEye(b, t, e);
       const auto tp = bound::tangentPlaneTest(b, vp, sigma);
       const auto tpDrawn = bound::tangentPlaneTest(
           b, vp, sigma, ew * bound::tangentPlaneDrawnMargin(b, e, shape, 0.0));
@@ -196,6 +214,158 @@ TEST_F(DrawnTrianglesTest, CulledPatchesHaveNoFrontFacingDrawnTriangle) {
   EXPECT_GT(culled[0], 30u);
   EXPECT_GT(culled[1], 5u);
   EXPECT_GT(culled[2], 15u);
+}
+
+// Level sets the listed test meets: uniform tessellation (equal levels; transition edges
+// with n segments on each half), and general integer levels from levelSweep().
+std::vector<QuadTessLevels> listedLevelSets() {
+  std::vector<QuadTessLevels> sets;
+  for (double n = 1; n <= 16; ++n) {
+    sets.push_back({{n, n, n, n}, {0, 0, 0, 0}});
+    sets.push_back({{n, n, n, n}, {n, 0, 0, 0}});
+    sets.push_back({{n, n, n, n}, {0, n, 0, n}});
+  }
+  sets.push_back({{32, 32, 32, 32}, {32, 32, 0, 0}});
+  const auto sweep = levelSweep();
+  for (size_t i = 16; i < sweep.size(); i += 10) sets.push_back(sweep[i]);
+  return sets;
+}
+
+// Each triangle the device's tessellator draws is one forEachDrawnTriangle lists, and each
+// of its vertices lies within tessCoordError of the listed point (listed points are at
+// least 1/64 apart, so the nearest one is the vertex's).
+TEST_F(DrawnTrianglesTest, EveryTriangleTheDevicesTessellatorDrawsIsListed) {
+  if (!context().info().optional.geometryShader) GTEST_SKIP() << "no geometry shaders";
+  test::TessellatorCapture capture(context());
+  size_t checked = 0;
+  double worstCoord = 0.0;  // largest coordinate error / tessCoordError
+  using Cell = std::pair<long, long>;
+  using Key = std::pair<long long, long long>;
+  auto cellOf = [](glm::dvec2 q) { return Cell{std::lround(q.x * 64.0), std::lround(q.y * 64.0)}; };
+  for (const QuadTessLevels& l : listedLevelSets()) {
+    std::map<Cell, std::vector<glm::dvec2>> points;
+    std::set<std::array<Key, 3>> listed;
+    // Exact listed points computed two ways (1 - 1/i, (i - 1)/i) differ in the last bit.
+    auto key = [](glm::dvec2 q) {
+      return Key{std::llround(q.x * 0x1p30), std::llround(q.y * 0x1p30)};
+    };
+    bound::forEachDrawnTriangle(l, [&](const bound::DomainTriangle& t, bool) {
+      std::array<Key, 3> k{key(t[0]), key(t[1]), key(t[2])};
+      for (const glm::dvec2& q : t) {
+        auto& bucket = points[cellOf(q)];
+        if (std::find(bucket.begin(), bucket.end(), q) == bucket.end()) bucket.push_back(q);
+      }
+      std::sort(k.begin(), k.end());
+      listed.insert(k);
+    });
+    auto nearest = [&](glm::dvec2 q) {
+      glm::dvec2 best(-1.0);
+      const Cell c = cellOf(q);
+      for (long dx = -1; dx <= 1; ++dx)
+        for (long dy = -1; dy <= 1; ++dy) {
+          auto it = points.find({c.first + dx, c.second + dy});
+          if (it == points.end()) continue;
+          for (const glm::dvec2& p : it->second)
+            if (glm::length(p - q) < glm::length(best - q)) best = p;
+        }
+      return best;
+    };
+    const double coordError = bound::tessCoordError(l);
+    const std::string where = describeLevels(l);
+    for (const auto& t : capture.capture(l)) {
+      const glm::dvec2 d1 = t[1] - t[0], d2 = t[2] - t[0];
+      if (std::abs(d1.x * d2.y - d1.y * d2.x) < 1e-9) continue;  // draws nothing
+      std::array<Key, 3> k;
+      for (int c = 0; c < 3; ++c) {
+        const glm::dvec2 p = nearest(t[c]);
+        const double err = std::max(std::abs(p.x - t[c].x), std::abs(p.y - t[c].y));
+        ASSERT_LE(err, coordError) << where << ": vertex (" << t[c].x << "," << t[c].y << ")";
+        worstCoord = std::max(worstCoord, err / coordError);
+        k[c] = key(p);
+      }
+      std::sort(k.begin(), k.end());
+      ASSERT_TRUE(listed.count(k))
+          << where << ": triangle (" << t[0].x << "," << t[0].y << ") (" << t[1].x << "," << t[1].y
+          << ") (" << t[2].x << "," << t[2].y << ") is not listed";
+      ++checked;
+    }
+  }
+  std::printf("%zu drawn triangles, all listed; largest vertex offset / tessCoordError %.2f\n",
+              checked, worstCoord);
+  EXPECT_GT(checked, 10000u);
+}
+
+TEST(DrawnTriangles, ListingRejectsLevelsItCannotList) {
+  EXPECT_THROW(bound::forEachDrawnTriangle({{2.5, 2, 2, 2}, {0, 0, 0, 0}},
+                                           [](const bound::DomainTriangle&, bool) {}),
+               Error);
+  EXPECT_THROW(bound::forEachDrawnTriangle({{0, 2, 2, 2}, {0, 0, 0, 0}},
+                                           [](const bound::DomainTriangle&, bool) {}),
+               Error);
+  EXPECT_THROW(bound::forEachDrawnTriangle({{65, 2, 2, 2}, {0, 0, 0, 0}},
+                                           [](const bound::DomainTriangle&, bool) {}),
+               Error);
+}
+
+// Brute force for the tightened test: a patch whose listed triangles all face away has no
+// front-facing drawn triangle. The same check catches a deliberately over-tightened listing
+// that leaves out the ring triangles (the test can fail), and the listing culls more than
+// the worst-case bound.
+TEST_F(DrawnTrianglesTest, ListedTrianglesCullNoPatchWithAFrontFacingTriangle) {
+  if (!context().info().optional.geometryShader) GTEST_SKIP() << "no geometry shaders";
+  test::TessellatorCapture capture(context());
+  const std::vector<QuadTessLevels> levelSets = {
+      {{1, 1, 1, 1}, {0, 0, 0, 0}},    {{2, 2, 2, 2}, {0, 0, 0, 0}}, {{4, 4, 4, 4}, {0, 0, 0, 0}},
+      {{4, 4, 4, 4}, {4, 0, 0, 0}},    {{3, 7, 2, 5}, {0, 0, 0, 0}}, {{8, 8, 8, 8}, {0, 8, 0, 0}},
+      {{16, 16, 16, 16}, {0, 0, 0, 0}}};
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  uint64_t listedCulls = 0, boundCulls = 0, surfaceCulls = 0, achievable = 0, overTightMisses = 0;
+  for (const QuadTessLevels& levels : levelSets) {
+    const auto triangles = capture.capture(levels);
+    const TriangleShape shape = bound::triangleShape(levels);
+    for (int trial = 0; trial < 300; ++trial) {
+      const auto b = randomCap(rng, 0.05 + 0.2 * (unit(rng) + 1.0));
+      const glm::dmat4 vp = capView(rng, b, trial % 4 != 0);
+      const double sigma = bound::clipSpaceEyeSign(vp);
+      const glm::dvec3 e = *bound::eyePosition(vp);
+      bool anyFront = false;
+      for (const auto& t : triangles) anyFront = anyFront || facesEye(b, t, e);
+      const bool listed = bound::drawnTrianglesFaceAway(b, levels, e, 0.0);
+      ASSERT_FALSE(anyFront && listed) << "trial " << trial;
+      // Over-tightened: the inner grid only.
+      bool innerAway = true;
+      bound::forEachDrawnTriangle(levels, [&](const bound::DomainTriangle& t, bool ring) {
+        if (ring || !innerAway) return;
+        innerAway =
+            bound::triangleFacesAway(bound::evaluateBezier(b, t[0].x, t[0].y).position,
+                                     bound::evaluateBezier(b, t[1].x, t[1].y).position,
+                                     bound::evaluateBezier(b, t[2].x, t[2].y).position, e, 0.0);
+      });
+      overTightMisses += anyFront && innerAway;
+      const bool surface = bound::tangentPlaneTest(b, vp, sigma).culled;
+      const double ew = std::abs(bound::homogeneousEye(vp).w);
+      surfaceCulls += surface;
+      achievable += surface && !anyFront;
+      listedCulls += surface && listed;
+      boundCulls += bound::tangentPlaneTest(b, vp, sigma,
+                                            ew * bound::tangentPlaneDrawnMargin(b, e, shape, 0.0))
+                        .culled;
+    }
+  }
+  std::printf(
+      "tangent-plane culls: surface %llu (without a front-facing triangle %llu), with the bound "
+      "%llu, with the listed triangles %llu; front-facing triangles the inner grid alone "
+      "misses: %llu\n",
+      (unsigned long long)surfaceCulls, (unsigned long long)achievable,
+      (unsigned long long)boundCulls, (unsigned long long)listedCulls,
+      (unsigned long long)overTightMisses);
+  EXPECT_GT(overTightMisses, 0u) << "the brute force must catch an over-tightened listing";
+  EXPECT_GT(listedCulls, boundCulls + boundCulls / 2);
+  // Three in four eyes sit within 2e-3 rad past the surface test's limit, inside the
+  // margin the listed test needs for the tessellator's fixed-point coordinates on many of
+  // them: measured 74% of the surface culls without a front-facing triangle.
+  EXPECT_GT(double(listedCulls), 0.65 * double(achievable));
 }
 
 }  // namespace

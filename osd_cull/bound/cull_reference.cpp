@@ -96,9 +96,9 @@ CullView makeCullView(const glm::dmat4& viewProj) {
 
 namespace {
 
-uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullView& view,
-                          BackPatchMethod method, std::span<const ConeOfNormals> cones,
-                          std::span<const TriangleShape> drawnShapes, double snap) {
+uint32_t boundVerdict(const PatchSet& patches, uint32_t patch, const CullView& view,
+                      BackPatchMethod method, std::span<const ConeOfNormals> cones,
+                      std::span<const TriangleShape> drawnShapes, double snap) {
   const bool bezier = patches.type(patch) == PatchType::Bezier;
   const bool drawn = !drawnShapes.empty();
   if (drawn && patch >= drawnShapes.size())
@@ -136,6 +136,22 @@ uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullVie
                                                    : uint32_t(BackPatchVerdict::DrawnTriangles);
 }
 
+// boundVerdict, then drawn_triangle_set.h's listed triangles for a patch the worst-case
+// bound keeps.
+uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullView& view,
+                          BackPatchMethod method, std::span<const ConeOfNormals> cones,
+                          const CullTests& tests) {
+  const uint32_t v =
+      boundVerdict(patches, patch, view, method, cones, tests.drawnShapes, tests.snapPerDistance);
+  if (v != uint32_t(BackPatchVerdict::DrawnTriangles) || !tests.drawnEnumerate || !view.eye ||
+      patches.type(patch) != PatchType::Bezier || !tests.drawnShapes[patch].exactLevels)
+    return v;
+  return drawnTrianglesFaceAway(patches.controlPoints(patch), tests.drawnShapes[patch].levels,
+                                *view.eye, tests.snapPerDistance)
+             ? uint32_t(BackPatchVerdict::BackFacing)
+             : v;
+}
+
 uint32_t withField(uint32_t code, uint32_t shift, uint32_t width, uint32_t value) {
   const uint32_t mask = ((1u << width) - 1u) << shift;
   return (code & ~mask) | ((value << shift) & mask);
@@ -155,8 +171,7 @@ uint32_t referenceCullCode(const PatchSet& patches, uint32_t patch, const CullVi
     if (f.culled) return withField(code, 0, 4, sh::kStageFrustum);
   }
   if (tests.backPatch != BackPatchMethod::None) {
-    const uint32_t v = backPatchVerdict(patches, patch, view, tests.backPatch, cones,
-                                        tests.drawnShapes, tests.snapPerDistance);
+    const uint32_t v = backPatchVerdict(patches, patch, view, tests.backPatch, cones, tests);
     code = withField(code, sh::kResultShiftBackPatch, 8, v);
     if (v == sh::kVerdictBackFacing) return withField(code, 0, 4, sh::kStageBackPatch);
   }

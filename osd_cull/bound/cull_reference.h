@@ -14,6 +14,7 @@
 /// caller decides (this function tests what it is told to).
 
 #include "osd_cull/bound/cone_of_normals.h"
+#include "osd_cull/bound/drawn_triangle_set.h"
 #include "osd_cull/bound/drawn_triangles.h"
 #include "osd_cull/patch/patch_set.h"
 
@@ -69,6 +70,11 @@ struct CullTests {
   std::span<const TriangleShape> drawnShapes;
   /// With drawnShapes: bound::snapPerDistance() of the view's draw.
   double snapPerDistance = 0.0;
+  /// With drawnShapes: a patch the worst-case bound keeps (BackPatchVerdict::
+  /// DrawnTriangles) is still culled when its levels are exact and every triangle
+  /// drawn_triangle_set.h lists faces away (the tightened test, CullSettings::
+  /// drawnEnumerate).
+  bool drawnEnumerate = false;
 };
 
 /// \brief The result code (shaders/shared/cull_layout.h) of one patch. `cones` is

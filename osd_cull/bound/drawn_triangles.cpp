@@ -61,6 +61,13 @@ TriangleShape triangleShape(const QuadTessLevels& levels, double slack) {
     allOnes = allOnes && !split[e] && outer[e].hi == 1.0;
   }
   TriangleShape s;
+  if (slack == 0.0) {  // integer levels: drawn_triangle_set.h lists them up to 64
+    s.exactLevels = true;
+    for (int e = 0; e < 4; ++e) {
+      s.levels.lo[e] = lo[e].lo, s.levels.hi[e] = hi[e].lo;
+      s.exactLevels = s.exactLevels && outer[e].lo <= 64.0;
+    }
+  }
   if (allOnes) {  // the quad as two triangles
     s.phi = 2.0 * 1.01, s.psi = 1.01, s.minEdge = 0.9;
     return s;

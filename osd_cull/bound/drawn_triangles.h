@@ -39,15 +39,6 @@
 
 namespace osd_cull::bound {
 
-/// \brief The shape of the worst triangle of one patch's tessellation (see the file
-/// comment): phi = max κ (|d1|_1 + |d2|_1), psi = max κ |d1|_1 |d2|_1, minEdge = the
-/// shortest parameter-space edge.
-struct TriangleShape {
-  double phi = 0.0;
-  double psi = 0.0;
-  double minEdge = 1.0;
-};
-
 /// \brief Tessellation levels of one quad patch as the draw shaders set them (equal
 /// spacing): outer edges in gl_TessLevelOuter order, each split into a Lo and a Hi half
 /// (Hi = 0 except on transition edges, whose Lo segments cover [0, 1/2] and Hi segments
@@ -55,6 +46,19 @@ struct TriangleShape {
 struct QuadTessLevels {
   std::array<double, 4> lo{};
   std::array<double, 4> hi{};
+};
+
+/// \brief The shape of the worst triangle of one patch's tessellation (see the file
+/// comment): phi = max κ (|d1|_1 + |d2|_1), psi = max κ |d1|_1 |d2|_1, minEdge = the
+/// shortest parameter-space edge.
+struct TriangleShape {
+  double phi = 0.0;
+  double psi = 0.0;
+  double minEdge = 1.0;
+  /// The integer levels the tessellator uses, when they are known exactly (uniform
+  /// tessellation, slack 0): then drawn_triangle_set.h can list the triangles themselves.
+  QuadTessLevels levels{};
+  bool exactLevels = false;
 };
 
 /// \brief Bounds of every triangle the tessellator draws for `levels`. `slack` > 0 allows

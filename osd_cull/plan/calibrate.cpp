@@ -89,9 +89,13 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   std::map<std::string, std::unique_ptr<frame::CullPass>> passes;
   passes["frustum"] = std::make_unique<frame::CullPass>(context, gpuMany, many,
                                                         frame::CullSettings{true, "", "", closed});
-  for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch))
+  for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch)) {
+    // The fp64 kernels are study variants (docs/results/accuracy-vs-time.md), not plan
+    // candidates: the planner only considers calibrated methods.
+    if (frame::cullMethod(m).needsFloat64) continue;
     passes[m] = std::make_unique<frame::CullPass>(context, gpuMany, many,
                                                   frame::CullSettings{true, m, "", closed});
+  }
   frame::CullPass tinyPass(context, gpuTiny, tiny, frame::CullSettings{true, "", "", closed});
   // Two-pass frames: the diagnostic mode times the pyramid and the cull (Hi-Z stage
   // included) at two image sizes; tess-factor-0 and filtered frames looking away give RT0.

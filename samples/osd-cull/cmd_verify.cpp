@@ -99,6 +99,7 @@ int run(const VerifyArgs& args) {
   options.samplingGrid = sample;
   options.imageCheck = imageCheck;
   options.drawnTriangles = !surfaceExact;
+  options.drawnEnumerate = args.drawnEnumerate;
   options.hiz.fullResolution = args.hizFull;
   options.hiz.lookup = args.hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
   if (displacementMap) {
@@ -136,7 +137,9 @@ int run(const VerifyArgs& args) {
   }
   std::printf("back-patch culling: %s (%s)%s\n", mesh.backPatch.enabled ? "on" : "off",
               mesh.backPatch.reason.c_str(),
-              surfaceExact ? ", surface-exact" : ", conservative for the drawn triangles");
+              surfaceExact          ? ", surface-exact"
+              : args.drawnEnumerate ? ", conservative for the drawn triangles (listed)"
+                                    : ", conservative for the drawn triangles");
   std::printf("oracle and image draws: back-facing triangles %s\n",
               verifier.cullBackFaces() ? "culled (closed mesh)" : "drawn");
   for (const auto& [name, why] : verifier.skipped())
@@ -189,6 +192,7 @@ int run(const VerifyArgs& args) {
     out["back_patch"] = {{"enabled", mesh.backPatch.enabled},
                          {"reason", mesh.backPatch.reason},
                          {"drawn_triangles", !surfaceExact},
+                         {"drawn_enumerate", args.drawnEnumerate},
                          {"oracle_culls_back_faces", verifier.cullBackFaces()}};
     out["methods"] = nlohmann::ordered_json::array();
     for (const auto& t : verifier.totals())
@@ -271,6 +275,12 @@ Runner setup(CLI::App& app) {
                "them (default: also conservative for the drawn chord triangles,\n"
                "docs/algorithms/drawn-triangles.md); such culls can take single\n"
                "silhouette pixels, which are then reported but do not fail the run");
+  auto* enumerate =
+      app.add_flag("--drawn-enumerate", args->drawnEnumerate,
+                   "with uniform tessellation, cull a patch the drawn-triangle bound keeps when\n"
+                   "every triangle the tessellator can draw for it faces away (tested in the\n"
+                   "kernel; docs/algorithms/drawn-triangles.md, \"Enumerated triangles\")");
+  enumerate->excludes("--surface-exact");
   app.add_option("--json", args->json, "write the results as JSON")->type_name("FILE.json");
   addDeviceOptions(app, args->device);
   addDisplacementOptions(app, args->displacement, true);

@@ -37,6 +37,7 @@ struct VerifyArgs {
   bool hizTight = false;
   std::string json;
   bool surfaceExact = false;
+  bool drawnEnumerate = false;
 };
 
 }  // namespace osd_cull::cli

@@ -14,14 +14,24 @@
 #include "drawn_triangles.glsl"
 #endif
 
-// The cull-region test of a cone (apex, axis, sin of the half-angle).
+// The cull-region test of a cone (apex, axis, sin of the half-angle). With CONE_FP64 (the
+// tcone-fp64 and ncone-fp64 kernels, shaderFloat64) it is evaluated in double, and the
+// margin only covers rounding the cone and the eye to float (kCullFp64RelativeMargin).
 uint coneRegionVerdict(vec3 apex, vec3 axis, float sinAngle) {
+#if CONE_FP64
+  dvec3 de = dvec3(pc.eye.xyz), dd = de - dvec3(apex);
+  double dlhs = dot(dvec3(axis), dd) + double(sinAngle) * length(dd);
+  double dmargin = double(kCullFp64RelativeMargin) * (length(de) + length(dvec3(apex)));
+  if (!isFiniteF(float(dlhs)) || !isFiniteF(float(dmargin))) return kVerdictNonFinite;
+  return dlhs < -dmargin ? kVerdictBackFacing : kVerdictEyeOutsideBackRegion;
+#else
   vec3 e = pc.eye.xyz;
   vec3 d = e - apex;
   float lhs = dot(axis, d) + sinAngle * length(d);
   float margin = kCullRelativeMargin * (length(e) + length(apex));
   if (!isFiniteF(lhs) || !isFiniteF(margin)) return kVerdictNonFinite;
   return lhs < -margin ? kVerdictBackFacing : kVerdictEyeOutsideBackRegion;
+#endif
 }
 
 #if CULL_DRAWN

@@ -15,8 +15,14 @@
 //                     one thread per patch that survived the earlier stages; its resources
 //                     live in descriptor set 1 (per-view values in its own uniform buffer)
 //   CULL_DRAWN        1: back-patch culls respect the drawn triangles (drawn_triangles.glsl)
+//   CULL_DRAWN_ENUMERATE 1 (with CULL_DRAWN): a patch the worst-case bound keeps is culled
+//                     when every triangle the tessellator can draw for it faces away
+//                     (drawn_triangle_set.glsl, uniform tessellation only)
 // and includes the stage files before this one.
 #include "frustum.glsl"
+#if CULL_DRAWN && CULL_DRAWN_ENUMERATE
+#include "drawn_triangle_set.glsl"
+#endif
 
 layout(local_size_x = kCullGroupSize) in;
 
@@ -70,6 +76,11 @@ void main() {
 #endif
   const bool runBackPatch = inRange && resultStage(result) == kStageNone;
   uint b = backPatchVerdict(patchIndex, lane, slot, runBackPatch);
+#if CULL_DRAWN && CULL_DRAWN_ENUMERATE
+  if (runBackPatch && lane == 0u && b == kVerdictDrawnTriangles &&
+      drawnTrianglesFaceAway(patchIndex))
+    b = kVerdictBackFacing;
+#endif
   if (runBackPatch) {
     result = withField(result, kResultShiftBackPatch, 8u, b);
     if (b == kVerdictBackFacing) result = withStage(result, kStageBackPatch);

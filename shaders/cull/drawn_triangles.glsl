@@ -35,13 +35,18 @@ vec2 drawnInnerRange(vec2 a, vec2 b) {
   return max(vec2(2.0), vec2(ceil(0.5 * (a.x + b.x)), ceil(0.5 * (a.y + b.y))));
 }
 
-// bound::triangleShape of a Bezier patch for this view: (phi, psi, minEdge).
-vec3 drawnShape(uint patchIndex) {
+// The Lo and Hi outer levels the draw shaders set for a Bezier patch in this view.
+void drawnEdgeLevels(uint patchIndex, out vec4 levelLo, out vec4 levelHi) {
   uint first = firstPoint(patchIndex);
   vec3 curves[16];
   for (int k = 0; k < 16; ++k) curves[k] = controlPoint(first + uint(kEdgeCurveBezier[k]));
-  vec4 levelLo, levelHi;
   curveEdgeLevels(curves, params[2u * patchIndex] >> 28u, levelLo, levelHi);
+}
+
+// bound::triangleShape of a Bezier patch for this view: (phi, psi, minEdge).
+vec3 drawnShape(uint patchIndex) {
+  vec4 levelLo, levelHi;
+  drawnEdgeLevels(patchIndex, levelLo, levelHi);
   const float slack = tessMode() == kTessUniform ? 0.0 : 2.0;
   vec2 lo[4], hi[4], outer[4];
   bool allOnes = slack == 0.0;

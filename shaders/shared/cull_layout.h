@@ -91,14 +91,18 @@ OSD_CULL_CONST uint kResultInitial = 0x00FFFFF0u;
 // - tangent plane (shaders/cull/tangent_plane_common.glsl): arithmetic error < 35 * 2^-24 ma,
 //   input rounding < 4 * 2^-24 mb, and the reference's own margin < 1.32e-11 mr / |e.w|;
 //   the factored form (tangent_plane_factored.glsl): arithmetic error < 34 * 2^-24 M, input
-//   rounding bounded with 2^-24 (kTpInputMargin uses 16 times that).
+//   rounding bounded with 2^-24 (kTpInputMargin uses 16 times that);
+// - the fp64 cone kernels (tcone-fp64, ncone-fp64): the cull-region test in double, where
+//   only rounding the cone and the eye to float remains (below 4 * 2^-24 of |E| + |l|).
 #ifdef __cplusplus
 inline constexpr float kCullRelativeMargin = 1e-5f;
+inline constexpr float kCullFp64RelativeMargin = 1e-6f;
 inline constexpr float kTpArithmeticMargin = 1e-5f;
 inline constexpr float kTpInputMargin = 9.5367431640625e-7f;  // 2^-20 = 16 * 2^-24
 inline constexpr float kTpReferenceMargin = 2.4e-11f;
 #else
 const float kCullRelativeMargin = 1e-5;
+const float kCullFp64RelativeMargin = 1e-6;
 const float kTpArithmeticMargin = 1e-5;
 const float kTpInputMargin = 9.5367431640625e-7;
 const float kTpReferenceMargin = 2.4e-11;

@@ -25,4 +25,22 @@ CullMethod nconeCullMethod() {
   return m;
 }
 
+namespace {
+
+// The fp64 kernel of a cone method (shaders/cull/cone_fp64.glsl): the same cones, the
+// cull-region test in double.
+CullMethod fp64Variant(CullMethod m) {
+  m.summary = m.name + " with the cull-region test in double (shaderFloat64)";
+  m.name += "-fp64";
+  m.glslFile = "cull/cone_fp64.glsl";
+  m.needsFloat64 = true;
+  return m;
+}
+
+}  // namespace
+
+CullMethod tconeFp64CullMethod() { return fp64Variant(tconeCullMethod()); }
+
+CullMethod nconeFp64CullMethod() { return fp64Variant(nconeCullMethod()); }
+
 }  // namespace osd_cull::frame

@@ -19,8 +19,10 @@ const char* toString(CullStage stage) {
 std::span<const CullMethod> cullMethods() {
   static const std::vector<CullMethod> methods = [] {
     std::vector<CullMethod> m = {
-        frustumCullMethod(),      tconeCullMethod(),          nconeCullMethod(),
-        tangentPlaneCullMethod(), tangentPlane16CullMethod(), hizCullMethod(),
+        frustumCullMethod(),        tconeCullMethod(),
+        nconeCullMethod(),          tangentPlaneCullMethod(),
+        tangentPlane16CullMethod(), tconeFp64CullMethod(),
+        nconeFp64CullMethod(),      hizCullMethod(),
     };
     for (CullMethod& d : displacedCullMethods()) m.push_back(std::move(d));
     return m;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file cull_methods.h
 /// \brief The registry of cull methods the cull kernel can run (frustum, tcone, ncone,
-/// tangent-plane, tangent-plane-16, hiz).
+/// tangent-plane, tangent-plane-16, tcone-fp64, ncone-fp64, hiz and the displaced kernels).
 ///
 /// A method is one GLSL file under shaders/cull/ defining its stage function (see
 /// shaders/cull/cull_main.glsl for the signatures) and one C++ function returning its
@@ -38,6 +38,8 @@ struct CullMethod {
   std::string glslFile;  ///< embedded file (relative to shaders/) with the stage function
   /// Threads per patch of the kernel variant (1, or 16 for the section 6 scheme).
   uint32_t lanesPerPatch = 1;
+  /// The kernel computes in double: the device needs shaderFloat64 (CullPass says so).
+  bool needsFloat64 = false;
   /// GLSL declarations placed before the stage file (e.g. the size of a generated table);
   /// empty when none.
   std::function<std::string()> generatedGlsl;
@@ -72,6 +74,8 @@ std::vector<std::string> cullMethodNames(CullStage stage);
 CullMethod frustumCullMethod();
 CullMethod tconeCullMethod();
 CullMethod nconeCullMethod();
+CullMethod tconeFp64CullMethod();
+CullMethod nconeFp64CullMethod();
 CullMethod tangentPlaneCullMethod();
 CullMethod tangentPlane16CullMethod();
 CullMethod hizCullMethod();

@@ -103,8 +103,8 @@ void packCone(const bound::ConeOfNormals& c, const bound::DerivativeBounds& d, f
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
 std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
-                          bool drawnTriangles, const CullMethod::Displaced* displaced,
-                          bool pointsByAddress) {
+                          bool drawnTriangles, bool drawnEnumerate,
+                          const CullMethod::Displaced* displaced, bool pointsByAddress) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
@@ -117,6 +117,7 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   text += std::string("#define CULL_OCCLUSION ") + (has(CullStage::Occlusion) ? "1" : "0") + "\n";
   text += std::string("#define CULL_DRAWN ") +
           (drawnTriangles && has(CullStage::BackPatch) ? "1" : "0") + "\n";
+  text += std::string("#define CULL_DRAWN_ENUMERATE ") + (drawnEnumerate ? "1" : "0") + "\n";
   text += std::string("#define CULL_DISPLACED ") + (displaced ? "1" : "0") + "\n";
   if (displaced)
     text += "#define DISPLACED_BOX " + std::to_string(static_cast<uint32_t>(displaced->box)) + "\n";
@@ -216,6 +217,11 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
     if (m.stage != stage)
       throw Error("CullPass: method '" + name + "' is a " + toString(m.stage) + " method, not a " +
                   toString(stage) + " method");
+    if (m.needsFloat64 && !context.info().optional.shaderFloat64)
+      throw Error("CullPass: method '" + name +
+                  "' computes in double and needs shaderFloat64, "
+                  "which device '" +
+                  context.info().name + "' lacks");
     stages_.push_back(&m);
     lanes_ = std::max(lanes_, m.lanesPerPatch);
   };
@@ -365,7 +371,7 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
 void CullPass::buildPipelines(vulkan::Context& context) {
   pipelines_ = sharedPipelines(
       context,
-      composeKernel(stages_, lanes_, settings_.drawnTriangles,
+      composeKernel(stages_, lanes_, settings_.drawnTriangles, settings_.drawnEnumerate,
                     displaced() ? &displacedKernel_ : nullptr, gpu_.pointsByAddress()),
       stages_);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
@@ -406,6 +412,7 @@ bound::CullTests CullPass::referenceTests(const Camera& camera,
     shapes = drawnTriangleShapes(host_, camera.viewProjection(),
                                  glm::dvec2(camera.width, camera.height), tessellation);
     t.drawnShapes = shapes;
+    t.drawnEnumerate = settings_.drawnEnumerate;
     t.snapPerDistance = bound::snapPerDistance(camera.viewProjection(), camera.width, camera.height,
                                                context_.info().limits.subPixelPrecisionBits);
   }

@@ -50,6 +50,13 @@ struct CullSettings {
   /// the eye. On by default; off gives the surface-exact tests the papers measure, which can
   /// lose single silhouette pixels (docs/algorithms/drawn-triangles.md).
   bool drawnTriangles = true;
+  /// With drawnTriangles and uniform tessellation: a patch the worst-case bound keeps is
+  /// still culled when every triangle the tessellator can draw for it faces away, each
+  /// tested in the kernel from the control points (bound/drawn_triangle_set.h; the
+  /// tightened test of docs/algorithms/drawn-triangles.md). No per-patch data is added, so
+  /// it serves deforming meshes too. Off by default: it costs kernel time (see
+  /// docs/results/accuracy-vs-time.md).
+  bool drawnEnumerate = false;
   /// A displaced mesh: its map and PatchExtraction::uvCorners (both borrowed; they must
   /// outlive the pass). Then the frustum and occlusion stages test the displaced bound
   /// `displacedKernel` (an occlusion method that is a displaced kernel, e.g. "con-caf",

@@ -86,6 +86,7 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
     if (run[i]->stage == CullStage::Occlusion) settings.occlusion = run[i]->name;
     settings.backPatchValidity = validity;
     settings.drawnTriangles = options.drawnTriangles;
+    settings.drawnEnumerate = options.drawnEnumerate;
     settings.displacementMap = options.displacementMap;
     settings.uvCorners = options.uvCorners;
     const auto data = options.cullData.find(run[i]->reference);

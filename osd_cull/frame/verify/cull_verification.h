@@ -47,6 +47,9 @@ struct VerifyOptions {
   /// Back-patch methods respect the drawn triangles (CullSettings::drawnTriangles); false
   /// runs the surface-exact tests the papers measure.
   bool drawnTriangles = true;
+  /// With drawnTriangles: the tightened test that lists the drawn triangles
+  /// (CullSettings::drawnEnumerate).
+  bool drawnEnumerate = false;
   /// Oracle and image draws cull back-facing triangles, as a renderer does on a closed,
   /// outward-oriented mesh. Default: on exactly when back-patch culling is valid for the
   /// mesh. Then a patch culled with the drawn-triangle bound has no triangle that is drawn

@@ -1,0 +1,154 @@
+// The tightened drawn-triangle test: fp32 mirror of bound/drawn_triangle_set.h
+// (docs/algorithms/drawn-triangles.md, "Enumerated triangles"). With uniform tessellation
+// the levels are integers, so instead of bounding the worst chord triangle from the
+// patch-wide derivative bounds, every triangle the tessellator can draw is evaluated from
+// the control points and tested: both diagonals of each inner-grid cell, and per outer edge
+// every ring triangle whose apex lies within ringApexOffset of its base. The patch is
+// culled only if each one faces away with its corners moved by eps = the drawn-vertex error
+// (fp32 evaluation in the draw shader, sub-pixel snapping), the tessellator's fixed-point
+// coordinates (2 G bound::tessCoordError) and this kernel's own fp32 evaluation error; candidate windows are widened by 1e-4 so that the kernel lists every
+// triangle the double reference lists. Needs no per-patch data: it serves deforming meshes.
+// Included when CULL_DRAWN and CULL_DRAWN_ENUMERATE are 1.
+#ifndef OSD_CULL_CULL_DRAWN_TRIANGLE_SET_GLSL
+#define OSD_CULL_CULL_DRAWN_TRIANGLE_SET_GLSL
+#include "drawn_triangles.glsl"
+
+const int kDrawnRowPoints = 65;  // the largest listed level (64) plus one
+vec3 gDrawnNet[16];              // the patch being tested
+float gDrawnEps;                 // the corner displacement the test allows
+
+vec3 drawnPoint(vec2 uv) {
+  vec2 s = 1.0 - uv;
+  vec4 bu = vec4(s.x * s.x * s.x, 3.0 * s.x * s.x * uv.x, 3.0 * s.x * uv.x * uv.x,
+                 uv.x * uv.x * uv.x);
+  vec4 bv = vec4(s.y * s.y * s.y, 3.0 * s.y * s.y * uv.y, 3.0 * s.y * uv.y * uv.y,
+                 uv.y * uv.y * uv.y);
+  vec3 p = vec3(0.0);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) p += (bu[i] * bv[j]) * gDrawnNet[4 * j + i];
+  return p;
+}
+
+// bound::triangleFacesAway in fp32: the margin also covers rounding of the triple product.
+bool drawnFacesAway(vec3 p0, vec3 p1, vec3 p2) {
+  vec3 v = pc.eye.xyz - p0, a = p1 - p0, c = p2 - p0;
+  float la = length(a), lc = length(c), lv = length(v), eps = gDrawnEps;
+  float d = 2.0 * eps * (la + lc) + 4.0 * eps * eps;
+  float margin = ((lv + eps) * d + eps * la * lc + 32.0 / 16777216.0 * lv * la * lc) * 1.01;
+  return dot(v, cross(a, c)) + margin < 0.0;  // NaN: kept
+}
+
+// Both diagonals of the cell c00 c10 c11 c01 (counter-clockwise in the domain).
+bool drawnCellFacesAway(vec3 c00, vec3 c10, vec3 c11, vec3 c01) {
+  return drawnFacesAway(c00, c10, c11) && drawnFacesAway(c00, c11, c01) &&
+         drawnFacesAway(c00, c10, c01) && drawnFacesAway(c10, c11, c01);
+}
+
+// A triangle of domain corners q (any order) with points p, tested counter-clockwise.
+bool drawnRingFacesAway(vec2 q0, vec2 q1, vec2 q2, vec3 p0, vec3 p1, vec3 p2) {
+  vec2 d1 = q1 - q0, d2 = q2 - q0;
+  return d1.x * d2.y - d1.y * d2.x >= 0.0 ? drawnFacesAway(p0, p1, p2)
+                                          : drawnFacesAway(p0, p2, p1);
+}
+
+// bound::ringApexOffset.
+float drawnRingApexOffset(float n, float i) {
+  float sigma = 1.0 / n, s = 1.0 / i, countDiff = abs(n - i), m = min(sigma, s);
+  return min(1.1 * (countDiff * m + abs(sigma - s)), 0.8 * (max(sigma, s) + 0.5 * countDiff * m));
+}
+
+// Domain point of edge e's ring (bound::forEachDrawnTriangle's ringPoint).
+vec2 drawnRingPoint(int e, float along, float depth) {
+  if (e == 0) return vec2(depth, along);
+  if (e == 1) return vec2(along, depth);
+  if (e == 2) return vec2(1.0 - depth, along);
+  return vec2(along, 1.0 - depth);
+}
+
+// Position of vertex j of an edge of lo + hi segments after the transition remap.
+float drawnEdgePosition(float j, float lo, float hi) {
+  if (hi == 0.0) return j / lo;
+  return j <= lo ? 0.5 * j / lo : 0.5 * (j - lo) / hi + 0.5;
+}
+
+// The ring of edge e: n = lo + hi outer segments against the inner row of `along`
+// segments at depth `depth`.
+bool drawnRingFacesAway(int e, float lo, float hi, float along, float depth) {
+  vec3 rowA[kDrawnRowPoints], rowB[kDrawnRowPoints];
+  float n = lo + hi;
+  float o = drawnRingApexOffset(n, along) + 1e-4;
+  for (int j = 0; j <= int(n); ++j)
+    rowA[j] = drawnPoint(drawnRingPoint(e, drawnEdgePosition(float(j), lo, hi), 0.0));
+  for (int k = 1; k < int(along); ++k)
+    rowB[k] = drawnPoint(drawnRingPoint(e, float(k) / along, depth));
+  for (int j = 0; j < int(n); ++j)
+    for (int k = 1; k < int(along); ++k) {
+      float s = float(k) / along;
+      if (s < float(j) / n - o || s > float(j + 1) / n + o) continue;
+      if (!drawnRingFacesAway(drawnRingPoint(e, drawnEdgePosition(float(j), lo, hi), 0.0),
+                              drawnRingPoint(e, drawnEdgePosition(float(j + 1), lo, hi), 0.0),
+                              drawnRingPoint(e, s, depth), rowA[j], rowA[j + 1], rowB[k]))
+        return false;
+    }
+  for (int k = 1; k + 1 < int(along); ++k)
+    for (int j = 0; j <= int(n); ++j) {
+      float t = float(j) / n;
+      if (t < float(k) / along - o || t > float(k + 1) / along + o) continue;
+      if (!drawnRingFacesAway(drawnRingPoint(e, float(k) / along, depth),
+                              drawnRingPoint(e, float(k + 1) / along, depth),
+                              drawnRingPoint(e, drawnEdgePosition(float(j), lo, hi), 0.0),
+                              rowB[k], rowB[k + 1], rowA[j]))
+        return false;
+    }
+  return true;
+}
+
+// Whether every triangle the tessellator can draw for this Bezier patch faces away.
+bool drawnTrianglesFaceAway(uint patchIndex) {
+  if (tessMode() != kTessUniform || pc.eye.w == 0.0 || !isBezier(patchIndex)) return false;
+  vec4 levelLo, levelHi;
+  drawnEdgeLevels(patchIndex, levelLo, levelHi);
+  float lo[4], hi[4], outer[4], maxLevel = 1.0;
+  bool allOnes = true;
+  for (int e = 0; e < 4; ++e) {
+    lo[e] = max(1.0, ceil(levelLo[e]));
+    hi[e] = levelHi[e] > 0.0 ? max(1.0, ceil(levelHi[e])) : 0.0;
+    outer[e] = lo[e] + hi[e];
+    if (!(outer[e] <= 64.0)) return false;
+    maxLevel = max(maxLevel, outer[e]);
+    allOnes = allOnes && outer[e] == 1.0;
+  }
+  uint first = firstPoint(patchIndex);
+  for (uint k = 0u; k < 16u; ++k) gDrawnNet[k] = controlPoint(first + k);
+  vec3 d = drawnDerivativeBounds(first);
+  vec3 e3 = abs(pc.eye.xyz);
+  float coordError = (maxLevel + 1.0) / 131072.0;  // bound::tessCoordError
+  // This kernel's own fp32 error: the 16-term Bernstein sum and the corner differences
+  // (below 24 ulps of the largest coordinate) and E - p0 (2 ulps of the eye).
+  gDrawnEps = drawnVertexError(d.z, drawnMaxDistance(first)) +
+              2.0 * d.x * coordError * kDrawnSafety +
+              (24.0 * d.z + 2.0 * max(e3.x, max(e3.y, e3.z))) / 16777216.0;
+  if (!isFiniteF(gDrawnEps)) return false;
+  if (allOnes)
+    return drawnCellFacesAway(gDrawnNet[0], gDrawnNet[3], gDrawnNet[15], gDrawnNet[12]);
+  float i0 = max(2.0, ceil(0.5 * (outer[1] + outer[3])));  // subdivides u
+  float i1 = max(2.0, ceil(0.5 * (outer[0] + outer[2])));  // subdivides v
+  for (int e = 0; e < 4; ++e) {
+    bool alongV = e % 2 == 0;
+    if (!drawnRingFacesAway(e, lo[e], hi[e], alongV ? i1 : i0, 1.0 / (alongV ? i0 : i1)))
+      return false;
+  }
+  // Inner grid, row by row (rows[l & 1] holds row l).
+  vec3 rows[2][kDrawnRowPoints];
+  for (int l = 1; l < int(i1); ++l) {
+    for (int k = 1; k < int(i0); ++k)
+      rows[l & 1][k] = drawnPoint(vec2(float(k) / i0, float(l) / i1));
+    if (l == 1) continue;
+    for (int k = 1; k + 1 < int(i0); ++k)
+      if (!drawnCellFacesAway(rows[(l - 1) & 1][k], rows[(l - 1) & 1][k + 1], rows[l & 1][k + 1],
+                              rows[l & 1][k]))
+        return false;
+  }
+  return true;
+}
+#endif
