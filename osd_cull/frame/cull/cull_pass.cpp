@@ -117,7 +117,10 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   text += std::string("#define CULL_OCCLUSION ") + (has(CullStage::Occlusion) ? "1" : "0") + "\n";
   text += std::string("#define CULL_DRAWN ") +
           (drawnTriangles && has(CullStage::BackPatch) ? "1" : "0") + "\n";
-  text += std::string("#define CULL_DRAWN_ENUMERATE ") + (drawnEnumerate ? "1" : "0") + "\n";
+  // The listing only refines the drawn-triangle back-patch test; elsewhere it is off, so the
+  // kernel text (and its build-time SPIR-V) does not depend on it.
+  const bool enumerate = drawnEnumerate && drawnTriangles && has(CullStage::BackPatch);
+  text += std::string("#define CULL_DRAWN_ENUMERATE ") + (enumerate ? "1" : "0") + "\n";
   text += std::string("#define CULL_DISPLACED ") + (displaced ? "1" : "0") + "\n";
   if (displaced)
     text += "#define DISPLACED_BOX " + std::to_string(static_cast<uint32_t>(displaced->box)) + "\n";
@@ -137,9 +140,10 @@ const vulkan::ShaderSource kWriteDraws{"cull/write_draws.comp", {}};
 
 std::vector<vulkan::ShaderVariant> cullPassShaderVariants() {
   // Every kernel a CullPass can compose (as its constructor selects the stages): each stage
-  // off or one of its registered methods, with or without the drawn-triangle bound and points
-  // by address; a displaced mesh has no back-patch stage and the box of its displaced kernel
-  // (either box with the other methods), and a displaced kernel needs a displaced mesh.
+  // off or one of its registered methods, with or without the drawn-triangle bound (and its
+  // listed-triangle refinement) and points by address; a displaced mesh has no back-patch stage and
+  // the box of its displaced kernel (either box with the other methods), and a displaced kernel
+  // needs a displaced mesh.
   auto methods = [](CullStage stage) {
     std::vector<const CullMethod*> list = {nullptr};
     for (const CullMethod& m : cullMethods())
@@ -152,27 +156,29 @@ std::vector<vulkan::ShaderVariant> cullPassShaderVariants() {
     for (const CullMethod* backPatch : methods(CullStage::BackPatch))
       for (const CullMethod* occlusion : methods(CullStage::Occlusion))
         for (const bool drawn : {false, true})
-          for (const bool bda : {false, true})
-            for (const int box : {-1, 0, 1}) {  // -1: not displaced, else a DisplacedBox
-              if (box >= 0 && backPatch) continue;
-              if (occlusion && occlusion->displaced &&
-                  (box < 0 || static_cast<int>(occlusion->displaced->box) != box))
-                continue;
-              std::vector<const CullMethod*> stages;
-              uint32_t lanes = 1;
-              for (const CullMethod* m : {frustum, backPatch, occlusion})
-                if (m) {
-                  stages.push_back(m);
-                  lanes = std::max(lanes, m->lanesPerPatch);
-                }
-              CullMethod::Displaced displaced;
-              displaced.box = static_cast<bound::DisplacedBox>(std::max(box, 0));
-              std::string text =
-                  composeKernel(stages, lanes, drawn, box >= 0 ? &displaced : nullptr, bda);
-              if (texts.insert(text).second)
-                variants.push_back(vulkan::ShaderVariant::glsl(text, kCullKernelName,
-                                                               VK_SHADER_STAGE_COMPUTE_BIT));
-            }
+          for (const bool enumerate : {false, true})
+            for (const bool bda : {false, true})
+              for (const int box : {-1, 0, 1}) {  // -1: not displaced, else a DisplacedBox
+                if (enumerate && !(drawn && backPatch)) continue;
+                if (box >= 0 && backPatch) continue;
+                if (occlusion && occlusion->displaced &&
+                    (box < 0 || static_cast<int>(occlusion->displaced->box) != box))
+                  continue;
+                std::vector<const CullMethod*> stages;
+                uint32_t lanes = 1;
+                for (const CullMethod* m : {frustum, backPatch, occlusion})
+                  if (m) {
+                    stages.push_back(m);
+                    lanes = std::max(lanes, m->lanesPerPatch);
+                  }
+                CullMethod::Displaced displaced;
+                displaced.box = static_cast<bound::DisplacedBox>(std::max(box, 0));
+                std::string text = composeKernel(stages, lanes, drawn, enumerate,
+                                                 box >= 0 ? &displaced : nullptr, bda);
+                if (texts.insert(text).second)
+                  variants.push_back(vulkan::ShaderVariant::glsl(text, kCullKernelName,
+                                                                 VK_SHADER_STAGE_COMPUTE_BIT));
+              }
   return variants;
 }
 
