@@ -146,7 +146,7 @@ TEST(CullCommands, VerifyWritesJsonWithEveryApplicableMethod) {
   EXPECT_EQ(j["mesh"], "built-in:default");
   EXPECT_EQ(j["views"], 6);
   EXPECT_EQ(j["back_patch"]["enabled"], true);
-  ASSERT_EQ(j["methods"].size(), 6u);  // frustum, 4 back-patch methods, hiz
+  ASSERT_EQ(j["methods"].size(), 8u);  // frustum, 4 back-patch methods and 2 fp64 ones, hiz
   for (const auto& m : j["methods"]) {
     EXPECT_EQ(m["culled_not_in_reference"], 0) << m["name"];
     EXPECT_EQ(m["sampling_violations"], 0) << m["name"];
