@@ -83,16 +83,8 @@ void attachLocalPointStencils(AdaptivePatches& out, const Far::PatchTable& table
 
 void buildRefinedStencils(const Far::TopologyRefiner& refiner, AdaptivePatches& out) {
   const auto start = Clock::now();
-  using StencilFactory = Far::StencilTableFactoryReal<double>;
-  StencilFactory::Options stencilOptions;
-  stencilOptions.interpolationMode = StencilFactory::INTERPOLATE_VERTEX;
-  stencilOptions.generateOffsets = true;
-  stencilOptions.generateControlVerts = true;        // rows for level-0 vertices too
-  stencilOptions.generateIntermediateLevels = true;  // adaptive patches use every level
-  stencilOptions.factorizeIntermediateLevels = true;
-  out.refinedStencils.reset(StencilFactory::Create(refiner, stencilOptions));
+  out.refinedStencils = refinementStencils(refiner);
   out.stencilMs = msSince(start);
-  if (!out.refinedStencils) throw Error("OpenSubdiv could not build the refinement stencils");
   if (out.refinedStencils->GetNumStencils() != out.refinedVertexCount)
     throw Error("buildAdaptivePatches: " + std::to_string(out.refinedStencils->GetNumStencils()) +
                 " refinement stencils for " + std::to_string(out.refinedVertexCount) + " vertices");
