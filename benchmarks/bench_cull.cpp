@@ -8,7 +8,7 @@
 //              [--frame-modes tcone,tcone/surface,tcone/listed,hiz/full,...] [--kernel-tess 4]
 //              [--displacement procedural|MAP] [--displacement-scale 0.64]
 //              [--break-even-tess 1,2,4,8,16,32] [--break-even-methods frustum,tcone]
-//              [--break-even-views 4]
+//              [--break-even-views 4] [--validate]
 //
 // Method and mode names: "empty" (a pass with no test), "frustum", "all" (frustum +
 // tangent plane), a back-patch method ("tcone", ...) with the drawn-triangle bound (the
@@ -101,6 +101,7 @@ struct Options {
   std::vector<uint32_t> breakEvenTess = {1, 2, 4, 8, 16, 32};
   std::vector<std::string> breakEvenMethods = {"frustum", "tcone", "tangent-plane"};
   uint32_t breakEvenViews = 4;
+  bool validate = false;  ///< Vulkan validation layers; any message fails the run
 };
 
 // False after --help.
@@ -120,6 +121,7 @@ bool parse(int argc, char** argv, Options& o) {
       .numbers("--break-even-tess", o.breakEvenTess)
       .names("--break-even-methods", o.breakEvenMethods)
       .number("--break-even-views", o.breakEvenViews, 1)
+      .flag("--validate", o.validate)
       .parse(argc, argv);
 }
 
@@ -178,7 +180,7 @@ Mode parseMode(const std::string& name, const Scene& scene) {
   method.resize(std::min(slash, method.size()));
   if (method == "hiz") {
     if (option != "" && option != "full" && option != "tight" && option != "full-tight")
-      throw Error("bench-cull: '" + name + "': Hi-Z options are /full, /tight, /full-tight");
+      throw Error("'" + name + "': Hi-Z options are /full, /tight, /full-tight");
     mode.hiz = frame::HiZOptions{};
     mode.hiz->fullResolution = option.starts_with("full");
     mode.hiz->lookup =
@@ -191,14 +193,15 @@ Mode parseMode(const std::string& name, const Scene& scene) {
   else if (option == "listed")
     s.drawnEnumerate = true;
   else if (!option.empty())
-    throw Error("bench-cull: '" + name + "': the back-patch options are /surface and /listed");
+    throw Error("'" + name + "': the back-patch options are /surface and /listed");
+  if ((method == "frustum" || method == "empty") && !option.empty())
+    throw Error("'" + name + "': " + method + " takes no option");
   if (method == "frustum" || method == "all") s.frustum = true;
   if (method == "all") s.backPatch = "tangent-plane";
   if (method == "frustum" || method == "all" || method == "empty") return mode;
   const frame::CullMethod& m = frame::cullMethod(method);  // throws for unknown names
   if (m.displaced) {
-    if (!scene.map)
-      throw Error("bench-cull: '" + name + "' is a displaced kernel: give --displacement");
+    if (!scene.map) throw Error("'" + name + "' is a displaced kernel: give --displacement");
     mode.displaced = true;
     mode.hiz = frame::HiZOptions{};
     s.occlusion = method;
@@ -209,7 +212,7 @@ Mode parseMode(const std::string& name, const Scene& scene) {
   } else if (m.stage == frame::CullStage::BackPatch) {
     s.backPatch = method;
   } else {
-    throw Error("bench-cull: '" + name + "' is neither a back-patch, Hi-Z nor displaced method");
+    throw Error("'" + name + "' is neither a back-patch, Hi-Z nor displaced method");
   }
   return mode;
 }
@@ -507,7 +510,7 @@ std::pair<double, double> fitLine(const std::vector<std::pair<double, double>>& 
     sxy += x * y;
   }
   const double d = n * sxx - sx * sx;
-  if (xy.size() < 2 || d <= 0.0) throw Error("bench-cull: the break-even fit needs two shares");
+  if (xy.size() < 2 || d <= 0.0) throw Error("the break-even fit needs two shares");
   const double b = (n * sxy - sx * sy) / d;
   return {(sy - b * sx) / n, b};
 }
@@ -539,6 +542,8 @@ void breakEven(vulkan::Context& context, const Options& o) {
     }
     for (const std::string& name : o.breakEvenMethods) {
       Mode m = parseMode(name, scene);
+      if (m.hiz || m.settings.occlusion.size())
+        throw Error("'" + name + "': the break-even methods are frustum and back-patch methods");
       m.settings.frustum = true;
       modes.push_back(bench.culled(m, tess));
     }
@@ -598,11 +603,15 @@ int main(int argc, char** argv) {
   return bench::run("bench-cull", [&] {
     Options o;
     if (!parse(argc, argv, o)) return 0;
-    vulkan::Context context(bench::contextOptions(o.device));
+    vulkan::ContextOptions co = bench::contextOptions(o.device);
+    co.validation = o.validate;
+    vulkan::Context context(co);
     std::printf("bench-cull: %s on %s\n", o.mesh.c_str(), context.info().name.c_str());
     if (o.parts.find('1') != std::string::npos) kernelCost(context, o);
     if (o.parts.find('2') != std::string::npos) frameSavings(context, o);
     if (o.parts.find('3') != std::string::npos) breakEven(context, o);
+    if (context.validationLog() && context.validationLog()->count() > 0)
+      throw Error("Vulkan validation messages:\n" + context.validationLog()->summary());
     return 0;
   });
 }
