@@ -124,6 +124,9 @@ struct Row {
 void runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Options& o,
              FILE* csv) {
   std::printf("\n### %s, %ux%u\n\n", c.name.c_str(), o.width, o.height);
+  const bool selfOccluding = plan::mayHideItself(c.host());
+  std::printf("Self-occlusion (Hi-Z on the mesh alone): %s.\n\n",
+              selfOccluding ? "offered, the surface is not convex" : "not offered, convex surface");
   std::printf(
       "| tess | none ms | all ms | planned ms | planned choice (frames) | planned / best | "
       "within 5%% | predicted ms | predicted / measured | within 25%% |\n");
@@ -221,6 +224,7 @@ void runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Op
       in.deforming = in.cageMoved = c.dynamic != nullptr;
       in.backPatchValidity = c.validity;
       in.occluders = !occluders.empty();
+      in.selfOccluding = selfOccluding;
       const frame::PatchDraw draw{gpu, &c.host(), 0};
       const double none = renderer.render(target, cam, {&draw, 1}, occluders, base.render).wallMs;
       const double allMs = all.render(cam, occluders).frameMs;
