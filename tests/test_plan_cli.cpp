@@ -54,11 +54,20 @@ TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
   EXPECT_EQ(r.exitCode(), 1) << r.output;
   EXPECT_NE(r.output.find("the calibration cache is off"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("osd-cull calibrate --quick"), std::string::npos) << r.output;
-  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 2\ndevice x\ndraw 1 fast\n");
+  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 3\ndevice x\ndraw 1 fast\n");
   const auto b = run("plan --calibration " + bad.string());
   EXPECT_EQ(b.exitCode(), 1) << b.output;
   EXPECT_NE(b.output.find("bad.txt:3: 'draw' needs ms per patch, got '1 fast'"), std::string::npos)
       << b.output;
+  // A calibration of the previous format (no displaced kernels, one bounds pass) is refused
+  // with the way to measure it again.
+  const fs::path old = dir_.write("old.txt", "osd_cull-calibration 2\ndevice x\n");
+  const auto o = run("plan --calibration " + old.string());
+  EXPECT_EQ(o.exitCode(), 1) << o.output;
+  EXPECT_NE(o.output.find("old.txt:1: calibration file format 2, this library reads format 3"),
+            std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("osd-cull calibrate --force"), std::string::npos) << o.output;
 }
 
 TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {

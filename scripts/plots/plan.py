@@ -27,8 +27,12 @@ def main():
     with open(sys.argv[1], newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["case"] != "case"]
     cases = list(dict.fromkeys(r["case"] for r in rows))
-    fig, axes = plt.subplots(1, len(cases), figsize=(4.4 * len(cases), 4.0), squeeze=False)
-    for ax, case in zip(axes[0], cases):
+    columns = len(cases) if len(cases) <= 3 else (len(cases) + 1) // 2
+    lines = (len(cases) + columns - 1) // columns
+    fig, axes = plt.subplots(lines, columns, figsize=(4.4 * columns, 4.0 * lines), squeeze=False)
+    for ax in axes.flat[len(cases):]:
+        ax.set_visible(False)
+    for ax, case in zip(axes.flat, cases):
         pts = sorted((int(r["tess"]), r) for r in rows if r["case"] == case)
         tess = [p[0] for p in pts]
         for key, label, color, style in SERIES:
@@ -41,7 +45,8 @@ def main():
         ax.set_title(case)
         ax.set_xlabel("tessellation level")
         ax.grid(True, which="both", alpha=0.3)
-    axes[0][0].set_ylabel("frame ms (median, lavapipe)")
+    for row in axes:
+        row[0].set_ylabel("frame ms (median, lavapipe)")
     axes[0][0].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(sys.argv[2], dpi=110)
