@@ -84,13 +84,13 @@ union() { echo "$@" | tr ' ' '\n' | sort -n | uniq | tr '\n' ' '; }
 } >"$out/run.txt"
 
 # Progress: each step's weight is its estimated seconds on lavapipe with 2 loaded cores
-# (measured 2026-12-02 at load 6-12: a BigGuy verify view at 1280x720 costs about 2 s at
-# tess 4, 3 s at 8, 6 s at 16 with the listed-triangle test; a frame 0.3 s at tess 4, 1 s
-# at 16, 3.5 s at 32); the remaining time is scaled by the measured pace.
+# (measured 2026-12-02 at load 8-10: a BigGuy verify view at 1280x720 costs about 1 s at
+# tess 4, 2 s at 8, 3 s at 16 with the listed-triangle test; a frame of the study's modes
+# 0.4 s at tess 4, 2 s at 16, 6 s at 32); the remaining time is scaled by the measured pace.
 start=$(date +%s)
 declare -A weight
-perView() { case $1 in 1 | 2 | 4) echo 2 ;; 8) echo 3 ;; 16) echo 6 ;; *) echo 12 ;; esac; }
-frameSec() { case $1 in 1 | 2) echo 0.15 ;; 4) echo 0.3 ;; 8) echo 0.5 ;; 16) echo 1 ;; *) echo 3.5 ;; esac; }
+perView() { case $1 in 1 | 2 | 4) echo 1 ;; 8) echo 2 ;; 16) echo 3 ;; *) echo 6 ;; esac; }
+frameSec() { case $1 in 1 | 2) echo 0.2 ;; 4) echo 0.4 ;; 8) echo 0.8 ;; 16) echo 2 ;; *) echo 6 ;; esac; }
 verifySteps=() benchSteps=()
 for t in $tessLevels; do
   for o in listed surface bound; do
@@ -108,11 +108,11 @@ for t in $occTessLevels; do
 done
 kernelTess=$(union $tessLevels $occTessLevels)
 w=0
-for t in $kernelTess; do w=$((w + views * repeats * $(perView "$t") / 2)); done
+for t in $kernelTess; do w=$((w + views * repeats * $(perView "$t"))); done
 weight[kernels]=$w
 frameSum() { for t in "$@"; do frameSec "$t"; done | awk '{ s += $1 } END { print s }'; }
 weight[frames]=$(awk -v r="$repeats" -v v="$frameViews" -v s="$(frameSum $frameTessLevels)" \
-  'BEGIN { printf "%d", 40 * r * v * s + 30 }')
+  'BEGIN { printf "%d", 42 * r * v * s + 30 }')
 weight[breakeven]=$(awk -v r="$repeats" -v v="$breakEvenViews" -v s="$(frameSum $breakEvenTess)" \
   'BEGIN { printf "%d", 10 * r * v * s + 30 }')
 benchSteps=(kernels frames breakeven)

@@ -46,7 +46,18 @@ OPTIONS = {  # file stem (without -tessN) -> option label
 BENCH_SUFFIX = {"bound": "", "surface": "/surface", "listed": "/listed", "displaced": ""}
 HIZ_NAME = {"hiz-half-paper": "hiz", "hiz-full-paper": "hiz/full",
             "hiz-half-tight": "hiz/tight", "hiz-full-tight": "hiz/full-tight"}
-CONE_METHODS = ("tcone", "ncone", "tcone-fp64", "ncone-fp64")  # need the bounds pass when moving
+
+
+def bounds_ms(cal, method):
+    """Calibration::boundsMs: the bounds pass per patch of a back-patch method (its own,
+    else the pass it shares: tangent-plane-16 that of tangent-plane, the fp64 variants that
+    of their fp32 method, else TCONE's)."""
+    own = cal["bounds-method"]
+    shared = {"tangent-plane-16": "tangent-plane", "tcone-fp64": "tcone", "ncone-fp64": "ncone"}
+    for m in (method, shared.get(method)):
+        if m in own:
+            return own[m]
+    return float(cal["bounds"][0])
 
 
 def bench_name(p):
@@ -135,7 +146,7 @@ def load_break_even(folder):
 def load_calibration(folder):
     """calibration.txt (plan/calibration.h toText): name -> list of words."""
     path = os.path.join(folder, "calibration.txt")
-    cal = {"draw": {}, "cull": {}}
+    cal = {"draw": {}, "cull": {}, "bounds-method": {}}
     if not os.path.exists(path):
         return None
     with open(path) as f:
@@ -145,8 +156,8 @@ def load_calibration(folder):
                 continue
             if w[0] == "draw":
                 cal["draw"][int(w[1])] = float(w[2])
-            elif w[0] == "cull":
-                cal["cull"][w[1]] = float(w[2])
+            elif w[0] in ("cull", "bounds-method"):
+                cal[w[0]][w[1]] = float(w[2])
             else:
                 cal[w[0]] = w[1:]
     return cal
@@ -290,7 +301,7 @@ def load_plan(folder, case, tess):
 def recommend(points, tess, case, cal, frames, front_only=True):
     """The study's recommendation for a case: among the points of the case's Pareto front
     (conservative options only), the lowest measured frame ratio; no culling when none is
-    below 1. Deforming: the cone methods also pay the bounds pass (calibrated) each frame."""
+    below 1. Deforming: the back-patch methods also pay their bounds pass (calibrated)."""
     front, dfront = fronts(points, tess)
     cands = dfront if case == "displaced" else front
     if not front_only:
@@ -303,10 +314,10 @@ def recommend(points, tess, case, cal, frames, front_only=True):
             continue
         r = p["frame"]["ratio"]
         extra = ""
-        if case == "deforming" and p["method"] in CONE_METHODS and cal and base:
-            bounds = float(cal["bounds"][0]) * p["patches"]
+        if case == "deforming" and p["stage"] == "back-patch" and cal and base:
+            bounds = bounds_ms(cal, p["method"]) * p["patches"]
             r += bounds / base["ms"]
-            extra = f" + bounds pass {bounds:.1f} ms (calibrated)"
+            extra = f" (with its bounds pass, {bounds:.1f} ms calibrated)"
         scored.append((r, p, extra))
     if not scored:
         return None, None, ""
@@ -480,9 +491,9 @@ def main():
         "Per case the study recommends, among the points on its Pareto front (conservative "
         "options), the one with the lowest measured frame ratio, and no culling when none "
         "is below 1.00. Static: BigGuy as it is; deforming: the same frames plus, for the "
-        "cone methods (which need their cones recomputed when the cage moves), the "
-        "calibrated bounds pass per frame (the point update is paid with or without "
-        "culling); displaced: the displaced points against the unculled displaced frame. "
+        "back-patch methods (whose per-patch cull data is recomputed when the cage moves), "
+        "the calibrated bounds pass of the method per frame (the point update is paid with "
+        "or without culling); displaced: the displaced points against the unculled displaced frame. "
         "`osd-cull plan` is asked the same case (a scene of the mesh, one view at the "
         "study's size, frame 1; deforming: a twist deformer; displaced: the procedural "
         "map; plan-*.md). The planner has prior cull rates and one view, the study "
