@@ -126,9 +126,11 @@ chain() {  # STEPS...: the summed weights
 if [ "$parallel" = 1 ]; then
   estimate=$(($(chain "${verifySteps[@]}") > $(chain "${benchSteps[@]}") ? $(chain "${verifySteps[@]}") : $(chain "${benchSteps[@]}")))
   estimate=$((estimate * 3 / 2))  # the two chains share the cores
+  estimate=$((estimate < total ? estimate : total))
 else
   estimate=$total
 fi
+estimate=$((estimate + 150))  # calibrate (when not cached) and the plans
 echo "study: ${#verifySteps[@]} verify runs, 3 bench-cull runs, estimated $((estimate / 60)) min" \
   "(load $(cut -d' ' -f1 /proc/loadavg)); outputs in $out" >&2
 doneFile=$out/.done-weight
@@ -138,8 +140,8 @@ step() {  # NAME: a progress line before the step
   now=$(date +%s)
   done=$(cat "$doneFile")
   local left=$((estimate - now + start))
-  [ "$done" -gt 0 ] && left=$(((now - start) * (total - done) / done))
-  [ "$parallel" = 1 ] && [ "$done" -gt 0 ] && left=$((left / 2))
+  # The measured pace (weights done per second since the runs began; both chains count).
+  [ "$done" -gt 0 ] && left=$(((now - runStart) * (total - done) / done))
   echo "study: [$(date -u +%H:%M:%S), $((now - start)) s] $name (about $((left > 0 ? left / 60 : 0)) min left)" >&2
 }
 finished() { echo $(($(cat "$doneFile") + weight[$1])) >"$doneFile"; }
@@ -226,6 +228,7 @@ for c in static deforming displaced; do
   done
 done
 
+runStart=$(date +%s)
 if [ "$parallel" = 1 ]; then
   verifyChain &
   verifyPid=$!

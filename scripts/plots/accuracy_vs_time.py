@@ -84,6 +84,7 @@ def load_points(folder):
                 "stage": method["stage"], "views": run["views"],
                 "width": run["width"], "height": run["height"],
                 "patches": run["patches"], "device": run["device"], "mesh": run["mesh"],
+                "level": run["level"],
                 "rate": 100.0 * method["cull_rate"],
                 "rate_bezier": 100.0 * method["cull_rate_bezier"],
                 "oracle": 100.0 * method["oracle_invisible_rate"],
@@ -335,18 +336,34 @@ def plan_choice(plan):
 
 
 def agreement(best, plan):
-    """Whether the plan runs the recommended point's method (stage and name)."""
+    """Whether the plan runs the recommended point: its stage and method, and for Hi-Z its
+    resolution and lookup (the plan chooses the resolution; it has no tight lookup)."""
     if not plan:
         return "no plan output"
     runs = {k: v["choice"] for k, v in plan.items()
             if k in ("back-patch", "occlusion") and v["on"] == "on"}
     if best is None:
-        return "agree" if not runs else "differ"
+        return "agree" if not runs else "differ: the plan culls"
     if best["stage"] == "back-patch":
-        return "agree" if runs.get("back-patch") == best["method"] else "differ"
+        if runs.get("back-patch") != best["method"]:
+            return "differ"
+        if best["option"] == "listed":
+            return "agree on the method; the plan has no listed-triangle choice"
+        extra = f", the plan adds {runs['occlusion']}" if "occlusion" in runs else ""
+        return "agree" + extra
     if best["displaced"]:
         return "agree" if runs.get("occlusion") == best["method"] else "differ"
-    return "agree" if "occlusion" in runs else "differ"
+    if "occlusion" not in runs:
+        return "differ"
+    notes = []
+    full = best["option"].startswith("hiz-full")
+    if full != (plan.get("hi-z", {}).get("choice") == "full"):
+        notes.append("Hi-Z resolution")
+    if best["option"].endswith("tight"):
+        notes.append("lookup: the plan has no tight-lookup choice")
+    extra = f", the plan adds back-patch {runs['back-patch']}" if "back-patch" in runs else ""
+    return ("agree on Hi-Z" + extra) if not notes else ("agree on Hi-Z, differ in " +
+                                                        ", ".join(notes) + extra)
 
 
 def main():
@@ -371,7 +388,8 @@ def main():
         "",
         "<!-- written by scripts/plots/accuracy_vs_time.py from scripts/study.sh; edit those -->",
         "",
-        f"Mesh {os.path.basename(first['mesh'])} ({patches} patches, level 2), sphere views "
+        f"Mesh {os.path.basename(first['mesh'])} ({patches} patches, level {first['level']}), "
+        "sphere views "
         f"(seed 1), {first['width']}x{first['height']}, device {first['device']}. The "
         "displaced points are the same mesh displaced by the procedural map "
         "(`--displacement procedural`, scale in the command).",
@@ -510,7 +528,7 @@ def main():
             rec = f"**{label(best)}**" if best else "no culling"
             ratio = "" if r is None else f"{r:.2f}{extra}"
             why = ""
-            if agree == "differ":
+            if agree.startswith("differ"):
                 reasons = [f"{k}: {v['reason']}" for k, v in plan.items()
                            if k in ("back-patch", "occlusion")]
                 why = "; ".join(reasons)
