@@ -79,7 +79,7 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
     if (frame::BoundsPass::hasCullData(ref)) backPatch_ = ref;
   }
   std::vector<frame::CullMesh> meshes;
-  for (size_t i = 0; i < instances_.size(); ++i) meshes.push_back(cullMesh(i, nullptr));
+  for (size_t i = 0; i < instances_.size(); ++i) meshes.push_back(cullMesh(i, nullptr, nullptr));
   for (const ViewDescription& v : d.views) {
     View view;
     const uint32_t w = v.width ? v.width : d.settings.width;
@@ -94,7 +94,8 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
   moved_.assign(points_.size(), false);
 }
 
-frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages) {
+frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages,
+                                      const frame::CullMethod::Displaced* kernel) {
   const Instance& inst = instances_[i];
   Points& p = *points_[inst.points];
   const SceneMesh& mesh = scene_.meshes[p.mesh];
@@ -105,9 +106,8 @@ frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages)
     m.displacementMap = &*mesh.displacementMap;
     m.uvCorners = mesh.extraction.uvCorners;
     m.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
-    // A planned displaced kernel (Niessner & Loop Table 1) replaces the scene's.
-    if (stages && !stages->occlusion.empty())
-      if (const auto& k = frame::cullMethod(stages->occlusion).displaced) m.displacedKernel = *k;
+    // A planned displaced bound (Niessner & Loop Table 1) replaces the scene's.
+    if (kernel) m.displacedKernel = *kernel;
   }
   const std::string& method = stages ? stages->backPatch : options_.cull.backPatch;
   // The cone method whose cull data the bounds pass recomputes (the options' or the plan's).
@@ -189,6 +189,7 @@ void ScenePlayer::seek(uint32_t frameIndex) {
 
 void ScenePlayer::setPlanner(plan::Planner* planner) {
   planner_ = planner;
+  if (planner && selfOccluding_.empty()) selfOccluding_ = plan::selfOccluding(scene_);
   for (View& v : views_) v.frame = v.frames.count("") ? v.frames.at("").get() : nullptr;
 }
 
@@ -233,7 +234,7 @@ frame::CullFrame& ScenePlayer::plannedFrame(size_t view, const std::vector<plan:
   bool occlusion = false, aggressive = true, full = false;
   std::string key;
   for (const plan::Plan& p : plans) {
-    key += p.stages.describe() + ";";
+    key += p.stages.describe() + (p.displacement.on ? " " + p.displacement.choice : "") + ";";
     if (p.stages.occlusion.empty()) continue;
     occlusion = true;
     aggressive = aggressive && p.stages.aggressive;
@@ -250,7 +251,16 @@ frame::CullFrame& ScenePlayer::plannedFrame(size_t view, const std::vector<plan:
     std::vector<frame::CullMesh> meshes;
     for (size_t i = 0; i < instances_.size(); ++i) {
       const frame::CullStages stages = cullStages(plans[i].stages);
-      meshes.push_back(cullMesh(i, &stages));
+      // The displaced bound the plan's frustum and occlusion stages test (applyPlan).
+      std::optional<frame::CullMethod::Displaced> kernel;
+      if (const SceneMesh& mesh = scene_.meshes[points_[instances_[i].points]->mesh];
+          mesh.displacementMap && plans[i].displacement.on && plans[i].culls()) {
+        frame::CullFrameOptions withMap = options_;
+        withMap.cull.displacementMap = &*mesh.displacementMap;
+        withMap.cull.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
+        kernel = plan::applyPlan(plans[i], withMap).cull.displacedKernel;
+      }
+      meshes.push_back(cullMesh(i, &stages, kernel ? &*kernel : nullptr));
     }
     it = v.frames
              .emplace(key, std::make_unique<frame::CullFrame>(context_, *renderer_, *v.target,
@@ -277,8 +287,9 @@ ViewFrame ScenePlayer::renderPlanned(size_t view, uint32_t frameIndex) {
   const double tess = options_.render.tessellation.uniformLevel;
   bool culls = false;
   for (size_t i = 0; i < instances_.size(); ++i) {
-    const plan::PlanInput in = plan::instancePlanInput(
-        scene_, view, i, objectBounds, models, v.camera, tess, moved_[instances_[i].points]);
+    plan::PlanInput in = plan::instancePlanInput(scene_, view, i, objectBounds, models, v.camera,
+                                                 tess, moved_[instances_[i].points]);
+    in.selfOccluding = selfOccluding_[i];
     out.plans.push_back(planner_->plan(plan::scenePlanKey(scene_, view, i), in, frameIndex));
     culls = culls || out.plans.back().culls();
   }

@@ -138,9 +138,11 @@ class ScenePlayer {
   };
 
   uint32_t users(const Points& points) const;  // instances drawing `points`
-  // Instance `i` as a CullMesh culled with `stages` (null: the options' stages), with the
-  // cull data its (deforming, displaced) mesh needs for them.
-  frame::CullMesh cullMesh(size_t i, const frame::CullStages* stages);
+  // Instance `i` as a CullMesh culled with `stages` (null: the options' stages) and, when
+  // its mesh is displaced, the displaced bound `kernel` (null: the scene's), with the cull
+  // data its (deforming, displaced) mesh needs for them.
+  frame::CullMesh cullMesh(size_t i, const frame::CullStages* stages,
+                           const frame::CullMethod::Displaced* kernel);
   // The view's CullFrame of these plans' choices, built on first use (`built` says so).
   frame::CullFrame& plannedFrame(size_t view, const std::vector<plan::Plan>& plans, bool& built);
   ViewFrame renderPlanned(size_t view, uint32_t frameIndex);
@@ -158,7 +160,8 @@ class ScenePlayer {
   frame::CullFrameOptions options_;
   std::optional<bound::BackPatchMethod> backPatch_;  // the options' cone method, if any
   plan::Planner* planner_ = nullptr;
-  std::vector<bool> moved_;  // per Points: posed anew by the last seek()
+  std::vector<bool> moved_;          // per Points: posed anew by the last seek()
+  std::vector<bool> selfOccluding_;  // per instance (plan::meshMayHideItself), with a planner
 };
 
 }  // namespace osd_cull::scene
