@@ -35,7 +35,8 @@ struct ScenePlayer::Points {
 };
 
 ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
-                         const frame::CullFrameOptions& options, frame::PointUpdatePath pointUpdate)
+                         const frame::CullFrameOptions& options, frame::PointUpdatePath pointUpdate,
+                         plan::Planner* planner)
     : context_(context), scene_(scene), options_(options) {
   const SceneDescription& d = scene.description;
   if (d.instances.empty()) throw Error("scene " + d.source + ": no instances to draw");
@@ -78,20 +79,28 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
     const bound::BackPatchMethod ref = frame::cullMethod(options.cull.backPatch).reference;
     if (frame::BoundsPass::hasCullData(ref)) backPatch_ = ref;
   }
-  std::vector<frame::CullMesh> meshes;
-  for (size_t i = 0; i < instances_.size(); ++i) meshes.push_back(cullMesh(i, nullptr, nullptr));
   for (const ViewDescription& v : d.views) {
     View view;
     const uint32_t w = v.width ? v.width : d.settings.width;
     const uint32_t h = v.height ? v.height : d.settings.height;
     view.target = std::make_unique<frame::RenderTarget>(context, w, h);
-    auto frame =
-        std::make_unique<frame::CullFrame>(context, *renderer_, *view.target, meshes, options);
-    view.frame = frame.get();
-    view.frames.emplace("", std::move(frame));
     views_.push_back(std::move(view));
   }
   moved_.assign(points_.size(), false);
+  setPlanner(planner);
+  if (!planner)
+    for (size_t v = 0; v < views_.size(); ++v) views_[v].frame = &fixedFrame(v);
+}
+
+frame::CullFrame& ScenePlayer::fixedFrame(size_t view) {
+  View& v = views_.at(view);
+  std::unique_ptr<frame::CullFrame>& f = v.frames[""];
+  if (!f) {
+    std::vector<frame::CullMesh> meshes;
+    for (size_t i = 0; i < instances_.size(); ++i) meshes.push_back(cullMesh(i, nullptr, nullptr));
+    f = std::make_unique<frame::CullFrame>(context_, *renderer_, *v.target, meshes, options_);
+  }
+  return *f;
 }
 
 frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages,
@@ -194,6 +203,7 @@ void ScenePlayer::setPlanner(plan::Planner* planner) {
 }
 
 frame::CullFrame& ScenePlayer::cullFrame(size_t view) {
+  if (!planner_ && !views_.at(view).frame) views_[view].frame = &fixedFrame(view);
   frame::CullFrame* f = views_.at(view).frame;
   if (!f)
     throw Error("ScenePlayer::cullFrame: view '" + scene_.description.views.at(view).name +
@@ -209,7 +219,7 @@ std::vector<ViewFrame> ScenePlayer::render(uint32_t frameIndex) {
       out.push_back(renderPlanned(v, frameIndex));
       continue;
     }
-    views_[v].frame = views_[v].frames.at("").get();
+    views_[v].frame = &fixedFrame(v);
     for (size_t i = 0; i < instances_.size(); ++i)
       views_[v].frame->setModel(i, instances_[i].model);
     out.push_back({scene_.description.views[v].name, views_[v].camera,

@@ -67,8 +67,11 @@ class ScenePlayer {
   /// `pointUpdate`'s path and is back-patch culled (tcone, ncone, tangent plane) with the
   /// cull data the GPU bounds pass recomputes on every frame it moves; a deforming
   /// displaced mesh with its displaced bound's cones, recomputed the same way.
+  /// With `planner` (setPlanner()) no fixed-stage frame is built up front, so no bounds pass
+  /// of the options' method runs unless a plan asks for it.
   ScenePlayer(vulkan::Context& context, LoadedScene& scene, const frame::CullFrameOptions& options,
-              frame::PointUpdatePath pointUpdate = frame::PointUpdatePath::Cpu);
+              frame::PointUpdatePath pointUpdate = frame::PointUpdatePath::Cpu,
+              plan::Planner* planner = nullptr);
   ~ScenePlayer();
   ScenePlayer(const ScenePlayer&) = delete;
   ScenePlayer& operator=(const ScenePlayer&) = delete;
@@ -94,8 +97,8 @@ class ScenePlayer {
   frame::RenderTarget& target(size_t view) { return *views_.at(view).target; }
   /// \brief The CullFrame view `view` rendered with last (with a planner: the one of the
   /// last frame's choices).
-  /// \throws osd_cull::Error when the view has not been culled yet (a planned view drawn
-  /// without culling so far).
+  /// \throws osd_cull::Error when a planned view has not been culled yet (drawn without
+  /// culling so far).
   frame::CullFrame& cullFrame(size_t view);
   /// \brief CullFrames built for view `view` so far (with a planner: one per set of stage
   /// choices seen, each kept for reuse).
@@ -144,6 +147,7 @@ class ScenePlayer {
   frame::CullMesh cullMesh(size_t i, const frame::CullStages* stages,
                            const frame::CullMethod::Displaced* kernel);
   // The view's CullFrame of these plans' choices, built on first use (`built` says so).
+  frame::CullFrame& fixedFrame(size_t view);  // the options' stages, built on first use
   frame::CullFrame& plannedFrame(size_t view, const std::vector<plan::Plan>& plans, bool& built);
   ViewFrame renderPlanned(size_t view, uint32_t frameIndex);
   frame::FrameStats drawUnculled(size_t view, frame::RenderTarget& target);

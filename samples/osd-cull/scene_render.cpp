@@ -126,8 +126,7 @@ int renderScene(const RenderArgs& args) {
       calibration && calibration->pointUpdateGpuMsPerPatch < calibration->pointUpdateCpuMsPerPatch
           ? frame::PointUpdatePath::Gpu
           : frame::PointUpdatePath::Cpu;
-  scene::ScenePlayer player(context, loaded, options, pointUpdate);
-  player.setPlanner(planner.get());
+  scene::ScenePlayer player(context, loaded, options, pointUpdate, planner.get());
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << loaded.description.source << ", " << player.instanceCount()
             << " instances, " << player.patchCount() << " patches, " << loaded.occluders.size()
