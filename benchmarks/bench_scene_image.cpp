@@ -121,8 +121,7 @@ int run(const Args& a) {
     planner = std::make_unique<plan::Planner>(calibration);
     planned = std::make_unique<scene::ScenePlayer>(
         context, s, options,
-        a.gpuPoints ? frame::PointUpdatePath::Gpu : frame::PointUpdatePath::Cpu);
-    planned->setPlanner(planner.get());
+        a.gpuPoints ? frame::PointUpdatePath::Gpu : frame::PointUpdatePath::Cpu, planner.get());
   }
   std::vector<std::vector<double>> plannedMs(player.viewCount()), predictedMs(player.viewCount());
   std::vector<uint64_t> plannedLost(player.viewCount(), 0);

@@ -103,10 +103,14 @@ int renderScene(const RenderArgs& args) {
   // The effect plan (docs/algorithms/plan.md, "Scenes"): without --cull, every instance in
   // every view is planned each frame; without a calibration the scene plays with --cull all.
   std::unique_ptr<plan::Planner> planner;
+  std::string outdated;
   if (args.plan.mode == "auto" && args.cull.mode.empty() && args.plan.calibration.empty() &&
-      !plan::loadCachedCalibration(plan::calibrationKey(context)))
-    std::cout << "plan: off, playing with --cull all (no calibration of this device cached: "
-                 "run `osd-cull calibrate --quick`, or give --plan-calibration FILE)\n";
+      !plan::loadCachedCalibration(plan::calibrationKey(context), &outdated))
+    std::cout << "plan: off, playing with --cull all ("
+              << (outdated.empty() ? "no calibration of this device cached: run `osd-cull "
+                                     "calibrate --quick`, or give --plan-calibration FILE"
+                                   : outdated)
+              << ")\n";
   else
     planner = makePlanner(args.plan, context, !args.cull.mode.empty(), true, std::cout);
   frame::CullFrameOptions options = cull.frame;
@@ -122,8 +126,7 @@ int renderScene(const RenderArgs& args) {
       calibration && calibration->pointUpdateGpuMsPerPatch < calibration->pointUpdateCpuMsPerPatch
           ? frame::PointUpdatePath::Gpu
           : frame::PointUpdatePath::Cpu;
-  scene::ScenePlayer player(context, loaded, options, pointUpdate);
-  player.setPlanner(planner.get());
+  scene::ScenePlayer player(context, loaded, options, pointUpdate, planner.get());
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << loaded.description.source << ", " << player.instanceCount()
             << " instances, " << player.patchCount() << " patches, " << loaded.occluders.size()
