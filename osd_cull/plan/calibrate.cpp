@@ -1,14 +1,18 @@
 #include "osd_cull/plan/calibrate.h"
 
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/cull/cull_methods.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/plan/cost_model.h"
 #include "osd_cull/scene/procedural.h"
+#include "osd_cull/scene/procedural_displacement.h"
 #include "osd_cull/version.h"
 #include "osd_cull/vk/context.h"
 
@@ -35,6 +39,21 @@ double timed(const std::function<void()>& f) {
 
 // Samples named by what they measure; each repeat adds one value to every name.
 using Samples = std::map<std::string, std::vector<double>>;
+
+// The built-in torus (scene::torus) with its natural texture coordinates (the angles around
+// the ring and around the tube over [0, 1]), the calibration mesh of the displaced draw and
+// kernels; the procedural map repeats with period 1, so it is seamless on it.
+PatchExtraction uvTorus(int u, int v) {
+  CageMesh cage = scene::torus(u, v);
+  for (int i = 0; i <= u; ++i)
+    for (int j = 0; j <= v; ++j) cage.uvs.emplace_back(double(i) / u, double(j) / v);
+  auto uv = [&](int i, int j) { return i * (v + 1) + j; };
+  for (int i = 0; i < u; ++i)  // the faces' order and corners are scene::torus's
+    for (int j = 0; j < v; ++j)
+      cage.faceUVs.insert(cage.faceUVs.end(),
+                          {uv(i, j), uv(i + 1, j), uv(i + 1, j + 1), uv(i, j + 1)});
+  return extractPatches(cage);
+}
 
 }  // namespace
 
@@ -119,7 +138,47 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   frame::DynamicPatchMesh gpuMesh(context, cage, {}, frame::PointUpdatePath::Gpu);
   cpuMesh.cullData(bound::BackPatchMethod::TCone);
   const double cagePatches = cpuMesh.gpu().patchCount();
+  // The bounds pass of each back-patch method on its own (each writes other cull data).
+  std::map<std::string, std::unique_ptr<frame::BoundsPass>> boundsPasses;
+  for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch)) {
+    const frame::CullMethod& method = frame::cullMethod(m);
+    if (method.needsFloat64 || method.lanesPerPatch > 1 ||
+        !frame::BoundsPass::hasCullData(method.reference))
+      continue;  // shares the pass of its fp32 / one-thread method (Calibration::boundsMs)
+    boundsPasses[m] = std::make_unique<frame::BoundsPass>(context, gpuMesh.gpu(), method.reference);
+  }
   std::vector<glm::dvec3> moved(cage.positions.begin(), cage.positions.end());
+
+  // Displaced meshes: the displaced draw RT(tf) against the undisplaced one on the UV torus
+  // (the displacement lookup in the evaluation stage), and the six displaced kernels against
+  // the frustum kernel on a finer one (the displaced bound's extra cost).
+  progress("building displaced draws and kernels");
+  const PatchExtraction torusDraw = uvTorus(o.quick ? 24 : 48, o.quick ? 12 : 24);
+  const PatchExtraction torusCull = uvTorus(o.quick ? 64 : 96, o.quick ? 32 : 48);
+  const bound::DisplacementMap map("procedural", 256, 256, scene::proceduralDisplacementTexels(256),
+                                   0.04, 0.5);
+  frame::GpuPatchSet gpuTorus(context, torusDraw.patches),
+      gpuTorusDisplaced(context, torusDraw.patches), gpuTorusCull(context, torusCull.patches);
+  frame::GpuDisplacement displacement(context, map, torusDraw.uvCorners,
+                                      torusDraw.patches.patchCount());
+  gpuTorusDisplaced.setDisplacement(&displacement);
+  const double nTorusCull = torusCull.patches.patchCount();
+  const frame::Camera torusCamera = frame::frameBounds(
+      frame::boundsOf(torusDraw.patches.points), {0.3, 0.4, 1.0}, {0, 1, 0}, 40.0, width, height);
+  const frame::PatchDraw torusPlain{&gpuTorus, &torusDraw.patches, 0},
+      torusDisplaced{&gpuTorusDisplaced, &torusDraw.patches, 0};
+  const bound::BackPatchValidity torusClosed{true, "calibration torus: closed, outward"};
+  frame::CullPass torusFrustum(context, gpuTorusCull, torusCull.patches,
+                               frame::CullSettings{true, "", "", torusClosed});
+  std::map<std::string, std::unique_ptr<frame::CullPass>> displacedPasses;
+  for (const frame::CullMethod& m : frame::displacedCullMethods()) {
+    frame::CullSettings ds{true, "", "", torusClosed};
+    ds.displacementMap = &map;
+    ds.uvCorners = torusCull.uvCorners;
+    ds.displacedKernel = *m.displaced;
+    displacedPasses[m.name] =
+        std::make_unique<frame::CullPass>(context, gpuTorusCull, torusCull.patches, ds);
+  }
 
   Samples s;
   std::vector<std::pair<uint32_t, double>> tes;
@@ -146,6 +205,13 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
           renderer.render(target, inside, {}, {}, render).wallMs);
       if (r == 0) tes.push_back({level, double(st.statistics.tessEvaluationInvocations) / n});
     }
+    for (uint32_t level : levels) {
+      render.tessellation.uniformLevel = level;
+      one["torus " + std::to_string(level)].push_back(
+          renderer.render(target, torusCamera, {&torusPlain, 1}, {}, render).wallMs);
+      one["displaced " + std::to_string(level)].push_back(
+          renderer.render(target, torusCamera, {&torusDisplaced, 1}, {}, render).wallMs);
+    }
     render.tessellation.uniformLevel = 8;
     const double bezier8 = renderer.render(target, camera, {&draw, 1}, {}, render).wallMs;
     one["gregory 8"].push_back(
@@ -160,6 +226,10 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
       for (auto& [name, pass] : passes)
         if (name != "frustum")
           one["cull " + name].push_back(pass->run(camera, render.tessellation) - frustum);
+      const double torusMs = torusFrustum.run(torusCamera, render.tessellation);
+      for (auto& [name, pass] : displacedPasses)
+        one["cull displaced " + name].push_back(pass->run(torusCamera, render.tessellation) -
+                                                torusMs);
       one["hiz build"].push_back(
           timed([&] { pyramid.build(context, frame::RenderTarget::kDepthLayout); }));
       one["hiz build small"].push_back(
@@ -177,6 +247,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
     one["points cpu"].push_back(cpuMesh.lastTimes().pointsMs);
     one["bounds"].push_back(cpuMesh.lastTimes().boundsMs);
     one["points gpu"].push_back(gpuMesh.lastTimes().pointsMs);
+    const double submit = timed([&] { context.submit([](VkCommandBuffer) {}); });
+    for (auto& [name, pass] : boundsPasses)
+      one["bounds " + name].push_back(pass->run(0.0) - submit);
     if (r == 0) continue;
     for (auto& [name, v] : one) s[name].insert(s[name].end(), v.begin(), v.end());
   }
@@ -193,11 +266,26 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   c.cullDispatchMs = m("dispatch");
   for (const auto& [name, pass] : passes) c.cullMsPerPatch[name] = m("cull " + name) / nMany;
   c.cullMsPerPatch["hiz"] = m("hiz cull") / nMany;
+  // A displaced kernel is the Hi-Z stage on its displaced bound: the bound's extra cost over
+  // the frustum kernel plus the Hi-Z lookup.
+  for (const auto& [name, pass] : displacedPasses)
+    c.cullMsPerPatch[name] = m("cull displaced " + name) / nTorusCull + c.cullMsPerPatch["hiz"];
+  // RT(tf) of a displaced patch relative to an undisplaced one: the two draws of the same
+  // patches less the empty frame; at least 1 (a lookup is never free; below is noise).
+  for (uint32_t level : levels) {
+    const double plain = m("torus " + std::to_string(level)) - c.submitMs;
+    const double displaced = m("displaced " + std::to_string(level)) - c.submitMs;
+    c.displacedDrawFactor.push_back(
+        {level, plain > 0.0 && displaced > 0.0 ? std::max(1.0, displaced / plain) : 1.0});
+  }
+
   c.hizBuild = {{hizPixels(uint64_t(width / 2) * (height / 2), false), m("hiz build small")},
                 {hizPixels(uint64_t(width) * height, false), m("hiz build")}};
   c.pointUpdateCpuMsPerPatch = m("points cpu") / cagePatches;
   c.pointUpdateGpuMsPerPatch = m("points gpu") / cagePatches;
   c.boundsMsPerPatch = m("bounds") / cagePatches;
+  for (const auto& [name, pass] : boundsPasses)
+    c.boundsMsPerMethod[name] = m("bounds " + name) / cagePatches;
   return c;
 }
 

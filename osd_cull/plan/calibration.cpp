@@ -15,7 +15,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kMagic = "osd_cull-calibration 2";
+// Format 3: per-method bounds passes ("bounds-method"), the displaced kernels ("cull
+// con-caf ...") and the displaced draw ("draw-displaced"). Older files are measured again.
+constexpr const char* kMagicPrefix = "osd_cull-calibration ";
+constexpr int kFormat = 3;
+const std::string kMagic = kMagicPrefix + std::to_string(kFormat);
+
+// The format of a calibration file's first line; 0 when it is not one.
+int formatOf(const std::string& firstLine) {
+  if (firstLine.rfind(kMagicPrefix, 0) != 0) return 0;
+  return std::atoi(firstLine.c_str() + std::string(kMagicPrefix).size());
+}
 
 std::string number(double v) {
   char text[64];
@@ -56,6 +66,24 @@ double Calibration::backDrawMs(double tess) const {
   return drawCost(draw, tess, &DrawCost::backMsPerPatch);
 }
 
+double Calibration::displacedDrawFactorAt(double tess) const {
+  if (displacedDrawFactor.empty()) return 1.0;
+  const auto square = [](double t) { return (t + 1.0) * (t + 1.0); };
+  if (tess <= displacedDrawFactor.front().first) return displacedDrawFactor.front().second;
+  if (tess >= displacedDrawFactor.back().first) return displacedDrawFactor.back().second;
+  std::vector<std::pair<double, double>> s;
+  for (const auto& [level, factor] : displacedDrawFactor) s.push_back({square(level), factor});
+  return interpolate(s, square(tess));
+}
+
+double Calibration::boundsMs(const std::string& method) const {
+  for (const std::string& name :
+       {method, method.substr(0, method.find("-16")), method.substr(0, method.find("-fp64"))})
+    if (const auto it = boundsMsPerMethod.find(name); it != boundsMsPerMethod.end())
+      return it->second;
+  return boundsMsPerPatch;
+}
+
 double Calibration::cullMs(const std::string& stage) const {
   const auto it = cullMsPerPatch.find(stage);
   if (it == cullMsPerPatch.end())
@@ -93,6 +121,10 @@ std::string toText(const Calibration& c) {
   out << "point-update-cpu " << number(c.pointUpdateCpuMsPerPatch) << "\n";
   out << "point-update-gpu " << number(c.pointUpdateGpuMsPerPatch) << "\n";
   out << "bounds " << number(c.boundsMsPerPatch) << "\n";
+  for (const auto& [level, factor] : c.displacedDrawFactor)
+    out << "draw-displaced " << level << " " << number(factor) << "\n";
+  for (const auto& [method, ms] : c.boundsMsPerMethod)
+    out << "bounds-method " << method << " " << number(ms) << "\n";
   return out.str();
 }
 
@@ -103,8 +135,11 @@ Calibration fromText(const std::string& text, const std::string& source) {
   auto fail = [&](const std::string& what) -> Error {
     return Error(source + ":" + std::to_string(lineNumber) + ": " + what);
   };
-  if (!std::getline(in, line) || line != kMagic)
+  if (!std::getline(in, line) || line != kMagic) {
+    if (const int format = formatOf(line); format > 0)
+      throw Error(source + ":1: " + outdatedCalibrationMessage(format));
     throw Error(source + ":1: not a calibration file (expected first line '" + kMagic + "')");
+  }
   lineNumber = 1;
   Calibration c;
   bool sawDevice = false;
@@ -120,6 +155,24 @@ Calibration fromText(const std::string& text, const std::string& source) {
       if constexpr (std::is_floating_point_v<std::remove_reference_t<decltype(v)>>)
         if (!std::isfinite(v) || v < 0)
           throw fail("'" + name + "': " + what + " must be finite and >= 0");
+    };
+    // `NAME ms-per-patch` into a map.
+    auto readNamed = [&](std::map<std::string, double>& into, const char* what) {
+      std::string key;
+      double ms = 0;
+      read(key, what);
+      read(ms, "ms per patch");
+      into[key] = ms;
+    };
+    // `KEY VALUE` appended to `into`, whose keys must ascend.
+    auto readAscending = [&](auto& into, auto key, auto value, const char* keyWhat,
+                             const char* valueWhat, const char* keys) {
+      typename std::decay_t<decltype(into)>::value_type entry{};
+      read(entry.*key, keyWhat);
+      read(entry.*value, valueWhat);
+      if (!into.empty() && entry.*key <= into.back().*key)
+        throw fail("'" + name + "' " + keys + " must ascend");
+      into.push_back(entry);
     };
     if (name == "device") {
       c.key.device = rest;
@@ -152,25 +205,22 @@ Calibration fromText(const std::string& text, const std::string& source) {
       read(c.submitMs, "ms");
     else if (name == "cull-dispatch")
       read(c.cullDispatchMs, "ms");
-    else if (name == "cull") {
-      std::string stage;
-      double ms = 0;
-      read(stage, "a stage name");
-      read(ms, "ms per patch");
-      c.cullMsPerPatch[stage] = ms;
-    } else if (name == "hiz") {
-      SizeCost h;
-      read(h.pixels, "a pixel count");
-      read(h.ms, "ms");
-      if (!c.hizBuild.empty() && h.pixels <= c.hizBuild.back().pixels)
-        throw fail("'hiz' sizes must ascend");
-      c.hizBuild.push_back(h);
-    } else if (name == "point-update-cpu")
+    else if (name == "cull")
+      readNamed(c.cullMsPerPatch, "a stage name");
+    else if (name == "hiz")
+      readAscending(c.hizBuild, &SizeCost::pixels, &SizeCost::ms, "a pixel count", "ms", "sizes");
+    else if (name == "point-update-cpu")
       read(c.pointUpdateCpuMsPerPatch, "ms per patch");
     else if (name == "point-update-gpu")
       read(c.pointUpdateGpuMsPerPatch, "ms per patch");
     else if (name == "bounds")
       read(c.boundsMsPerPatch, "ms per patch");
+    else if (name == "draw-displaced")
+      readAscending(c.displacedDrawFactor, &std::pair<uint32_t, double>::first,
+                    &std::pair<uint32_t, double>::second, "a tessellation level", "a factor",
+                    "levels");
+    else if (name == "bounds-method")
+      readNamed(c.boundsMsPerMethod, "a back-patch method name");
     else
       throw fail("unknown entry '" + name + "'");
   }
@@ -208,9 +258,25 @@ Calibration loadCalibration(const fs::path& file) {
   return fromText(text.str(), file.string());
 }
 
-std::optional<Calibration> loadCachedCalibration(const CalibrationKey& key) {
+std::string outdatedCalibrationMessage(int format) {
+  return "calibration file format " + std::to_string(format) + ", this library reads format " +
+         std::to_string(kFormat) +
+         " (per-method bounds passes, displaced kernels and draw): measure it again with "
+         "`osd-cull calibrate --force`";
+}
+
+std::optional<Calibration> loadCachedCalibration(const CalibrationKey& key, std::string* outdated) {
   const fs::path file = calibrationCacheFile(key);
   if (file.empty() || !fs::exists(file)) return std::nullopt;
+  if (outdated) {
+    std::ifstream in(file, std::ios::binary);
+    std::string first;
+    std::getline(in, first);
+    if (const int format = formatOf(first); format > 0 && format != kFormat) {
+      *outdated = file.string() + ": " + outdatedCalibrationMessage(format);
+      return std::nullopt;
+    }
+  }
   Calibration c = loadCalibration(file);
   if (!(c.key == key)) return std::nullopt;
   return c;

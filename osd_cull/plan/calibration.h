@@ -69,7 +69,13 @@ struct Calibration {
   std::vector<SizeCost> hizBuild;                ///< Hi-Z build, ascending pixels
   double pointUpdateCpuMsPerPatch = 0.0;         ///< cage → control points on the CPU
   double pointUpdateGpuMsPerPatch = 0.0;         ///< the same in Vulkan compute
-  double boundsMsPerPatch = 0.0;                 ///< the bounds pass of a cone method
+  double boundsMsPerPatch = 0.0;                 ///< the bounds pass of TCONE (the update's)
+  /// The bounds pass per back-patch method name ("tcone", "ncone", "tangent-plane", ...):
+  /// each writes other cull data (frame/cull/bounds_pass.h), at its own cost.
+  std::map<std::string, double> boundsMsPerMethod;
+  /// RT(tf) of a displaced patch over that of the same patch undisplaced (the displacement
+  /// lookup in the evaluation stage), per measured level, ascending (empty: 1).
+  std::vector<std::pair<uint32_t, double>> displacedDrawFactor;
 
   /// \brief RT(tf) per Bézier patch at any level: linear in (tf + 1)² between the measured
   /// levels (the work is (tf + 1)² evaluations), extrapolated with the last two.
@@ -77,6 +83,13 @@ struct Calibration {
   double drawMs(double tess) const;
   /// \brief The same for DrawCost::backMsPerPatch.
   double backDrawMs(double tess) const;
+  /// \brief displacedDrawFactor at any level, linear in (tf + 1)² between the measured
+  /// levels (constant beyond them); 1 when unmeasured.
+  double displacedDrawFactorAt(double tess) const;
+  /// \brief The bounds pass per patch of back-patch method `method`: its own measurement
+  /// (boundsMsPerMethod), else that of the method it shares its pass with (tangent-plane-16:
+  /// tangent-plane; the fp64 variants: their fp32 method), else boundsMsPerPatch.
+  double boundsMs(const std::string& method) const;
   /// \brief CT of a stage. \throws osd_cull::Error naming the stage when it is not measured.
   double cullMs(const std::string& stage) const;
   /// \brief The Hi-Z build of a depth image of `pixels`: linear between the samples,
@@ -96,8 +109,13 @@ std::filesystem::path calibrationCacheDirectory();
 /// itself is stored inside and compared on load).
 std::filesystem::path calibrationCacheFile(const CalibrationKey& key);
 /// \brief The cached calibration of `key`; nullopt when the cache is off, has none, or the
-/// file is of another key. \throws osd_cull::Error for a damaged file (named).
-std::optional<Calibration> loadCachedCalibration(const CalibrationKey& key);
+/// file is of another key. A file of an older format: with `outdated`, nullopt and the
+/// message in *outdated (so that the caller measures again); without, an Error saying so.
+/// \throws osd_cull::Error for a damaged file (named).
+std::optional<Calibration> loadCachedCalibration(const CalibrationKey& key,
+                                                 std::string* outdated = nullptr);
+/// \brief "calibration file format N, this library reads format M ...: measure it again".
+std::string outdatedCalibrationMessage(int format);
 /// \brief Reads a calibration file. \throws osd_cull::Error (file, line, problem).
 Calibration loadCalibration(const std::filesystem::path& file);
 /// \brief Writes `calibration` to `file` (through a temporary name, then renamed),

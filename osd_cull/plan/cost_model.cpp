@@ -21,18 +21,24 @@ uint64_t hizPixels(uint64_t pixels, bool fullResolution) {
   return fullResolution ? pixels : std::max<uint64_t>(1, pixels / 4);
 }
 
-double drawMsPerPatch(const Calibration& calibration, const CostCase& c) {
+namespace {
+
+// The draw cost per patch of `c`'s mix of patch types, displaced or not, from `perBezier`.
+double perPatch(const Calibration& calibration, const CostCase& c, double perBezier) {
   const double n = c.patches();
   if (n == 0) return 0.0;
   const double weight = (c.bezier + calibration.gregoryDrawFactor * c.gregory) / n;
-  return weight * calibration.drawMs(c.tess);
+  return weight * perBezier * (c.displaced ? calibration.displacedDrawFactorAt(c.tess) : 1.0);
+}
+
+}  // namespace
+
+double drawMsPerPatch(const Calibration& calibration, const CostCase& c) {
+  return perPatch(calibration, c, calibration.drawMs(c.tess));
 }
 
 double backDrawMsPerPatch(const Calibration& calibration, const CostCase& c) {
-  const double n = c.patches();
-  if (n == 0) return 0.0;
-  const double weight = (c.bezier + calibration.gregoryDrawFactor * c.gregory) / n;
-  return weight * calibration.backDrawMs(c.tess);
+  return perPatch(calibration, c, calibration.backDrawMs(c.tess));
 }
 
 double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages) {
@@ -79,7 +85,7 @@ Prediction predict(const Calibration& calibration, const CostCase& c, const Stag
   if (c.pointUpdate)
     p.updateMs = n * (c.gpuPointUpdate ? calibration.pointUpdateGpuMsPerPatch
                                        : calibration.pointUpdateCpuMsPerPatch);
-  if (c.boundsPass) p.updateMs += n * calibration.boundsMsPerPatch;
+  if (c.boundsPass) p.updateMs += n * calibration.boundsMs(c.boundsMethod);
   return p;
 }
 

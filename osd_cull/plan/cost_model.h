@@ -53,7 +53,9 @@ struct CostCase {
   bool tessFactorZero = false;  ///< culled patches drawn with factor 0 (then RT0 counts)
   bool pointUpdate = false;     ///< the cage moved: control points are recomputed
   bool gpuPointUpdate = false;  ///< ... in Vulkan compute (else on the CPU)
-  bool boundsPass = false;      ///< the bounds pass of a cone method runs
+  bool boundsPass = false;      ///< the bounds pass of the back-patch method runs
+  std::string boundsMethod;     ///< ... of this method (Calibration::boundsMs)
+  bool displaced = false;       ///< drawn displaced: RT(tf) times displacedDrawFactorAt
   uint32_t patches() const { return bezier + gregory; }
 };
 
@@ -74,7 +76,8 @@ struct Prediction {
 uint64_t hizPixels(uint64_t pixels, bool fullResolution);
 
 /// \brief RT(tf) averaged over the mesh's patch types (Gregory patches cost
-/// Calibration::gregoryDrawFactor times a Bézier patch).
+/// Calibration::gregoryDrawFactor times a Bézier patch); a displaced mesh's times
+/// Calibration::displacedDrawFactorAt(tf).
 double drawMsPerPatch(const Calibration& calibration, const CostCase& c);
 
 /// \brief RT of a patch whose triangles all face away (Calibration::backDrawMs), averaged

@@ -2,6 +2,7 @@
 
 #include "osd_cull/bound/frustum.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/cull/cull_methods.h"
 
 #include <algorithm>
@@ -26,7 +27,13 @@ Prediction scaled(Prediction p, double scale) {
   return p;
 }
 
-bool isConeMethod(const std::string& method) { return method == "tcone" || method == "ncone"; }
+// A back-patch method whose per-patch cull data the bounds pass recomputes from moved
+// points (TCONE, NCONE: the Bézier cones; the tangent-plane methods: the Gregory TCONE and
+// the drawn-triangle bound's G, H; frame/cull/bounds_pass.h): it can run on a deforming
+// mesh, with the bounds pass charged to it.
+bool hasBoundsPass(const std::string& method) {
+  return frame::BoundsPass::hasCullData(frame::cullMethod(method).reference);
+}
 
 std::string percent(double rate) {
   char text[32];
@@ -65,6 +72,44 @@ BoxInView boxInView(const frame::Bounds& b, const glm::dmat4& model, const frame
   return BoxInView::Crossing;
 }
 
+bool mayHideItself(const PatchSet& patches, uint64_t maxWork) {
+  // The sampled limit points: the four corners of every patch (Bézier: points 0, 3, 12, 15;
+  // Gregory: its corner points come first in each corner's group of five).
+  std::vector<glm::dvec3> corners;
+  for (uint32_t p = 0; p < patches.patchCount(); ++p) {
+    const auto cp = patches.controlPoints(p);
+    if (patches.type(p) == PatchType::Bezier)
+      corners.insert(corners.end(), {cp[0], cp[3], cp[12], cp[15]});
+    else
+      for (uint32_t k = 0; k < 4; ++k) corners.push_back(cp[5 * k]);
+  }
+  // The tangent planes at the Bézier corners: corner, and its neighbours along u and v.
+  static constexpr int kCorner[4][3] = {{0, 1, 4}, {3, 7, 2}, {15, 14, 11}, {12, 8, 13}};
+  const uint64_t planes = 4ull * patches.bezierCount;
+  if (planes == 0 || planes * corners.size() > maxWork) return true;  // unsure: offer it
+  const frame::Bounds box = frame::boundsOf(patches.points);
+  const double tolerance = 1e-9 * std::max(box.radius(), 1e-300);
+  bool anyPlane = false;
+  for (uint32_t p = 0; p < patches.bezierCount; ++p) {
+    const auto cp = patches.controlPoints(p);
+    for (const auto& [c, u, v] : kCorner) {
+      const glm::dvec3 n = glm::cross(cp[u] - cp[c], cp[v] - cp[c]);
+      const double length = glm::length(n);
+      if (!(length > 0.0) || !std::isfinite(length)) continue;  // degenerate corner
+      anyPlane = true;
+      const glm::dvec3 unit = n / length;
+      bool above = false, below = false;
+      for (const glm::dvec3& q : corners) {
+        const double d = glm::dot(unit, q - cp[c]);
+        above |= d > tolerance;
+        below |= d < -tolerance;
+        if (above && below) return true;  // points on both sides: not convex
+      }
+    }
+  }
+  return !anyPlane;
+}
+
 std::vector<std::pair<const char*, const Effect*>> Plan::effects() const {
   return {{"frustum", &frustum},
           {"back-patch", &backPatch},
@@ -86,10 +131,6 @@ Planner::Planner(Calibration calibration, PlannerOptions options)
   calibration_.drawMs(1.0);  // throws without draw costs
 }
 
-std::string Planner::occlusionKernel(const PlanInput& input) const {
-  return input.displaced ? options_.displacedKernel : "hiz";
-}
-
 CostCase Planner::costCase(const PlanInput& input, const StageChoice& stages) const {
   CostCase c;
   c.bezier = input.bezier;
@@ -99,19 +140,64 @@ CostCase Planner::costCase(const PlanInput& input, const StageChoice& stages) co
   c.tessFactorZero = options_.tessFactorZero;
   c.pointUpdate = input.deforming && input.cageMoved;
   c.gpuPointUpdate = calibration_.pointUpdateGpuMsPerPatch < calibration_.pointUpdateCpuMsPerPatch;
-  c.boundsPass = c.pointUpdate && isConeMethod(stages.backPatch);
+  // Every back-patch method reads per-patch data the bounds pass recomputes from the moved
+  // points (see hasBoundsPass): its pass is charged to it.
+  c.boundsPass = c.pointUpdate && !stages.backPatch.empty();
+  c.boundsMethod = c.boundsPass ? stages.backPatch : "";
+  c.displaced = input.displaced;
   return c;
+}
+
+std::vector<std::string> Planner::occlusionKernels(const PlanInput& input) const {
+  if (!input.displaced) return {"hiz"};
+  // A displaced mesh: every calibrated displaced bound (Niessner & Loop Table 1), chosen by
+  // predicted cost; none calibrated: the configured one (then not offered).
+  std::vector<std::string> out;
+  for (const frame::CullMethod& m : frame::displacedCullMethods())
+    if (calibration_.cullMsPerPatch.count(m.name)) out.push_back(m.name);
+  if (out.empty()) out.push_back(options_.displacedKernel);
+  return out;
+}
+
+std::string Planner::occlusionKernel(const PlanInput& input) const {
+  return occlusionKernels(input).front();
+}
+
+std::string Planner::bestOcclusionKernel(const PlanInput& input, const State& state,
+                                         const StageChoice& stages, BoxInView box) const {
+  std::string best;
+  double bestMs = std::numeric_limits<double>::infinity();
+  for (const std::string& kernel : occlusionKernels(input)) {
+    if (!calibration_.cullMsPerPatch.count(kernel)) continue;
+    StageChoice with = stages;
+    with.occlusion = kernel;
+    const double ms =
+        predict(calibration_, costCase(input, with), with, ratesFor(state, with, box)).totalMs();
+    if (ms < bestMs) {
+      bestMs = ms;
+      best = kernel;
+    }
+  }
+  return best.empty() ? occlusionKernel(input) : best;
+}
+
+bool Planner::offersOcclusion(const PlanInput& input) const {
+  if (!input.occluders && !input.selfOccluding) return false;
+  for (const std::string& kernel : occlusionKernels(input))
+    if (calibration_.cullMsPerPatch.count(kernel)) return true;
+  return false;
 }
 
 std::vector<StageChoice> Planner::candidates(const PlanInput& input) const {
   std::vector<std::string> backPatch = {""};
   if (input.backPatchValidity.enabled && !input.displaced)
     for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch))
-      if (calibration_.cullMsPerPatch.count(m) && (!input.deforming || isConeMethod(m)))
+      if (calibration_.cullMsPerPatch.count(m) && (!input.deforming || hasBoundsPass(m)))
         backPatch.push_back(m);
   std::vector<std::string> occlusion = {""};
-  if (input.occluders && calibration_.cullMsPerPatch.count(occlusionKernel(input)))
-    occlusion.push_back(occlusionKernel(input));
+  if (offersOcclusion(input))
+    for (const std::string& kernel : occlusionKernels(input))
+      if (calibration_.cullMsPerPatch.count(kernel)) occlusion.push_back(kernel);
   std::vector<StageChoice> out;
   for (bool frustum : {false, true})
     for (const std::string& b : backPatch)
@@ -199,9 +285,14 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
     } else if (p.stages.backPatch.empty() && !probeBackPatch.empty() && due(kBackPatch)) {
       p.stages.backPatch = probeBackPatch;
       p.probe = true;
-    } else if (p.stages.occlusion.empty() && input.occluders &&
-               calibration_.cullMsPerPatch.count(occlusionKernel(input)) && due(kOcclusion)) {
-      p.stages.occlusion = occlusionKernel(input);
+    } else if (p.stages.occlusion.empty() && offersOcclusion(input) && due(kOcclusion)) {
+      // The kernel with the highest rate learned or assumed (as for the back-patch probe).
+      std::string kernel;
+      for (const StageChoice& c : all)
+        if (!c.occlusion.empty() &&
+            (kernel.empty() || stageRate(s, c.occlusion) > stageRate(s, kernel)))
+          kernel = c.occlusion;
+      p.stages.occlusion = kernel.empty() ? occlusionKernel(input) : kernel;
       p.probe = true;
     }
   }
@@ -295,8 +386,8 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
         }
       if (bestMethod.empty()) {
         p.backPatch.reason = input.deforming
-                                 ? "deforming mesh: no calibrated cone method (tcone, ncone) "
-                                   "with a bounds pass"
+                                 ? "deforming mesh: no calibrated method with a bounds pass "
+                                   "(tcone, ncone, tangent-plane)"
                                  : "no back-patch method calibrated";
       } else {
         StageChoice with = p.stages;
@@ -311,20 +402,34 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
   {
     p.occlusion.on = !p.stages.occlusion.empty();
     p.occlusion.choice = p.stages.occlusion;
-    const std::string kernel = occlusionKernel(input);
+    const std::string kernel =
+        p.occlusion.on ? p.stages.occlusion : bestOcclusionKernel(input, s, p.stages, p.box);
     StageChoice with = p.stages, without = p.stages;
     with.occlusion = kernel;
     without.occlusion.clear();
-    if (!input.occluders) {
-      p.occlusion.reason = "nothing can hide it in this view (no occluders, no other instance)";
+    if (!input.occluders && !input.selfOccluding) {
+      p.occlusion.reason =
+          "nothing can hide it in this view (no occluders, no other instance) and its surface "
+          "is convex (cannot hide itself)";
     } else if (!calibration_.cullMsPerPatch.count(kernel)) {
       p.occlusion.reason = "the cost of kernel " + kernel + " is not in the calibration";
     } else {
       p.occlusion.choice = kernel;
       p.occlusion.deltaMs = p.occlusion.on ? now - total(without) : total(with) - now;
+      // Alone in the view, only the mesh itself can hide its patches: the self-occlusion
+      // rule (a non-convex surface), learned from its own frames like the other stages.
+      const double rate = stageRate(s, kernel);
+      const double x = breakEven(with, without, rt);
       p.occlusion.reason =
           (p.probe && p.occlusion.on && s.current->occlusion.empty() ? probe : "") +
-          stageReason(kernel, stageRate(s, kernel), with, without) + " (Hi-Z build included)";
+          (input.occluders ? std::string()
+                           : "self-occlusion (non-convex surface): " + std::string(source(kernel)) +
+                                 " " + percent(rate) +
+                                 (total(with) < total(without)
+                                      ? ", saves " + ms(total(without) - total(with))
+                                      : ", costs " + ms(total(with) - total(without))) +
+                                 ", " + (rate > x ? "pays" : "does not pay") + "; ") +
+          stageReason(kernel, rate, with, without) + " (Hi-Z build included)";
     }
     p.passes.on = p.occlusion.on;
     p.passes.choice = p.occlusion.on ? (p.stages.aggressive ? "aggressive" : "two-pass") : "one";
@@ -361,22 +466,39 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     }
     p.bounds.on = base.boundsPass;
     p.bounds.choice = p.bounds.on ? p.stages.backPatch : "";
-    p.bounds.deltaMs = p.bounds.on ? k * n * calibration_.boundsMsPerPatch : 0.0;
-    p.bounds.reason = !base.pointUpdate ? "points did not move: the cones stay valid"
+    p.bounds.deltaMs = p.bounds.on ? k * n * calibration_.boundsMs(p.stages.backPatch) : 0.0;
+    p.bounds.reason = !base.pointUpdate ? "points did not move: the cull data stays valid"
                       : p.bounds.on     ? "recomputes the " + p.stages.backPatch +
-                                          " cones of the moved points (bounds pass)"
-                                    : "no cone method runs: no bounds pass";
+                                          " cull data of the moved points (bounds pass, " +
+                                          ms(n * calibration_.boundsMs(p.stages.backPatch)) +
+                                          " calibrated, charged to the method)"
+                                    : "no back-patch method runs: no bounds pass";
   }
   // Displacement.
   p.displacement.on = input.displaced;
   if (!input.displaced)
     p.displacement.reason = "no displacement map: no displacement kernel compiled or bound";
   else {
-    p.displacement.choice = p.stages.any() ? options_.displacedKernel : "draw only";
-    p.displacement.reason = p.stages.any()
-                                ? "frustum and occlusion test the " + options_.displacedKernel +
-                                      " bound (Niessner & Loop Table 1: CoN with CAF culls most)"
-                                : "no cull stage: the map is used by the draw only";
+    // The displaced bound the frustum and occlusion stages test: the occlusion stage's, or
+    // the one predicted cheapest with occlusion (the frustum test alone is the same test on
+    // any of them).
+    const std::string kernel = p.stages.occlusion.empty()
+                                   ? bestOcclusionKernel(input, s, p.stages, p.box)
+                                   : p.stages.occlusion;
+    const auto kernels = occlusionKernels(input);
+    const auto measured = std::count_if(
+        kernels.begin(), kernels.end(),
+        [&](const std::string& name) { return calibration_.cullMsPerPatch.count(name) > 0; });
+    p.displacement.choice = p.stages.any() ? kernel : "draw only";
+    char factor[32];
+    std::snprintf(factor, sizeof factor, "%.2f", calibration_.displacedDrawFactorAt(input.tess));
+    p.displacement.reason =
+        std::string("draw RT(tf) x") + factor + " (calibrated displacement lookup); " +
+        (p.stages.any() ? "frustum and occlusion test the " + kernel +
+                              " bound: cheapest predicted of " + std::to_string(measured) +
+                              " calibrated displaced bound" + (measured == 1 ? "" : "s") + " at " +
+                              source(kernel) + " rate " + percent(stageRate(s, kernel))
+                        : std::string("no cull stage: the map is used by the draw only"));
   }
 }
 
@@ -412,9 +534,12 @@ frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base
   if (!plan.displacement.on) {
     base.cull.displacementMap = nullptr;
     base.cull.uvCorners = {};
-  } else if (!plan.stages.occlusion.empty()) {
-    if (const auto& d = frame::cullMethod(plan.stages.occlusion).displaced)
-      base.cull.displacedKernel = *d;
+  } else if (plan.stages.any()) {
+    // The displaced bound the frustum and occlusion stages test (Plan::displacement).
+    const std::string& kernel =
+        plan.stages.occlusion.empty() ? plan.displacement.choice : plan.stages.occlusion;
+    for (const frame::CullMethod& m : frame::displacedCullMethods())
+      if (m.name == kernel) base.cull.displacedKernel = *m.displaced;
   }
   return base;
 }

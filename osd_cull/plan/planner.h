@@ -26,6 +26,7 @@
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/frame/camera.h"
 #include "osd_cull/frame/cull_frame.h"
+#include "osd_cull/patch/patch_set.h"
 #include "osd_cull/plan/cost_model.h"
 
 #include <cstdint>
@@ -64,7 +65,22 @@ struct PlanInput {
   bound::BackPatchValidity backPatchValidity{false, "mesh validity not given"};
   /// Something can hide this mesh in this view: triangle occluders or other instances.
   bool occluders = false;
+  /// The mesh can hide parts of itself (its surface is not convex): Hi-Z occlusion is a
+  /// candidate even alone in the view. True when unknown (when unsure, offer it: a stage
+  /// that does not pay is switched off by its measured rate); mayHideItself() decides it
+  /// from the patches.
+  bool selfOccluding = true;
 };
+
+/// \brief Whether a mesh can hide parts of itself in some view from outside, i.e. whether
+/// its surface may be non-convex. Conservative in the planner's sense, "when unsure, yes":
+/// false only when every sampled limit point (the corners of every Bézier patch, which lie
+/// on the limit surface) lies on one side of the tangent plane at every Bézier patch corner
+/// (the plane through the corner and its two edge control points), which a convex surface
+/// satisfies. A mesh of more than `maxWork` point-plane tests, or without Bézier patches,
+/// or with a degenerate corner everywhere, gets true. Several disjoint convex objects in
+/// one set fail the test (they can hide each other): true.
+bool mayHideItself(const PatchSet& patches, uint64_t maxWork = 100'000'000);
 
 /// \brief One effect of a plan: on or off, the choice made (a method, "cpu"), why, and
 /// the predicted change of the frame time it makes (negative: it saves time).
@@ -117,10 +133,24 @@ struct PlannerOptions {
   /// tess 8: TCONE 12.7%, tangent plane 18.7%), occlusion, and the frustum stage of a box
   /// that crosses the view.
   std::map<std::string, double> priorRates = {
-      {"frustum", 0.3},           {"tcone", 0.12}, {"ncone", 0.15}, {"tangent-plane", 0.18},
-      {"tangent-plane-16", 0.18}, {"hiz", 0.10}};
-  /// The displaced kernel for a displaced mesh (Niessner & Loop Table 1: CoN with the
-  /// camera-aligned frustum culls most).
+      {"frustum", 0.3},
+      {"tcone", 0.12},
+      {"ncone", 0.15},
+      {"tangent-plane", 0.18},
+      {"tangent-plane-16", 0.18},
+      {"hiz", 0.10},
+      // The displaced kernels: the Hi-Z prior times the share of the undisplaced Hi-Z rate
+      // each kept on BigGuy level 1 (docs/results/displacement.md, Table 1: 15.8% ... 26.2%
+      // against 34.7%).
+      {"full-oobb", 0.046},
+      {"acon-oobb", 0.058},
+      {"con-oobb", 0.059},
+      {"full-caf", 0.061},
+      {"acon-caf", 0.074},
+      {"con-caf", 0.076}};
+  /// The displaced kernel for a displaced mesh when the calibration measured none of the
+  /// six (Niessner & Loop Table 1: CoN with the camera-aligned frustum culls most); with
+  /// measured ones the planner takes the cheapest predicted.
   std::string displacedKernel = "con-caf";
 };
 
@@ -158,7 +188,11 @@ class Planner {
     double scale = 1.0;  // Plan::timeScale
   };
   CostCase costCase(const PlanInput& input, const StageChoice& stages) const;
+  bool offersOcclusion(const PlanInput& input) const;
   std::string occlusionKernel(const PlanInput& input) const;
+  std::vector<std::string> occlusionKernels(const PlanInput& input) const;
+  std::string bestOcclusionKernel(const PlanInput& input, const State& state,
+                                  const StageChoice& stages, BoxInView box) const;
   std::vector<StageChoice> candidates(const PlanInput& input) const;
   CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
   double stageRate(const State& state, const std::string& stage) const;

@@ -19,9 +19,10 @@ const char* kDescription =
     R"(Measures on this device the terms of the effect plan's cost model (Niessner & Loop
 §6.3, Zachmann's T = t + (1 - P)R): draw cost per patch against tessellation level RT(tf)
 with its exact TES work, a patch drawn with factor 0 (RT0), each cull stage's cost per
-patch (CT: frustum, every back-patch method, Hi-Z occlusion), the Hi-Z build at two image
-sizes, the CPU and GPU control-point update and the bounds pass per patch; medians over
-repeats. Stored in the calibration cache ($OSD_CULL_CALIBRATION_CACHE, else
+patch (CT: frustum, every back-patch method, Hi-Z occlusion and the six displaced kernels),
+the displaced draw against the undisplaced one (a built-in torus with texture coordinates
+and a procedural map), the Hi-Z build at two image sizes, the CPU and GPU control-point
+update and the bounds pass per patch and method; medians over repeats. Stored in the calibration cache ($OSD_CULL_CALIBRATION_CACHE, else
 $XDG_CACHE_HOME/osd_cull/calibration or ~/.cache/osd_cull/calibration) under the device,
 driver and library version; `osd-cull plan` and `render --plan auto` read it there. A
 cached calibration is shown, not measured again, unless --force is given.)";
@@ -72,6 +73,18 @@ void print(const plan::Calibration& c) {
   std::printf("\npoint update per patch: cpu %.3f us, gpu %.3f us; bounds pass %.3f us\n",
               1e3 * c.pointUpdateCpuMsPerPatch, 1e3 * c.pointUpdateGpuMsPerPatch,
               1e3 * c.boundsMsPerPatch);
+  if (!c.displacedDrawFactor.empty()) {
+    std::printf("displaced draw RT(tf) / undisplaced (procedural map on the UV torus):");
+    for (const auto& [level, factor] : c.displacedDrawFactor)
+      std::printf(" tess %u %.2fx;", level, factor);
+    std::printf("\n");
+  }
+  if (!c.boundsMsPerMethod.empty()) {
+    std::printf("bounds pass per patch and method:");
+    for (const auto& [method, ms] : c.boundsMsPerMethod)
+      std::printf(" %s %.3f us;", method.c_str(), 1e3 * ms);
+    std::printf("\n");
+  }
   std::printf(
       "(break-even x = (RT0 + CT) / (RT - RT0), Niessner & Loop §6.3, with RT0 = 0 for "
       "compact draw lists and CT including the frustum kernel)\n");
@@ -83,7 +96,9 @@ int run(const CalibrateArgs& args) {
   const plan::CalibrationKey key = plan::calibrationKey(context);
   const std::filesystem::path cacheFile = plan::calibrationCacheFile(key);
   std::optional<plan::Calibration> c;
-  if (!args.force) c = plan::loadCachedCalibration(key);
+  std::string outdated;
+  if (!args.force) c = plan::loadCachedCalibration(key, &outdated);
+  if (!outdated.empty()) std::cout << "note: " << outdated << "; measuring it again\n";
   if (c && (!args.quick || c->quick)) {
     std::cout << "cached calibration: " << cacheFile.string() << " (--force measures again)\n";
   } else {

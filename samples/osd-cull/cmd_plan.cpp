@@ -61,6 +61,7 @@ std::vector<plan::ScenePlanInput> meshInputs(const PlanArgs& args) {
                                  args.height.value_or(720));
   in.backPatchValidity = mesh.backPatch;
   in.displaced = args.displaced;
+  in.selfOccluding = plan::mayHideItself(mesh.patches);
   return {{"default/0", 0, 0, in}};
 }
 

@@ -227,6 +227,7 @@ int run(const RenderArgs& args) {
   const std::unique_ptr<plan::Planner> planner =
       makePlanner(args.plan, context, !args.cull.mode.empty(), args.adaptive <= 0.0, std::cout);
   std::optional<plan::Plan> lastPlan;
+  const bool selfOccluding = planner && plan::mayHideItself(scene.patches);
   auto planFrame = [&](uint32_t f, const frame::Camera& view) {
     plan::PlanInput in;
     in.mesh = scene.patches.source;
@@ -239,6 +240,7 @@ int run(const RenderArgs& args) {
     in.displaced = displacementMap.has_value();
     in.backPatchValidity = scene.backPatch;
     in.occluders = !occluders.empty();
+    in.selfOccluding = selfOccluding;
     plan::Plan p = planner->plan("render", in, f);
     if (!lastPlan || !(p.stages == lastPlan->stages)) {
       printPlanChange(lastPlan ? &*lastPlan : nullptr, p, std::cout);
