@@ -7,19 +7,35 @@
 // (covered unculled, background culled), fewer than 0.01% differing (depth ties between
 // neighbouring patches).
 //
+// With --plan (issue 12, docs/results/plan.md "Scenes") a second player of the same scene
+// runs the effect plan (every instance in every view planned each frame from the device's
+// calibration, or --calibration FILE), and each frame times three cases interleaved: the
+// planned frame, the frame with all stages, and the unculled draw (the planned and the
+// all-stages frame alternate which runs first); it prints their medians, the planned frame
+// against the better of the other two, its predicted time against the measured one, and
+// the planned frame's own image check against its unculled draw.
+// --scene character plays a displaced, skinned BigGuy beside a twisting cube among static
+// meshes behind a wall (triangle occluder) instead of the built-in scene.
+//
 // Usage: bench-scene-image [--frames N] [--width W] [--height H] [--tess L]
 //                          [--back-patch METHOD] [--gpu-points] [--every K]
+//                          [--scene built-in|character] [--plan] [--calibration FILE]
 //   prints every K-th frame (default 10) and the frames with a lost pixel or over 0.01%
 //   differing, then the worst figures and medians over all frames and views; exits 1 when
 //   a pixel was lost or a frame differed by 0.01% or more.
+#include "adapters/scene_assets.h"
+#include "adapters/scene_file.h"
 #include "bench_support.h"
 #include "osd_cull/error.h"
+#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/plan/planner.h"
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/scene/scene_player.h"
 #include "osd_cull/vk/context.h"
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,18 +50,52 @@ struct Args {
   std::string backPatch = "ncone";
   bool gpuPoints = false;
   uint32_t every = 10;
+  std::string scene = "built-in";
+  bool plan = false;
+  std::string calibration;
 };
 
+// A skinned, displaced BigGuy and a twisting cube among static meshes, a wall in front.
+std::string characterScene(uint32_t frames) {
+  return R"({"version": 1,
+  "settings": {"frameCount": )" +
+         std::to_string(frames) + R"(, "framesPerSecond": 24},
+  "meshes": [
+    {"name": "guy", "file": "characters/bigguy.obj", "level": 2,
+     "animation": {"deformer": "skin", "rig": "limbs", "joints": 4, "swingDegrees": 25},
+     "displacement": {"map": "procedural", "scale": 0.4}},
+    {"name": "twister", "builtIn": "creased-cube", "level": 2,
+     "animation": {"deformer": "twist", "axis": 2, "amount": 0.4}},
+    {"name": "torus", "builtIn": "torus", "level": 2},
+    {"name": "pawn", "file": "shapes/catmark_pawn.obj", "level": 2}],
+  "instances": [
+    {"name": "guy", "mesh": "guy", "transform": {"scale": 0.05}},
+    {"name": "twister", "mesh": "twister", "transform": {"translate": [3, 1, 0.5]}},
+    {"name": "torus", "mesh": "torus", "transform": {"translate": [-3, 2, 0.5]}},
+    {"name": "pawn", "mesh": "pawn", "transform": {"translate": [0, 6, 0], "scale": 1.5}},
+    {"name": "far torus", "mesh": "torus", "transform": {"translate": [20, 60, 3]}}],
+  "occluders": [{"box": {"min": [-1.5, -4, -1], "max": [1.5, -3.8, 0.6]}}],
+  "views": [{"name": "main", "camera": {"eye": [2, -12, 4], "target": [0, 0, 1]},
+             "path": {"orbit": {"degreesPerSecond": 10}}}]})";
+}
+
 int run(const Args& a) {
-  scene::LoadedScene s = scene::builtInScene(a.frames);
+  if (a.scene != "built-in" && a.scene != "character")
+    throw Error("--scene: '" + a.scene + "' is neither built-in nor character");
+  scene::LoadedScene s = a.scene == "built-in"
+                             ? scene::builtInScene(a.frames)
+                             : adapters::loadScene(adapters::parseScene(
+                                   characterScene(a.frames), "character scene", bench::dataDir()));
   s.description.settings.width = a.width;
   s.description.settings.height = a.height;
-  scene::ViewDescription sun;
-  sun.name = "sun";
-  sun.kind = scene::ViewDescription::Kind::Shadow;
-  sun.lightDirection = {-0.4, 0.5, -1.0};
-  sun.width = sun.height = a.height;
-  s.description.views.push_back(sun);
+  if (a.scene == "built-in") {
+    scene::ViewDescription sun;
+    sun.name = "sun";
+    sun.kind = scene::ViewDescription::Kind::Shadow;
+    sun.lightDirection = {-0.4, 0.5, -1.0};
+    sun.width = sun.height = a.height;
+    s.description.views.push_back(sun);
+  }
 
   vulkan::Context context;
   frame::CullFrameOptions options;
@@ -61,6 +111,25 @@ int run(const Args& a) {
       a.frames, a.tess, a.backPatch.c_str(), a.gpuPoints ? "GPU" : "CPU",
       context.info().name.c_str());
   for (const std::string& line : player.describe()) std::printf("  %s\n", line.c_str());
+  // --plan: the same scene played by a planned player, like for like.
+  std::unique_ptr<plan::Planner> planner;
+  std::unique_ptr<scene::ScenePlayer> planned;
+  if (a.plan) {
+    const plan::Calibration calibration = plan::deviceCalibration(context, a.calibration);
+    std::printf("plan: calibration of %s%s\n", calibration.key.device.c_str(),
+                calibration.quick ? " (quick)" : "");
+    planner = std::make_unique<plan::Planner>(calibration);
+    planned = std::make_unique<scene::ScenePlayer>(
+        context, s, options,
+        a.gpuPoints ? frame::PointUpdatePath::Gpu : frame::PointUpdatePath::Cpu, planner.get());
+  }
+  std::vector<std::vector<double>> plannedMs(player.viewCount()), predictedMs(player.viewCount());
+  std::vector<uint64_t> plannedLost(player.viewCount(), 0);
+  std::vector<std::unique_ptr<frame::RenderTarget>> plannedPlain;
+  if (planned)
+    for (size_t v = 0; v < player.viewCount(); ++v)
+      plannedPlain.push_back(std::make_unique<frame::RenderTarget>(
+          context, player.target(v).width(), player.target(v).height()));
 
   std::vector<std::unique_ptr<frame::RenderTarget>> plain;
   for (size_t v = 0; v < player.viewCount(); ++v)
@@ -78,8 +147,22 @@ int run(const Args& a) {
   std::printf("\n%6s %-5s %9s %8s %6s %11s %10s %9s %9s\n", "frame", "view", "culled", "covered",
               "lost", "differing", "TES ratio", "culled ms", "plain ms");
   for (uint32_t f = 0; f < a.frames; ++f) {
+    // The planned and the all-stages frame alternate which runs first.
+    std::vector<scene::ViewFrame> plannedViews;
+    if (planned && f % 2 == 0) plannedViews = planned->render(f);
     const std::vector<scene::ViewFrame> views = player.render(f);
+    if (planned && f % 2 == 1) plannedViews = planned->render(f);
     bool failed = false;
+    for (size_t v = 0; v < plannedViews.size(); ++v) {
+      plannedMs[v].push_back(plannedViews[v].stats.totalMs());
+      double predicted = 0.0;
+      for (const plan::Plan& p : plannedViews[v].plans)
+        predicted += p.predicted.totalMs() - p.predicted.updateMs;
+      predictedMs[v].push_back(predicted);
+      const frame::ItemComparison c = planned->compareWithUnculled(v, *plannedPlain[v]).items;
+      plannedLost[v] += c.lost;
+      failed |= c.lost > 0 || c.differingShare() >= 1e-4;
+    }
     for (size_t v = 0; v < views.size(); ++v) {
       // Each culled frame is followed by its unculled draw: the two are interleaved.
       const scene::UnculledComparison u = player.compareWithUnculled(v, *plain[v]);
@@ -117,6 +200,28 @@ int run(const Args& a) {
                 s.description.views[v].name.c_str(), static_cast<unsigned long long>(worst[v].lost),
                 100.0 * worst[v].differing, worst[v].frame, 100.0 * bench::median(culledShare[v]),
                 bench::median(tesRatio[v]), bench::median(culledMs[v]), bench::median(plainMs[v]));
+  if (planned) {
+    std::printf(
+        "\nplan (medians per frame, ms; planned, all stages and unculled interleaved in each "
+        "frame)\n%-5s %9s %9s %9s %16s %14s %12s\n",
+        "view", "planned", "all", "unculled", "planned/better", "predicted/meas", "lost pixels");
+    for (size_t v = 0; v < player.viewCount(); ++v) {
+      const double p = bench::median(plannedMs[v]), all = bench::median(culledMs[v]),
+                   none = bench::median(plainMs[v]);
+      std::printf("%-5s %9.2f %9.2f %9.2f %16.3f %14.3f %12llu\n",
+                  s.description.views[v].name.c_str(), p, all, none, p / std::min(all, none),
+                  bench::median(predictedMs[v]) / p,
+                  static_cast<unsigned long long>(plannedLost[v]));
+    }
+    for (const scene::MeshWork& w : planned->work())
+      std::printf("planned mesh '%s': %s, %llu point updates, %llu bounds dispatches\n",
+                  w.mesh.c_str(), w.deforms ? "deforms" : "static",
+                  static_cast<unsigned long long>(w.pointUpdates),
+                  static_cast<unsigned long long>(w.boundsDispatches));
+    for (size_t v = 0; v < player.viewCount(); ++v)
+      std::printf("view %s: %zu CullFrame(s) built for the plan's choices\n",
+                  s.description.views[v].name.c_str(), planned->cullFrameCount(v));
+  }
   for (const scene::MeshWork& w : player.work())
     std::printf("mesh '%s': %s, %llu point updates, %llu bounds dispatches\n", w.mesh.c_str(),
                 w.deforms ? "deforms" : "static", static_cast<unsigned long long>(w.pointUpdates),
@@ -145,6 +250,9 @@ int main(int argc, char** argv) {
                         .text("--back-patch", a.backPatch)
                         .flag("--gpu-points", a.gpuPoints)
                         .number("--every", a.every, 1)
+                        .text("--scene", a.scene)
+                        .flag("--plan", a.plan)
+                        .text("--calibration", a.calibration)
                         .parse(argc, argv);
     return go ? osd_cull::run(a) : 0;
   });

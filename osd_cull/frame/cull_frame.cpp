@@ -80,13 +80,20 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
   for (uint32_t i = 0; i < options.statsSlots; ++i)
     slots_.push_back(std::make_unique<StatsSlot>(context, meshes.size()));
   const CullSettings& cull = options.cull;
-  if (!cull.occlusion.empty() && target.format().samples != VK_SAMPLE_COUNT_1_BIT)
+  // Each mesh's stages: its own (CullMesh::stages) or the options'.
+  auto stagesOf = [&](const CullMesh& m) {
+    return m.stages ? *m.stages : CullStages{cull.frustum, cull.backPatch, cull.occlusion};
+  };
+  const bool anyOcclusion = std::any_of(meshes.begin(), meshes.end(), [&](const CullMesh& m) {
+    return !stagesOf(m).occlusion.empty();
+  });
+  if (anyOcclusion && target.format().samples != VK_SAMPLE_COUNT_1_BIT)
     throw Error("CullFrame: Hi-Z occlusion needs a single-sample depth attachment");
-  if (!cull.occlusion.empty()) {
+  if (anyOcclusion) {
     pyramid_ = std::make_unique<HiZPyramid>(context, target.depth(), options.hiz);
     stage_ = std::make_unique<HiZCullStage>(context, *pyramid_);
   }
-  const bool anyStage = cull.frustum || !cull.backPatch.empty() || !cull.occlusion.empty();
+  bool unculled = false;  // a mesh without any stage draws from survivedResults_
   uint32_t base = 0;
   for (size_t i = 0; i < meshes_.size(); ++i) {
     const CullMesh& m = meshes_[i];
@@ -112,7 +119,8 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
       return o.gpu == m.gpu && o.host == m.host && o.cullData == m.cullData &&
              o.displacementMap == m.displacementMap && o.uvCorners.data() == m.uvCorners.data() &&
              o.displacedKernel.extension == m.displacedKernel.extension &&
-             o.displacedKernel.box == m.displacedKernel.box && validity(o) == validity(m);
+             o.displacedKernel.box == m.displacedKernel.box && validity(o) == validity(m) &&
+             stagesOf(o) == stagesOf(m);
     };
     auto batch = options.batchInstances ? std::find_if(batches_.begin(), batches_.end(), same)
                                         : batches_.end();
@@ -127,6 +135,12 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
   for (Batch& b : batches_) {
     const CullMesh& m = meshes_[b.members.front()];
     CullSettings settings = cull;
+    const CullStages stages = stagesOf(m);
+    settings.frustum = stages.frustum;
+    settings.backPatch = stages.backPatch;
+    settings.occlusion = stages.occlusion;
+    const bool anyStage = stages.any();
+    unculled = unculled || !anyStage;
     if (m.backPatchValidity) settings.backPatchValidity = *m.backPatchValidity;
     if (m.displacementMap) {
       settings.displacementMap = m.displacementMap;
@@ -144,7 +158,7 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
             context, std::max<size_t>(4, size_t{m.gpu->patchCount()} * 4),
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   }
-  if (!anyStage) {
+  if (unculled) {
     survivedResults_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{base} * 4),
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     vulkan::fill(context, survivedResults_, shader::kStageNone);
@@ -251,8 +265,10 @@ void CullFrame::recordBatchCull(VkCommandBuffer cmd, const Camera& camera, Batch
   // composed in double (instanceCamera).
   std::vector<Camera> cameras;
   for (size_t m : batch.members) cameras.push_back(instanceCamera(camera, meshes_[m].model));
+  // The occlusion stage's set only for a pass that has that stage (meshes' stages differ).
+  const bool occlusion = stage_ && !batch.pass->settings().occlusion.empty();
   batch.pass->record(cmd, cameras, options_.render.tessellation,
-                     stage_ ? stage_->set() : VK_NULL_HANDLE);
+                     occlusion ? stage_->set() : VK_NULL_HANDLE);
   if (batch.members.size() == 1) {
     vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, vulkan::scope::kComputeRead);
     return;

@@ -33,6 +33,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace osd_cull::frame {
@@ -96,6 +97,15 @@ struct CullFrameStats {
   double totalMs() const { return frameMs; }
 };
 
+/// \brief The three stages of a cull kernel, as CullSettings names them.
+struct CullStages {
+  bool frustum = false;
+  std::string backPatch;  ///< a back-patch method; empty: none
+  std::string occlusion;  ///< "hiz" or a displaced kernel; empty: none
+  bool any() const { return frustum || !backPatch.empty() || !occlusion.empty(); }
+  bool operator==(const CullStages&) const = default;
+};
+
 /// \brief One patch mesh (or instance) of the scene. Both must outlive the CullFrame.
 /// Several CullMeshes may share one GpuPatchSet with different models: the instances of a
 /// mesh, each with its own status and culled with view · model composed in double.
@@ -116,6 +126,11 @@ struct CullMesh {
   const bound::DisplacementMap* displacementMap = nullptr;
   std::span<const glm::dvec2> uvCorners;
   CullMethod::Displaced displacedKernel;
+  /// The cull stages of this mesh, instead of CullFrameOptions::cull's frustum, backPatch
+  /// and occlusion (a scene's effect plan chooses them per instance): instances batch only
+  /// with instances of the same stages, one with no stage is drawn unculled, and the frame
+  /// builds its Hi-Z pyramid when any mesh has an occlusion stage.
+  std::optional<CullStages> stages;
 };
 
 /// \brief The frame pipeline of one view.

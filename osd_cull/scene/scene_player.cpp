@@ -4,8 +4,10 @@
 #include "osd_cull/frame/cull/cull_methods.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
+#include "osd_cull/plan/scene_inputs.h"
 #include "osd_cull/scene/scene_eval.h"
 
+#include <array>
 #include <map>
 #include <optional>
 
@@ -33,7 +35,8 @@ struct ScenePlayer::Points {
 };
 
 ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
-                         const frame::CullFrameOptions& options, frame::PointUpdatePath pointUpdate)
+                         const frame::CullFrameOptions& options, frame::PointUpdatePath pointUpdate,
+                         plan::Planner* planner)
     : context_(context), scene_(scene), options_(options) {
   const SceneDescription& d = scene.description;
   if (d.instances.empty()) throw Error("scene " + d.source + ": no instances to draw");
@@ -72,46 +75,74 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
   // A deforming mesh gets the cull data of the back-patch method in use (TCONE, NCONE, the
   // tangent plane's drawn-triangle bound) from the GPU bounds pass, recomputed on every frame
   // it moves (frame/cull/bounds_pass.h); a displaced one its displaced bound's cones.
-  std::optional<bound::BackPatchMethod> backPatch;
   if (!options.cull.backPatch.empty()) {
     const bound::BackPatchMethod ref = frame::cullMethod(options.cull.backPatch).reference;
-    if (frame::BoundsPass::hasCullData(ref)) backPatch = ref;
-  }
-  std::vector<frame::CullMesh> meshes;
-  for (const Instance& inst : instances_) {
-    Points& p = *points_[inst.points];
-    const SceneMesh& mesh = scene.meshes[p.mesh];
-    frame::CullMesh m{.gpu = &p.gpu(),
-                      .host = &p.host(),
-                      .model = inst.model,
-                      .backPatchValidity = mesh.validity};
-    if (mesh.displacementMap) {
-      m.displacementMap = &*mesh.displacementMap;
-      m.uvCorners = mesh.extraction.uvCorners;
-      m.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
-    }
-    if (p.dynamic && mesh.displacementMap) {
-      m.cullData = &p.dynamic->displacedCullData(*mesh.displacementMap, mesh.extraction.uvCorners,
-                                                 mesh.displacedExtension);
-    } else if (p.dynamic && mesh.validity.enabled) {
-      if (backPatch)
-        m.cullData = &p.dynamic->cullData(*backPatch);
-      else if (!options.cull.backPatch.empty())
-        m.backPatchValidity = bound::BackPatchValidity{
-            false, "mesh '" + mesh.name + "' deforms; the bounds pass recomputes cull data for " +
-                       "tcone, ncone and the tangent plane only"};
-    }
-    meshes.push_back(std::move(m));
+    if (frame::BoundsPass::hasCullData(ref)) backPatch_ = ref;
   }
   for (const ViewDescription& v : d.views) {
     View view;
     const uint32_t w = v.width ? v.width : d.settings.width;
     const uint32_t h = v.height ? v.height : d.settings.height;
     view.target = std::make_unique<frame::RenderTarget>(context, w, h);
-    view.frame =
-        std::make_unique<frame::CullFrame>(context, *renderer_, *view.target, meshes, options);
     views_.push_back(std::move(view));
   }
+  moved_.assign(points_.size(), false);
+  setPlanner(planner);
+  if (!planner)
+    for (size_t v = 0; v < views_.size(); ++v) views_[v].frame = &fixedFrame(v);
+}
+
+frame::CullFrame& ScenePlayer::fixedFrame(size_t view) {
+  View& v = views_.at(view);
+  std::unique_ptr<frame::CullFrame>& f = v.frames[""];
+  if (!f) {
+    std::vector<frame::CullMesh> meshes;
+    for (size_t i = 0; i < instances_.size(); ++i) meshes.push_back(cullMesh(i, nullptr, nullptr));
+    f = std::make_unique<frame::CullFrame>(context_, *renderer_, *v.target, meshes, options_);
+  }
+  return *f;
+}
+
+frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages,
+                                      const frame::CullMethod::Displaced* kernel) {
+  const Instance& inst = instances_[i];
+  Points& p = *points_[inst.points];
+  const SceneMesh& mesh = scene_.meshes[p.mesh];
+  frame::CullMesh m{
+      .gpu = &p.gpu(), .host = &p.host(), .model = inst.model, .backPatchValidity = mesh.validity};
+  if (stages) m.stages = *stages;
+  if (mesh.displacementMap) {
+    m.displacementMap = &*mesh.displacementMap;
+    m.uvCorners = mesh.extraction.uvCorners;
+    m.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
+    // A planned displaced bound (Niessner & Loop Table 1) replaces the scene's.
+    if (kernel) m.displacedKernel = *kernel;
+  }
+  const std::string& method = stages ? stages->backPatch : options_.cull.backPatch;
+  // The cone method whose cull data the bounds pass recomputes (the options' or the plan's).
+  bool cone = backPatch_.has_value();
+  bound::BackPatchMethod coneMethod = backPatch_.value_or(bound::BackPatchMethod{});
+  if (stages) {
+    cone = false;
+    if (!method.empty()) {
+      coneMethod = frame::cullMethod(method).reference;
+      cone = frame::BoundsPass::hasCullData(coneMethod);
+    }
+  }
+  // The bounds passes of a deforming mesh are made on first use: a mesh planned without a
+  // cone method never runs one.
+  if (p.dynamic && mesh.displacementMap) {
+    m.cullData = &p.dynamic->displacedCullData(*mesh.displacementMap, mesh.extraction.uvCorners,
+                                               m.displacedKernel.extension);
+  } else if (p.dynamic && mesh.validity.enabled) {
+    if (cone)
+      m.cullData = &p.dynamic->cullData(coneMethod);
+    else if (!method.empty())
+      m.backPatchValidity = bound::BackPatchValidity{
+          false, "mesh '" + mesh.name + "' deforms; the bounds pass recomputes cull data for " +
+                     "tcone, ncone and the tangent plane only"};
+  }
+  return m;
 }
 
 ScenePlayer::~ScenePlayer() = default;
@@ -129,11 +160,14 @@ const PatchSet& ScenePlayer::patches(size_t i) const {
 void ScenePlayer::seek(uint32_t frameIndex) {
   const SceneDescription& d = scene_.description;
   const double t = d.settings.seconds(frameIndex);
-  for (auto& p : points_) {
+  moved_.assign(points_.size(), false);
+  for (size_t k = 0; k < points_.size(); ++k) {
+    const std::unique_ptr<Points>& p = points_[k];
     const SceneMesh& mesh = scene_.meshes[p->mesh];
     // A static mesh is never re-evaluated; a deforming one only when its time changed, and
     // then DynamicPatchMesh::update() recomputes its points and its bounds-pass cull data.
     if (!mesh.animation || p->posedAt == t + p->timeOffset) continue;
+    moved_[k] = true;
     p->posedAt = t + p->timeOffset;
     p->cage.resize(mesh.animation->vertexCount());
     mesh.animation->positions(t + p->timeOffset, p->cage);
@@ -156,21 +190,163 @@ void ScenePlayer::seek(uint32_t frameIndex) {
   bounds_ = worldBounds(objectBounds, models);
   for (size_t v = 0; v < views_.size(); ++v) {
     views_[v].camera = viewCamera(d.views[v], d.settings, bounds_, t);
-    for (size_t i = 0; i < instances_.size(); ++i)
-      views_[v].frame->setModel(i, instances_[i].model);
+    if (views_[v].frame)
+      for (size_t i = 0; i < instances_.size(); ++i)
+        views_[v].frame->setModel(i, instances_[i].model);
   }
+}
+
+void ScenePlayer::setPlanner(plan::Planner* planner) {
+  planner_ = planner;
+  if (planner && selfOccluding_.empty()) selfOccluding_ = plan::selfOccluding(scene_);
+  for (View& v : views_) v.frame = v.frames.count("") ? v.frames.at("").get() : nullptr;
+}
+
+frame::CullFrame& ScenePlayer::cullFrame(size_t view) {
+  if (!planner_ && !views_.at(view).frame) views_[view].frame = &fixedFrame(view);
+  frame::CullFrame* f = views_.at(view).frame;
+  if (!f)
+    throw Error("ScenePlayer::cullFrame: view '" + scene_.description.views.at(view).name +
+                "' has not been culled yet (its plan draws it without culling)");
+  return *f;
 }
 
 std::vector<ViewFrame> ScenePlayer::render(uint32_t frameIndex) {
   seek(frameIndex);
   std::vector<ViewFrame> out;
-  for (size_t v = 0; v < views_.size(); ++v)
+  for (size_t v = 0; v < views_.size(); ++v) {
+    if (planner_) {
+      out.push_back(renderPlanned(v, frameIndex));
+      continue;
+    }
+    views_[v].frame = &fixedFrame(v);
+    for (size_t i = 0; i < instances_.size(); ++i)
+      views_[v].frame->setModel(i, instances_[i].model);
     out.push_back({scene_.description.views[v].name, views_[v].camera,
                    views_[v].frame->render(views_[v].camera, occluderPtrs_)});
+  }
+  return out;
+}
+
+namespace {
+
+frame::CullStages cullStages(const plan::StageChoice& c) {
+  return {c.frustum, c.backPatch, c.occlusion};
+}
+
+}  // namespace
+
+frame::CullFrame& ScenePlayer::plannedFrame(size_t view, const std::vector<plan::Plan>& plans,
+                                            bool& built) {
+  // The frame-wide options of the choices: two-pass unless every occluding instance is
+  // planned aggressive, Hi-Z at full resolution when one asks for it.
+  frame::CullFrameOptions o = options_;
+  bool occlusion = false, aggressive = true, full = false;
+  std::string key;
+  for (const plan::Plan& p : plans) {
+    key += p.stages.describe() + (p.displacement.on ? " " + p.displacement.choice : "") + ";";
+    if (p.stages.occlusion.empty()) continue;
+    occlusion = true;
+    aggressive = aggressive && p.stages.aggressive;
+    full = full || p.stages.hizFull;
+  }
+  o.aggressive = occlusion && aggressive;
+  o.hiz.fullResolution = full;
+  key += o.aggressive ? "aggressive" : "two-pass";
+  key += full ? ", full" : ", half";
+  View& v = views_.at(view);
+  auto it = v.frames.find(key);
+  built = it == v.frames.end();
+  if (built) {
+    std::vector<frame::CullMesh> meshes;
+    for (size_t i = 0; i < instances_.size(); ++i) {
+      const frame::CullStages stages = cullStages(plans[i].stages);
+      // The displaced bound the plan's frustum and occlusion stages test (applyPlan).
+      std::optional<frame::CullMethod::Displaced> kernel;
+      if (const SceneMesh& mesh = scene_.meshes[points_[instances_[i].points]->mesh];
+          mesh.displacementMap && plans[i].displacement.on && plans[i].culls()) {
+        frame::CullFrameOptions withMap = options_;
+        withMap.cull.displacementMap = &*mesh.displacementMap;
+        withMap.cull.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
+        kernel = plan::applyPlan(plans[i], withMap).cull.displacedKernel;
+      }
+      meshes.push_back(cullMesh(i, &stages, kernel ? &*kernel : nullptr));
+    }
+    it = v.frames
+             .emplace(key, std::make_unique<frame::CullFrame>(context_, *renderer_, *v.target,
+                                                              meshes, o))
+             .first;
+  } else if (o.aggressive && it->second.get() != v.frame) {
+    // Kept from earlier frames, its status is stale: the aggressive mode draws only what it
+    // holds visible, so start over (two passes re-test every patch and need no reset).
+    it->second->reset(o.firstFrame);
+  }
+  v.frame = it->second.get();
+  return *v.frame;
+}
+
+ViewFrame ScenePlayer::renderPlanned(size_t view, uint32_t frameIndex) {
+  View& v = views_.at(view);
+  ViewFrame out{scene_.description.views.at(view).name, v.camera, {}, {}, true};
+  std::vector<frame::Bounds> objectBounds;
+  std::vector<glm::dmat4> models;
+  for (const Instance& i : instances_) {
+    objectBounds.push_back(points_[i.points]->bounds);
+    models.push_back(i.model);
+  }
+  const double tess = options_.render.tessellation.uniformLevel;
+  bool culls = false;
+  for (size_t i = 0; i < instances_.size(); ++i) {
+    plan::PlanInput in = plan::instancePlanInput(scene_, view, i, objectBounds, models, v.camera,
+                                                 tess, moved_[instances_[i].points]);
+    in.selfOccluding = selfOccluding_[i];
+    out.plans.push_back(planner_->plan(plan::scenePlanKey(scene_, view, i), in, frameIndex));
+    culls = culls || out.plans.back().culls();
+  }
+  // Per instance: culled by frustum, back-patch and occlusion stage.
+  std::vector<std::array<uint32_t, 3>> culled(instances_.size(), {0, 0, 0});
+  bool built = false;  // a CullFrame built this frame: its time includes the pipelines
+  if (!culls) {
+    // No instance culls: the plain renderer draws the view, no cull pass, no pyramid.
+    out.culled = false;
+    const frame::FrameStats plain = drawUnculled(view, *v.target);
+    out.stats.patchesTotal = patchCount();
+    out.stats.drawnPass1 = plain.patchesDrawn;
+    out.stats.survivors = plain.patchesDrawn;
+    out.stats.pass1 = plain.statistics;
+    out.stats.frameMs = plain.wallMs;
+  } else {
+    frame::CullFrame& f = plannedFrame(view, out.plans, built);
+    for (size_t i = 0; i < instances_.size(); ++i) f.setModel(i, instances_[i].model);
+    out.stats = f.render(v.camera, occluderPtrs_);
+    for (size_t i = 0; i < instances_.size(); ++i)
+      if (out.plans[i].culls())
+        for (uint32_t code : f.readResults(i))
+          if (const uint32_t stage = bound::CullCode{code}.stage(); stage >= 1 && stage <= 3)
+            ++culled[i][stage - 1];
+  }
+  // Learn: each instance's rates, and the view's frame time shared in proportion to what
+  // each instance was predicted to cost (the point update is not part of it; a frame that
+  // built its CullFrame, pipelines included, teaches no time).
+  double predicted = 0.0;
+  for (const plan::Plan& p : out.plans) predicted += p.predicted.totalMs() - p.predicted.updateMs;
+  for (size_t i = 0; i < instances_.size(); ++i) {
+    const plan::Plan& p = out.plans[i];
+    const double share =
+        predicted > 0.0 && !built
+            ? (p.predicted.totalMs() - p.predicted.updateMs) / predicted * out.stats.frameMs
+            : 0.0;
+    planner_->observe(plan::scenePlanKey(scene_, view, i), p, culled[i][0], culled[i][1],
+                      culled[i][2], points_[instances_[i].points]->host().patchCount(), share);
+  }
   return out;
 }
 
 frame::FrameStats ScenePlayer::renderUnculled(size_t view, frame::RenderTarget& target) {
+  return drawUnculled(view, target);
+}
+
+frame::FrameStats ScenePlayer::drawUnculled(size_t view, frame::RenderTarget& target) {
   const View& v = views_.at(view);
   std::vector<frame::PatchDraw> draws;
   uint32_t base = 0;
@@ -181,7 +357,7 @@ frame::FrameStats ScenePlayer::renderUnculled(size_t view, frame::RenderTarget& 
     draws.push_back(draw);
     base += p.host().patchCount();
   }
-  frame::RenderOptions o = v.frame->options().render;
+  frame::RenderOptions o = options_.render;
   o.clear = true;
   return renderer_->render(target, v.camera, draws, occluderPtrs_, o);
 }
@@ -219,6 +395,10 @@ std::vector<MeshWork> ScenePlayer::work() const {
     out.push_back(w);
   }
   return out;
+}
+
+const frame::GpuPatchSet& ScenePlayer::gpuPatches(size_t i) const {
+  return points_.at(instances_.at(i).points)->gpu();
 }
 
 frame::DynamicPatchMesh* ScenePlayer::dynamicMesh(size_t i) {

@@ -6,13 +6,25 @@
 /// same time offset); each instance keeps its own visibility status per view and is culled
 /// and drawn with view · model composed in double (frame::instanceCamera), so culling is as
 /// precise far from the origin as at it.
+///
+/// With a planner (setPlanner(), docs/algorithms/plan.md "Scenes") every (view, instance)
+/// gets its plan every frame and the plan is applied: the instance's cull stages (instances
+/// with the same stages share a cull dispatch; a view's CullFrame is built once per set of
+/// choices and kept for reuse), passes and Hi-Z resolution, its displaced kernel, and a view
+/// where no instance culls is drawn by the plain renderer. The point update follows the
+/// cage: a static mesh is never re-evaluated and a cage that did not move makes no point
+/// update and no bounds dispatch. Each frame's per-instance culled counts and the view's
+/// frame time are fed back (Planner::observe), so the rates are learned as the scene plays.
 
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
 #include "osd_cull/frame/verify/item_comparison.h"
+#include "osd_cull/plan/planner.h"
 #include "osd_cull/scene/loaded_scene.h"
 
+#include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,6 +36,10 @@ struct ViewFrame {
   std::string view;
   frame::Camera camera;
   frame::CullFrameStats stats;
+  /// With a planner: each instance's plan of this frame, in instance order (else empty).
+  std::vector<plan::Plan> plans;
+  /// With a planner: false when no instance culls and the plain renderer drew the view.
+  bool culled = true;
 };
 
 /// \brief Work done for one set of shared control points (a mesh, or a deforming mesh at
@@ -51,12 +67,19 @@ class ScenePlayer {
   /// `pointUpdate`'s path and is back-patch culled (tcone, ncone, tangent plane) with the
   /// cull data the GPU bounds pass recomputes on every frame it moves; a deforming
   /// displaced mesh with its displaced bound's cones, recomputed the same way.
+  /// With `planner` (setPlanner()) no fixed-stage frame is built up front, so no bounds pass
+  /// of the options' method runs unless a plan asks for it.
   ScenePlayer(vulkan::Context& context, LoadedScene& scene, const frame::CullFrameOptions& options,
-              frame::PointUpdatePath pointUpdate = frame::PointUpdatePath::Cpu);
+              frame::PointUpdatePath pointUpdate = frame::PointUpdatePath::Cpu,
+              plan::Planner* planner = nullptr);
   ~ScenePlayer();
   ScenePlayer(const ScenePlayer&) = delete;
   ScenePlayer& operator=(const ScenePlayer&) = delete;
 
+  /// \brief Plans every (view, instance) each frame from now on (null: the fixed stages of
+  /// the constructor's options again). The planner must outlive its use; its keys are
+  /// plan::scenePlanKey(). The tessellation planned for is the options' uniform level.
+  void setPlanner(plan::Planner* planner);
   /// \brief Sets the scene to frame `frame` (animations, instance matrices, cameras)
   /// without rendering.
   void seek(uint32_t frame);
@@ -72,7 +95,14 @@ class ScenePlayer {
 
   size_t viewCount() const { return views_.size(); }
   frame::RenderTarget& target(size_t view) { return *views_.at(view).target; }
-  frame::CullFrame& cullFrame(size_t view) { return *views_.at(view).frame; }
+  /// \brief The CullFrame view `view` rendered with last (with a planner: the one of the
+  /// last frame's choices).
+  /// \throws osd_cull::Error when a planned view has not been culled yet (drawn without
+  /// culling so far).
+  frame::CullFrame& cullFrame(size_t view);
+  /// \brief CullFrames built for view `view` so far (with a planner: one per set of stage
+  /// choices seen, each kept for reuse).
+  size_t cullFrameCount(size_t view) const { return views_.at(view).frames.size(); }
   /// \brief The camera of view `view` at the current frame.
   const frame::Camera& camera(size_t view) const { return views_.at(view).camera; }
   std::span<const frame::GpuTriangleMesh* const> occluders() const { return occluderPtrs_; }
@@ -89,6 +119,9 @@ class ScenePlayer {
   std::vector<std::string> describe() const;
   /// \brief Per set of shared control points, in the order describe() lists them.
   std::vector<MeshWork> work() const;
+  /// \brief The device patch set instance `i` draws (with its displacement map bound when
+  /// its mesh is displaced).
+  const frame::GpuPatchSet& gpuPatches(size_t i) const;
   /// \brief The moving control points of instance `i` (cage input, GPU bounds passes), or
   /// nullptr when its mesh is static.
   frame::DynamicPatchMesh* dynamicMesh(size_t i);
@@ -101,11 +134,23 @@ class ScenePlayer {
   };
   struct View {
     std::unique_ptr<frame::RenderTarget> target;
-    std::unique_ptr<frame::CullFrame> frame;
+    // Keyed by the instances' stage choices ("" for the fixed options).
+    std::map<std::string, std::unique_ptr<frame::CullFrame>> frames;
+    frame::CullFrame* frame = nullptr;  // the last one rendered
     frame::Camera camera;
   };
 
   uint32_t users(const Points& points) const;  // instances drawing `points`
+  // Instance `i` as a CullMesh culled with `stages` (null: the options' stages) and, when
+  // its mesh is displaced, the displaced bound `kernel` (null: the scene's), with the cull
+  // data its (deforming, displaced) mesh needs for them.
+  frame::CullMesh cullMesh(size_t i, const frame::CullStages* stages,
+                           const frame::CullMethod::Displaced* kernel);
+  // The view's CullFrame of these plans' choices, built on first use (`built` says so).
+  frame::CullFrame& fixedFrame(size_t view);  // the options' stages, built on first use
+  frame::CullFrame& plannedFrame(size_t view, const std::vector<plan::Plan>& plans, bool& built);
+  ViewFrame renderPlanned(size_t view, uint32_t frameIndex);
+  frame::FrameStats drawUnculled(size_t view, frame::RenderTarget& target);
 
   vulkan::Context& context_;
   LoadedScene& scene_;
@@ -117,6 +162,10 @@ class ScenePlayer {
   std::vector<View> views_;
   frame::Bounds bounds_;
   frame::CullFrameOptions options_;
+  std::optional<bound::BackPatchMethod> backPatch_;  // the options' cone method, if any
+  plan::Planner* planner_ = nullptr;
+  std::vector<bool> moved_;          // per Points: posed anew by the last seek()
+  std::vector<bool> selfOccluding_;  // per instance (plan::meshMayHideItself), with a planner
 };
 
 }  // namespace osd_cull::scene

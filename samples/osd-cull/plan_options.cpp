@@ -57,13 +57,14 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::C
   return std::make_unique<plan::Planner>(calibration);
 }
 
-void printPlanChange(const plan::Plan* last, const plan::Plan& p, std::ostream& out) {
+void printPlanChange(const plan::Plan* last, const plan::Plan& p, std::ostream& out,
+                     const std::string& who) {
   char line[160];
   std::snprintf(line, sizeof line,
-                "plan, frame %llu: %s%s (predicted %.2f ms, without culling %.2f ms)\n",
+                ", frame %llu: %s%s (predicted %.2f ms, without culling %.2f ms)\n",
                 static_cast<unsigned long long>(p.frame), p.stages.describe().c_str(),
                 p.probe ? " [re-probe]" : "", p.predicted.totalMs(), p.predictedUnculled.totalMs());
-  out << line;
+  out << (who.empty() ? "plan" : "plan of " + who) << line;
   if (last) {
     std::string changes = plan::planChange(*last, p);
     for (size_t start = 0; start < changes.size();) {

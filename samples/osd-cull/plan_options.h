@@ -35,7 +35,9 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::C
                                            std::ostream& out);
 
 /// \brief Prints a plan that differs from `last` (every effect when `last` is null):
-/// `plan, frame F: STAGES (predicted X ms, without culling Y ms)` and its changed effects.
-void printPlanChange(const plan::Plan* last, const plan::Plan& plan, std::ostream& out);
+/// `plan, frame F: STAGES (predicted X ms, without culling Y ms)` and its changed effects;
+/// with `who` (a scene's "instance 'NAME' in view 'VIEW'"): `plan of WHO, frame F: ...`.
+void printPlanChange(const plan::Plan* last, const plan::Plan& plan, std::ostream& out,
+                     const std::string& who = "");
 
 }  // namespace osd_cull::cli

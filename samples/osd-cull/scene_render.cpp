@@ -5,10 +5,12 @@
 #include "cull_options.h"
 #include "cull_report.h"
 #include "option_checks.h"
+#include "plan_options.h"
 #include "scene_source.h"
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/draw/png_io.h"
+#include "osd_cull/plan/calibrate.h"
 #include "osd_cull/scene/scene_player.h"
 #include "osd_cull/vk/context.h"
 
@@ -36,6 +38,22 @@ std::string frameFile(const std::string& view, const char* kind, uint32_t frame)
   return view + name;
 }
 
+// Prints each instance's plan of this frame that differs from the one printed last (all
+// of them at the first frame), naming instance and view.
+void printScenePlans(const scene::ViewFrame& vf, std::vector<plan::Plan>& printed) {
+  printed.resize(vf.plans.size());
+  for (size_t i = 0; i < vf.plans.size(); ++i) {
+    const plan::Plan& p = vf.plans[i];
+    plan::Plan& last = printed[i];
+    const bool first = last.mesh.empty();
+    if (!first && p.stages == last.stages && plan::planChange(last, p).empty()) continue;
+    const std::string who =
+        "instance " + std::to_string(i) + " '" + p.mesh + "' in view '" + p.view + "'";
+    printPlanChange(first ? nullptr : &last, p, std::cout, who);
+    last = p;
+  }
+}
+
 }  // namespace
 
 const char* const kSceneRenderUsage =
@@ -44,7 +62,9 @@ Plays a scene file (docs/scene-format.md), an OBJ sequence (walk/frame_####.obj 
 name[0-58].obj) or the built-in scene; every view of every frame runs the two-pass culled
 frame (Niessner & Loop) over the shared meshes, each instance with its own status. It
 takes --frames, --out-dir (DIR/<view>_NNNN.png per frame and view), --out (last frame of
-the first view), --cull (default all), --tess, --width/--height (views without their
+the first view), --plan (auto, the default: every instance in every view gets the effect
+plan each frame, printed when it changes; off: --cull all), --plan-calibration, --cull (a
+fixed choice for all instances), --tess, --width/--height (views without their
 own), --compare, --status-view (DIR/<view>_status_NNNN.png, seen from 120 degrees around
 the scene), --stats, --device and --validate.)";
 
@@ -60,9 +80,6 @@ int renderScene(const RenderArgs& args) {
       args.stats.empty() ? std::nullopt : std::optional(args.stats);
   const std::optional<uint32_t> width = args.width, height = args.height;
   CullChoice cull = cullChoice(args.cull);
-  if (args.plan.mode == "auto" && args.cull.mode.empty())
-    std::cout << "plan: not applied to a scene yet, it plays with --cull all (`osd-cull plan "
-                 "SCENE` prints each instance's plan)\n";
   if (args.cull.mode.empty()) cull.mode = "all";
   const std::string& argument = *args.source.path;
   if (args.source.scheme) throw UsageError("--scheme does not apply to a scene");
@@ -83,6 +100,19 @@ int renderScene(const RenderArgs& args) {
   const uint32_t frameCount = frames ? uint32_t(*frames) : settings.frameCount;
 
   vulkan::Context context(args.device);
+  // The effect plan (docs/algorithms/plan.md, "Scenes"): without --cull, every instance in
+  // every view is planned each frame; without a calibration the scene plays with --cull all.
+  std::unique_ptr<plan::Planner> planner;
+  std::string outdated;
+  if (args.plan.mode == "auto" && args.cull.mode.empty() && args.plan.calibration.empty() &&
+      !plan::loadCachedCalibration(plan::calibrationKey(context), &outdated))
+    std::cout << "plan: off, playing with --cull all ("
+              << (outdated.empty() ? "no calibration of this device cached: run `osd-cull "
+                                     "calibrate --quick`, or give --plan-calibration FILE"
+                                   : outdated)
+              << ")\n";
+  else
+    planner = makePlanner(args.plan, context, !args.cull.mode.empty(), true, std::cout);
   frame::CullFrameOptions options = cull.frame;
   options.render.tessellation.uniformLevel = tess;
   options.render.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
@@ -90,17 +120,27 @@ int renderScene(const RenderArgs& args) {
   // Back faces are culled in the draws exactly when back-patch culling may run: like for
   // like, the unculled comparison draws the same way.
   options.render.cullBackFaces = !options.cull.backPatch.empty();
-  scene::ScenePlayer player(context, loaded, options);
+  // The plan's point update: on the path the calibration measured cheaper.
+  const plan::Calibration* calibration = planner ? &planner->calibration() : nullptr;
+  const frame::PointUpdatePath pointUpdate =
+      calibration && calibration->pointUpdateGpuMsPerPatch < calibration->pointUpdateCpuMsPerPatch
+          ? frame::PointUpdatePath::Gpu
+          : frame::PointUpdatePath::Cpu;
+  scene::ScenePlayer player(context, loaded, options, pointUpdate, planner.get());
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << loaded.description.source << ", " << player.instanceCount()
             << " instances, " << player.patchCount() << " patches, " << loaded.occluders.size()
             << " occluders, " << player.viewCount() << " view(s), " << frameCount << " frames at "
-            << settings.framesPerSecond << " fps, cull " << cull.mode << "\n";
+            << settings.framesPerSecond << " fps, cull " << (planner ? "planned" : cull.mode)
+            << "\n";
   for (const std::string& line : player.describe()) std::cout << "  " << line << "\n";
-  for (size_t i = 0; i < player.instanceCount(); ++i)
-    if (const frame::CullPass* pass = player.cullFrame(0).cullPass(i);
-        pass && !pass->backPatchNote().empty())
-      std::cout << "  note: " << pass->backPatchNote() << "\n";
+  if (!planner)
+    for (size_t i = 0; i < player.instanceCount(); ++i)
+      if (const frame::CullPass* pass = player.cullFrame(0).cullPass(i);
+          pass && !pass->backPatchNote().empty())
+        std::cout << "  note: " << pass->backPatchNote() << "\n";
+  // The last plan printed per (view, instance).
+  std::vector<std::vector<plan::Plan>> printed(player.viewCount());
 
   std::unique_ptr<frame::RenderTarget> baseline;
   nlohmann::json jsonFrames = nlohmann::json::array();
@@ -108,9 +148,20 @@ int renderScene(const RenderArgs& args) {
     const std::vector<scene::ViewFrame> views = player.render(f);
     for (size_t v = 0; v < views.size(); ++v) {
       const scene::ViewFrame& vf = views[v];
+      printScenePlans(vf, printed[v]);
       std::printf("view %s %s\n", vf.view.c_str(), cullFrameLine(f, vf.stats).c_str());
       nlohmann::json j = cullFrameJson(f, vf.stats);
       j["view"] = vf.view;
+      if (!vf.plans.empty()) {
+        j["plans"] = nlohmann::json::array();
+        for (const plan::Plan& p : vf.plans)
+          j["plans"].push_back({{"instance", p.mesh},
+                                {"stages", p.stages.describe()},
+                                {"probe", p.probe},
+                                {"update", p.update.on},
+                                {"bounds", p.bounds.on},
+                                {"predictedMs", p.predicted.totalMs()}});
+      }
       frame::RenderTarget& target = player.target(v);
       if (outDir)
         frame::writePng(
