@@ -209,7 +209,7 @@ int renderScene(const RenderArgs& args) {
   if (statsPath) {
     nlohmann::json doc{{"device", context.info().name},
                        {"scene", loaded.description.source},
-                       {"cull", cull.mode},
+                       {"cull", planner ? std::string("plan") : cull.mode},
                        {"frameCount", frameCount},
                        {"frames", jsonFrames}};
     std::ofstream file(*statsPath);
