@@ -4,12 +4,16 @@
 // docs/results/draw.md.
 //
 //   bench-draw [--mesh FILE] [--width 1280] [--height 720] [--repeats 3]
-//              [--max-one-draw-level 16] [--depth-clamp-cost] [--device X]
+//              [--max-one-draw-level 16] [--depth-clamp-cost] [--displacement-scale 0.64]
+//              [--device X]
 //
 // --depth-clamp-cost instead measures what clamping fragment depth to the control points
 // costs (RenderOptions::clampDepthToControlPoints, patch.tesc): at tessellation 1, 4 and 16,
 // frames with and without the clamp alternate (--repeats pairs after a warm-up of each),
-// and it prints the median wall ms of each and their ratio.
+// and it prints the median wall ms of each and their ratio. A mesh with texture coordinates
+// is then also drawn displaced (the procedural map, 256x256, scale --displacement-scale),
+// where the clamp takes the nearest corner of the boxes around the control points
+// (common/displaced_reach.glsl): undisplaced and displaced rows interleave too.
 //
 // FILE defaults to ../shared/data/characters/bigguy.obj beside the source tree; without it
 // (or with --mesh torus) a bicubic torus of BigGuy's size (--nu 96 --nv 58) stands in.
@@ -17,8 +21,10 @@
 #include "bench_support.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
+#include "osd_cull/scene/procedural_displacement.h"
 #include "osd_cull/vk/context.h"
 
 #include <algorithm>
@@ -26,6 +32,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,6 +44,7 @@ struct Options {
   uint32_t width = 1280, height = 720, repeats = 3, maxOneDrawLevel = 16, nu = 96, nv = 58;
   std::string device;
   bool depthClampCost = false;
+  double displacementScale = 0.64;
   std::string mesh = std::string(OSD_CULL_SOURCE_DIR) + "/../shared/data/characters/bigguy.obj";
 };
 
@@ -49,6 +57,7 @@ bool parse(int argc, char** argv, Options& o) {
       .number("--nu", o.nu)
       .number("--nv", o.nv)
       .flag("--depth-clamp-cost", o.depthClampCost)
+      .real("--displacement-scale", o.displacementScale, 0.0)
       .parse(argc, argv);
 }
 
@@ -81,26 +90,33 @@ Row measure(frame::Renderer& renderer, frame::VisibilityOracle& oracle, frame::R
   return row;
 }
 
-// --depth-clamp-cost: frames with and without the depth clamp, alternating.
+// --depth-clamp-cost: frames with and without the depth clamp, alternating; `displaced`
+// (optional) is the same patch set with a displacement map, interleaved with the plain one.
 void depthClampCost(frame::Renderer& renderer, frame::RenderTarget& target,
                     const frame::Camera& camera, const frame::GpuPatchSet& gpu,
-                    const PatchSet& host, uint32_t repeats) {
+                    const frame::GpuPatchSet* displaced, const PatchSet& host, uint32_t repeats) {
   std::printf(
-      "| level | clamped ms | unclamped ms | clamped / unclamped |\n|---:|---:|---:|---:|\n");
-  const frame::PatchDraw draw{&gpu, &host, 0};
+      "| draw | level | clamped ms | unclamped ms | clamped / unclamped |\n"
+      "|---|---:|---:|---:|---:|\n");
+  const frame::PatchDraw draws[2] = {{&gpu, &host, 0}, {displaced, &host, 0}};
+  const int kinds = displaced ? 2 : 1;
   for (uint32_t level : {1u, 4u, 16u}) {
     frame::RenderOptions options[2];
-    std::vector<double> wall[2];
+    std::vector<double> wall[2][2];  // [draw][clamped, unclamped]
     for (int k = 0; k < 2; ++k) {
       options[k].tessellation.uniformLevel = level;
       options[k].clampDepthToControlPoints = k == 0;
-      renderer.render(target, camera, {&draw, 1}, {}, options[k]);  // warm-up (pipeline JIT)
+      for (int d = 0; d < kinds; ++d)
+        renderer.render(target, camera, {&draws[d], 1}, {}, options[k]);  // warm-up (JIT)
     }
     for (uint32_t r = 0; r < repeats; ++r)
-      for (int k = 0; k < 2; ++k)
-        wall[k].push_back(renderer.render(target, camera, {&draw, 1}, {}, options[k]).wallMs);
-    std::printf("| %u | %.1f | %.1f | %.3f |\n", level, median(wall[0]), median(wall[1]),
-                median(wall[0]) / median(wall[1]));
+      for (int d = 0; d < kinds; ++d)
+        for (int k = 0; k < 2; ++k)
+          wall[d][k].push_back(
+              renderer.render(target, camera, {&draws[d], 1}, {}, options[k]).wallMs);
+    for (int d = 0; d < kinds; ++d)
+      std::printf("| %s | %u | %.1f | %.1f | %.3f |\n", d == 0 ? "plain" : "displaced", level,
+                  median(wall[d][0]), median(wall[d][1]), median(wall[d][0]) / median(wall[d][1]));
     std::fflush(stdout);
   }
 }
@@ -113,9 +129,12 @@ int main(int argc, char** argv) {
     if (!parse(argc, argv, o)) return 0;
     vulkan::Context context(bench::contextOptions(o.device));
     PatchSet set;
+    std::vector<glm::dvec2> uvCorners;
     glm::dvec3 up(0, 1, 0), from(0.45, 0.35, 1.0);  // OBJ cages: y up, seen from the front
     if (o.mesh != "torus" && std::filesystem::exists(o.mesh)) {
-      set = extractPatches(adapters::loadCage(o.mesh)).patches;
+      PatchExtraction ex = extractPatches(adapters::loadCage(o.mesh));
+      set = std::move(ex.patches);
+      uvCorners = std::move(ex.uvCorners);
     } else {
       std::fprintf(stderr, "bench-draw: %s not found, using a torus of BigGuy's size\n",
                    o.mesh.c_str());
@@ -136,7 +155,20 @@ int main(int argc, char** argv) {
         context.info().name.c_str(), set.source.c_str(), set.bezierCount, set.gregoryCount, o.width,
         o.height, o.repeats);
     if (o.depthClampCost) {
-      depthClampCost(renderer, target, camera, gpu, set, o.repeats);
+      std::unique_ptr<bound::DisplacementMap> map;
+      std::unique_ptr<frame::GpuDisplacement> displacement;
+      std::unique_ptr<frame::GpuPatchSet> displaced;
+      if (!uvCorners.empty()) {
+        map = std::make_unique<bound::DisplacementMap>("procedural", 256, 256,
+                                                       scene::proceduralDisplacementTexels(256),
+                                                       o.displacementScale, 0.5);
+        displacement =
+            std::make_unique<frame::GpuDisplacement>(context, *map, uvCorners, set.patchCount());
+        displaced = std::make_unique<frame::GpuPatchSet>(context, set);
+        displaced->setDisplacement(displacement.get());
+        std::printf("displaced: procedural map 256x256, scale %g\n\n", o.displacementScale);
+      }
+      depthClampCost(renderer, target, camera, gpu, displaced.get(), set, o.repeats);
       return 0;
     }
     std::printf(

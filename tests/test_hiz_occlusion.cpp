@@ -1,9 +1,11 @@
 // The Hi-Z occlusion stage of the cull kernel ("hiz": shaders/cull/occlusion_hiz.glsl with
 // shaders/hiz/occlusion.glsl) against its double-precision reference
 // (bound::hizOcclusionTest) and the item-buffer oracle.
+#include "osd_cull/bound/displaced_bounds.h"
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
 #include "osd_cull/frame/verify/cull_verification.h"
@@ -12,6 +14,8 @@
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/scene/procedural.h"
+#include "osd_cull/scene/procedural_displacement.h"
+#include "support/displacement_test_maps.h"
 #include "support/vk_test_context.h"
 #include "support/vk_test_images.h"
 
@@ -148,9 +152,23 @@ std::vector<frame::Camera> subPixelTorusViews(const PatchSet& set) {
   return frame::randomViews(frame::boundsOf(set.points), vo);
 }
 
+// Calls f(patch, x, y, depth) for every pixel of `target` that a patch owns (item buffer).
+template <class F>
+void forEachPatchPixel(vulkan::Context& context, const frame::RenderTarget& target,
+                       uint32_t patchCount, F f) {
+  const std::vector<uint32_t> items = target.readItems(context);
+  const std::vector<float> depth = target.readDepth(context);
+  for (uint32_t i = 0; i < items.size(); ++i) {
+    if (items[i] == shader::kItemBackground) continue;
+    const uint32_t p = items[i] - 1;
+    ASSERT_LT(p, patchCount);
+    f(p, i % target.width(), i / target.width(), depth[i]);
+  }
+}
+
 // The property the cull rests on, pixel by pixel: the depth stored for a pixel a patch owns
 // is never in front of that patch's nearest depth as the reference bounds it
-// (bound::hizScreenBox, HiZFragmentDepth::ClampedToPoints), and the pixel lies in its box.
+// (bound::hizScreenBox), and the pixel lies in its box.
 // Fails without the clamp (view 19: depth 0.823346 where the control points start at
 // 0.823423).
 TEST_F(HiZOcclusionTest, NoFragmentOfASubPixelPatchLiesInFrontOfItsControlPoints) {
@@ -167,23 +185,18 @@ TEST_F(HiZOcclusionTest, NoFragmentOfASubPixelPatchLiesInFrontOfItsControlPoints
   for (uint32_t v = 17; v < 22; ++v) {
     const frame::Camera& camera = cameras[v];
     oracle.query(renderer, target, camera, gpu, &set, {}, tess);
-    const std::vector<uint32_t> items = target.readItems(context());
-    const std::vector<float> depth = target.readDepth(context());
     const glm::dmat4 vp = camera.viewProjection();
-    for (uint32_t i = 0; i < items.size(); ++i) {
-      if (items[i] == shader::kItemBackground) continue;
-      const uint32_t p = items[i] - 1;
-      ASSERT_LT(p, set.patchCount());
-      const bound::HiZScreenBox box = bound::hizScreenBox(set.controlPoints(p), vp, 32, 32);
-      ASSERT_TRUE(box.valid) << "view " << v << " patch " << p;
-      const uint32_t x = i % 32, y = i / 32;
-      EXPECT_TRUE(x >= box.x0 && x <= box.x1 && y >= box.y0 && y <= box.y1)
-          << "view " << v << " patch " << p << " pixel " << x << ", " << y;
-      EXPECT_GE(double{depth[i]}, box.nearestDepth)
-          << "view " << v << " patch " << p << " pixel " << x << ", " << y;
-      ++pixels;
-      clampedAtTheBound += double{depth[i]} - box.nearestDepth < 1e-5;
-    }
+    forEachPatchPixel(
+        context(), target, set.patchCount(), [&](uint32_t p, uint32_t x, uint32_t y, float depth) {
+          const bound::HiZScreenBox box = bound::hizScreenBox(set.controlPoints(p), vp, 32, 32);
+          ASSERT_TRUE(box.valid) << "view " << v << " patch " << p;
+          EXPECT_TRUE(x >= box.x0 && x <= box.x1 && y >= box.y0 && y <= box.y1)
+              << "view " << v << " patch " << p << " pixel " << x << ", " << y;
+          EXPECT_GE(double{depth}, box.nearestDepth)
+              << "view " << v << " patch " << p << " pixel " << x << ", " << y;
+          ++pixels;
+          clampedAtTheBound += double{depth} - box.nearestDepth < 1e-5;
+        });
   }
   std::printf("%u pixels checked, %u within 1e-5 of their patch's nearest depth\n", pixels,
               clampedAtTheBound);
@@ -202,6 +215,110 @@ TEST_F(HiZOcclusionTest, SubPixelPatchesOfAClosedTorusAreNeverFalselyCulled) {
   EXPECT_EQ(t.falseCulls, 0u);
   EXPECT_EQ(t.notInReference, 0u);
   EXPECT_GT(t.culled, t.patchViews / 4);  // the back half of the torus is still culled
+}
+
+// Displaced sub-pixel patches (docs/algorithms/occlusion.md, "Displaced patches"): the same
+// torus with planar texture coordinates and the procedural map. The displaced draw clamps fragment
+// depth to the nearest corner of the boxes p_i ± max|D| around the control points (patch.tesc,
+// common/displaced_reach.glsl), the depth the displaced kernels and their reference
+// (bound::displacedReachCorners) bound the fragments with. Pixel by pixel, over 30 random views:
+// every pixel a patch owns lies in the screen box of its displaced bound and its depth is not in
+// front of that nearest depth. Without the clamp (RenderOptions::clampDepthToControlPoints false,
+// drawn too) the rasterizer puts fragments in front of it, so the check has teeth.
+struct DisplacedTorus {
+  PatchExtraction ex;
+  bound::DisplacementMap map;
+};
+
+// `relativeScale`: the map's scale over the torus's bounding radius.
+DisplacedTorus displacedSubPixelTorus(double relativeScale) {
+  PatchOptions po;
+  po.isolationLevel = 1;
+  PatchExtraction ex = extractPatches(test::withPlanarUVs(scene::torus(100, 100)), po);
+  const double scale = relativeScale * frame::boundsOf(ex.patches.points).radius();
+  return {std::move(ex),
+          bound::DisplacementMap("procedural", 128, 128,
+                                 scene::proceduralDisplacementTexels(128, 4), scale, 0.5)};
+}
+
+TEST_F(HiZOcclusionTest, NoFragmentOfASubPixelDisplacedPatchLiesInFrontOfItsDisplacedBound) {
+  // A small displacement (max |D| about 0.2% of a patch's side): the boxes around the
+  // control points are then tight enough for the rasterizer's extrapolation to leave them
+  // without the clamp (2 pixels over these views; at 5e-4 and above the boxes absorb it
+  // here, which no margin can promise in general).
+  const DisplacedTorus torus = displacedSubPixelTorus(1e-4);
+  const PatchSet& set = torus.ex.patches;
+  ASSERT_EQ(set.patchCount(), 10000u);
+  const std::vector<bound::DisplacedPatch> data = bound::buildDisplacedPatches(
+      set, torus.ex.uvCorners, torus.map, bound::DisplacedExtension::Full);
+  frame::GpuPatchSet gpu(context(), set);
+  frame::GpuDisplacement displacement(context(), torus.map, torus.ex.uvCorners, set.patchCount());
+  gpu.setDisplacement(&displacement);
+  frame::RenderTarget target(context(), 32, 32);
+  frame::Renderer renderer(context());
+  const auto cameras = subPixelTorusViews(set);
+  struct Count {
+    uint32_t pixels = 0, outsideBox = 0, inFront = 0;
+  };
+  Count counts[2];  // [0]: clamped (the default draw), [1]: not clamped
+  for (int clamp = 0; clamp < 2; ++clamp) {
+    frame::RenderOptions options;
+    options.tessellation.uniformLevel = 4;
+    options.clampDepthToControlPoints = clamp == 0;
+    Count& c = counts[clamp];
+    for (uint32_t v = 0; v < cameras.size(); ++v) {
+      const frame::Camera& camera = cameras[v];
+      renderer.render(target, camera, gpu, &set, options);
+      const glm::dmat4 vp = camera.viewProjection();
+      forEachPatchPixel(
+          context(), target, set.patchCount(),
+          [&](uint32_t p, uint32_t x, uint32_t y, float depth) {
+            const bound::DisplacedBound b = bound::displacedBound(
+                set.controlPoints(p), data[p], bound::DisplacedExtension::Full,
+                bound::DisplacedBox::OOBB, camera.view, camera.projection);
+            const std::vector<glm::dvec3> reach =
+                bound::displacedReachCorners(set.controlPoints(p), data[p].range.maxAbs());
+            const bound::HiZDepthPoints nearest{reach, vp};
+            const bound::HiZScreenBox box =
+                bound::hizScreenBox(b.corners, b.toClip, 32, 32, 1.0, &nearest);
+            ASSERT_TRUE(box.valid) << "view " << v << " patch " << p;
+            ++c.pixels;
+            c.outsideBox += !(x >= box.x0 && x <= box.x1 && y >= box.y0 && y <= box.y1);
+            const bool inFront = double{depth} < box.nearestDepth;
+            c.inFront += inFront;
+            if (clamp == 0 && inFront && c.inFront == 1)
+              ADD_FAILURE() << "first: view " << v << " patch " << p << " pixel " << x << ", " << y
+                            << ": depth " << depth << " < " << box.nearestDepth;
+          });
+    }
+  }
+  std::printf("clamped: %u pixels, %u in front of the bound; not clamped: %u pixels, %u in front\n",
+              counts[0].pixels, counts[0].inFront, counts[1].pixels, counts[1].inFront);
+  EXPECT_EQ(counts[0].outsideBox, 0u);
+  EXPECT_EQ(counts[0].inFront, 0u);
+  EXPECT_GT(counts[0].pixels, 30u * 32 * 32 / 8);  // the torus fills a fifth of each view
+  // The clamp is what makes the bound hold: the unclamped draw breaks it.
+  EXPECT_GT(counts[1].inFront, 0u);
+}
+
+// The same torus through CullVerifier with the displaced kernels and Hi-Z occlusion: no
+// false cull against the oracle of the displaced draw, every GPU cull a reference cull.
+TEST_F(HiZOcclusionTest, SubPixelDisplacedPatchesAreNeverFalselyCulled) {
+  const DisplacedTorus torus = displacedSubPixelTorus(0.02);
+  frame::VerifyOptions options;
+  options.tessellation.uniformLevel = 4;
+  options.displacementMap = &torus.map;
+  options.uvCorners = torus.ex.uvCorners;
+  const std::vector<std::string> kernels = {"full-oobb", "con-caf"};
+  frame::CullVerifier verifier(context(), torus.ex.patches, kernels, {false, "displaced torus"},
+                               options);
+  const auto cameras = subPixelTorusViews(torus.ex.patches);
+  for (uint32_t v = 0; v < cameras.size(); v += 3) verifier.verifyView(cameras[v]);
+  for (const frame::MethodTotals& t : verifier.totals()) {
+    EXPECT_EQ(t.falseCulls, 0u) << t.name;
+    EXPECT_EQ(t.notInReference, 0u) << t.name;
+    EXPECT_GT(t.culled, 0u) << t.name;
+  }
 }
 
 }  // namespace

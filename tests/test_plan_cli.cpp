@@ -1,14 +1,18 @@
 // `osd-cull plan`, `calibrate` and `render --plan`: the printed plan, its reasons and its
 // errors, with a synthetic calibration file (support/plan_calibration.h); ctest runs with
 // the calibration cache off (tests/CMakeLists.txt), so nothing depends on this machine's.
+#include "osd_cull/plan/calibrate.h"
 #include "osd_cull/plan/calibration.h"
 #include "support/plan_calibration.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
+#include "support/vk_test_context.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace osd_cull {
@@ -97,6 +101,37 @@ TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
   EXPECT_NE(r.output.find("no calibration of this device cached"), std::string::npos) << r.output;
   r = run("render --out " + out.string() + " --plan sometimes");
   EXPECT_EQ(r.exitCode(), 2) << r.output;
+}
+
+class PlanCommandCache : public test::VkTest {};
+
+TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndNotUsed) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  // This device's cache file, written in the previous format (before the displaced kernels).
+  test::TempDir cache("osd_cull_plan_cache_");
+  setenv("OSD_CULL_CALIBRATION_CACHE", cache.path().c_str(), 1);
+  const fs::path file = plan::calibrationCacheFile(plan::calibrationKey(context()));
+  unsetenv("OSD_CULL_CALIBRATION_CACHE");
+  plan::Calibration c = test::syntheticCalibration();
+  c.key = plan::calibrationKey(context());
+  std::string text = plan::toText(c);
+  text.replace(0, text.find('\n'), "osd_cull-calibration 2");
+  plan::storeCalibration(c, file);
+  std::ofstream(file, std::ios::binary) << text;
+  const std::string program = "OSD_CULL_CALIBRATION_CACHE=" + cache.path().string() + " " +
+                              test::osdCullProgram().string() + " ";
+  // render plans nothing with it and draws without culling, saying why.
+  const auto r = test::runCommand(program + "render --out " + (cache.path() / "r.png").string());
+  EXPECT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("plan: off, drawing without culling (" + file.string() +
+                          ": calibration file format 2, this library reads format 3"),
+            std::string::npos)
+      << r.output;
+  // plan refuses it with the same reason.
+  const auto p = test::runCommand(program + "plan");
+  EXPECT_EQ(p.exitCode(), 1) << p.output;
+  EXPECT_NE(p.output.find("measure it again with `osd-cull calibrate --force`"), std::string::npos)
+      << p.output;
 }
 
 TEST_F(PlanCommand, CalibrateChecksItsOutputBeforeMeasuring) {

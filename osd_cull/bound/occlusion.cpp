@@ -13,7 +13,6 @@ namespace osd_cull::bound {
 namespace {
 
 using shader::kHiZDepthBias;
-using shader::kHiZExtrapolationPixels;
 using shader::kHiZFar;
 using shader::kHiZPixelMargin;
 using shader::kHiZRelativeError;
@@ -82,35 +81,68 @@ HiZPyramid buildHiZPyramid(std::span<const float> depth, uint32_t width, uint32_
   return p;
 }
 
-HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
-                          uint32_t width, uint32_t height, double marginScale,
-                          HiZFragmentDepth depth) {
-  HiZScreenBox box;
-  if (points.empty() || width == 0 || height == 0 || !allFinite(viewProj)) return box;
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  const double rel = double{kHiZRelativeError} * marginScale;
-  glm::dvec2 lo(inf), hi(-inf);
-  double nearest = inf, lowest = inf, highest = -inf;
+std::vector<glm::dvec3> displacedReachCorners(std::span<const glm::dvec3> points, double radius) {
+  std::vector<glm::dvec3> out;
+  out.reserve(8 * points.size());
+  for (const glm::dvec3& p : points)
+    for (int k = 0; k < 8; ++k)
+      out.push_back(p + glm::dvec3((k & 1) ? radius : -radius, (k & 2) ? radius : -radius,
+                                   (k & 4) ? radius : -radius));
+  return out;
+}
+
+namespace {
+
+// The NDC box and depth range of `points`, each widened by its rounding margin; false when a
+// point is at or behind the eye plane (w <= the margin) or not finite.
+struct NdcBounds {
+  glm::dvec2 lo{std::numeric_limits<double>::infinity()};
+  glm::dvec2 hi{-std::numeric_limits<double>::infinity()};
+  double nearest = std::numeric_limits<double>::infinity();
+};
+
+bool ndcBounds(std::span<const glm::dvec3> points, const glm::dmat4& viewProj, double rel,
+               NdcBounds& out) {
   for (const glm::dvec3& p : points) {
     const glm::dvec4 c = clipPoint(p, viewProj);
     const glm::dvec4 m = absClipPoint(p, viewProj);  // magnitudes c is summed from
-    if (!finite4(c) || !finite4(m)) return box;
+    if (!finite4(c) || !finite4(m)) return false;
     // At or behind the eye plane: the NDC box does not bound the patch.
-    if (!(c.w > rel * m.w)) return box;
+    if (!(c.w > rel * m.w)) return false;
     const double w = c.w - rel * m.w;  // smallest w the rasterizer may have used
     const glm::dvec3 ndc = glm::dvec3(c) / c.w;
     const glm::dvec3 err = rel * (glm::dvec3(m) + glm::abs(ndc) * m.w) / w;
-    lo = glm::min(lo, glm::dvec2(ndc) - glm::dvec2(err));
-    hi = glm::max(hi, glm::dvec2(ndc) + glm::dvec2(err));
-    nearest = std::min(nearest, ndc.z - err.z);
-    lowest = std::min(lowest, ndc.z);
-    highest = std::max(highest, ndc.z);
+    out.lo = glm::min(out.lo, glm::dvec2(ndc) - glm::dvec2(err));
+    out.hi = glm::max(out.hi, glm::dvec2(ndc) + glm::dvec2(err));
+    out.nearest = std::min(out.nearest, ndc.z - err.z);
+  }
+  return true;
+}
+
+}  // namespace
+
+HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
+                          uint32_t width, uint32_t height, double marginScale,
+                          const HiZDepthPoints* depth) {
+  HiZScreenBox box;
+  if (points.empty() || width == 0 || height == 0 || !allFinite(viewProj)) return box;
+  const double rel = double{kHiZRelativeError} * marginScale;
+  NdcBounds b;
+  if (!ndcBounds(points, viewProj, rel, b)) return box;
+  const glm::dvec2 lo = b.lo, hi = b.hi;
+  double nearest = b.nearest;
+  if (depth) {
+    NdcBounds d;
+    if (depth->points.empty() || !allFinite(depth->viewProj) ||
+        !ndcBounds(depth->points, depth->viewProj, rel, d))
+      return box;
+    nearest = d.nearest;
   }
   // Vulkan viewport: pixel x = (ndc.x + 1) / 2 * width, y likewise (the projection flips y).
   const double pad = double{kHiZPixelMargin} * marginScale;
   const double px0 = (lo.x * 0.5 + 0.5) * width - pad, px1 = (hi.x * 0.5 + 0.5) * width + pad;
   const double py0 = (lo.y * 0.5 + 0.5) * height - pad, py1 = (hi.y * 0.5 + 0.5) * height + pad;
-  if (!std::isfinite(px0 + px1 + py0 + py1 + nearest + highest - lowest)) return box;
+  if (!std::isfinite(px0 + px1 + py0 + py1 + nearest)) return box;
   if (px1 < 0.0 || py1 < 0.0 || px0 > width || py0 > height) return box;
   auto pixel = [](double v, uint32_t size) {
     return static_cast<uint32_t>(std::clamp(std::floor(v), 0.0, double(size - 1)));
@@ -120,20 +152,13 @@ HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& 
   box.x1 = pixel(px1, width);
   box.y0 = pixel(py0, height);
   box.y1 = pixel(py1, height);
-  // Niessner & Loop §4.1.1 with the fragment depth of the draw. ClampedToPoints: the draw
-  // writes max(interpolated depth, P) with P the smallest fp32 z/w of the control points
-  // (patch.tesc), and P >= min(ndc.z - err.z) because err bounds the fp32 rounding of each
-  // z/w (the same argument as for the box); so no fragment lies in front of `nearest`,
-  // whatever the rasterizer's depth interpolation does (docs/algorithms/occlusion.md).
-  // Extrapolated: the rasterizer may extrapolate depth past a triangle
-  // (kHiZExtrapolationPixels says why); an estimate, not a bound.
-  double extrapolation = 0.0;
-  if (depth == HiZFragmentDepth::Extrapolated) {
-    const double n = std::max((hi.x - lo.x) * 0.5 * width, (hi.y - lo.y) * 0.5 * height);
-    extrapolation = n > kHiZExtrapolationPixels ? kHiZExtrapolationPixels / n : 1.0;
-  }
-  box.nearestDepth =
-      nearest - extrapolation * (highest - lowest) - double{kHiZDepthBias} * marginScale;
+  // Niessner & Loop §4.1.1 with the fragment depth of the draw: it writes max(interpolated
+  // depth, P) with P the smallest fp32 z/w of the control points (of the displaced reach
+  // corners, `depth`; patch.tesc), and P >= min(ndc.z - err.z) because err bounds the fp32
+  // rounding of each z/w (the same argument as for the box); so no fragment lies in front of
+  // `nearest`, whatever the rasterizer's depth interpolation does
+  // (docs/algorithms/occlusion.md, "Sub-pixel patches", "Displaced patches").
+  box.nearestDepth = nearest - double{kHiZDepthBias} * marginScale;
   return box;
 }
 
@@ -162,7 +187,7 @@ HiZFootprint hizFootprint(const HiZLayout& layout, const HiZScreenBox& box, HiZL
 
 OcclusionResult hizOcclusionTest(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
                                  const HiZPyramid& pyramid, HiZLookup lookup,
-                                 HiZFragmentDepth depth) {
+                                 const HiZDepthPoints* depth) {
   OcclusionResult r;
   const HiZLayout& l = pyramid.layout;
   const HiZScreenBox box = hizScreenBox(points, viewProj, l.width, l.height, 1.0, depth);

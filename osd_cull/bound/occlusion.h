@@ -64,37 +64,39 @@ struct HiZPyramid {
 HiZPyramid buildHiZPyramid(std::span<const float> depth, uint32_t width, uint32_t height,
                            bool fullResolution);
 
-/// \brief The screen box of a patch: inclusive pixel ranges and the nearest depth.
-/// \brief How the draw writes the depth of a patch's fragments, which decides the margin of
-/// the nearest depth (docs/algorithms/occlusion.md, "Sub-pixel patches").
-enum class HiZFragmentDepth {
-  /// The undisplaced patch draw (shaders/patch/patch.frag): every fragment's depth is at
-  /// least the smallest fp32 z/w of the patch's control points (the draw clamps it there),
-  /// so the control points' nearest depth bounds it with no extrapolation term.
-  ClampedToPoints,
-  /// The displaced draw: fragment depth as the rasterizer interpolates it, which can lie in
-  /// front of its triangle (extrapolation past snapped vertices); the nearest depth is
-  /// lowered by min(1, kHiZExtrapolationPixels / n) times the points' depth range. Not a
-  /// proven bound (a sliver triangle can extrapolate further).
-  Extrapolated,
+/// \brief Points whose nearest depth bounds a patch's fragments when they are not the points
+/// of its screen box (docs/algorithms/occlusion.md, "Displaced patches"): the displaced
+/// draw clamps fragment depth to the nearest depth of displacedReachCorners(), while the
+/// screen rectangle comes from the kernel's displaced bound (OOBB or CAF corners).
+struct HiZDepthPoints {
+  std::span<const glm::dvec3> points;
+  glm::dmat4 viewProj{1.0};
 };
 
+/// \brief The 8 corners of the box p ± radius (every axis) around every point, in order
+/// (point i: corners 8i .. 8i + 7): a displaced patch P + N D with |D| <= radius lies in
+/// their convex hull (Niessner & Loop §4.2, uniform extension). The double mirror of
+/// shaders/common/displaced_reach.glsl (which widens the radius by its fp32 margin).
+std::vector<glm::dvec3> displacedReachCorners(std::span<const glm::dvec3> points, double radius);
+
+/// \brief The screen box of a patch: inclusive pixel ranges and the nearest depth.
 struct HiZScreenBox {
   bool valid = false;  ///< false: a point with w <= 0, non-finite input, or off screen
   uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  ///< pixels [x0, x1] x [y0, y1], clamped
-  /// Lower bound of the patch's rasterized depth: the smallest z/w of the points, each
-  /// widened by its rounding margin, minus kHiZDepthBias (times the margin scale) and, for
-  /// HiZFragmentDepth::Extrapolated, minus min(1, kHiZExtrapolationPixels / n) times the
-  /// depth range of the points, n the larger side of the box in pixels.
+  /// Lower bound of the patch's rasterized depth: the smallest z/w of the points (of the
+  /// depth points when given), each widened by its rounding margin, minus kHiZDepthBias
+  /// (times the margin scale). The draw clamps every fragment's depth to at least the
+  /// smallest fp32 z/w of the same points (patch.tesc), which this never exceeds.
   double nearestDepth = 0.0;
 };
 
 /// \brief The patch's pixel box and nearest depth with the margins of shared/hiz_layout.h
 /// scaled by `marginScale` (1 for the reference). Invalid when some point has w <= the
-/// margin (at or behind the eye plane), on NaN/Inf, or when the box misses the screen.
+/// margin (at or behind the eye plane), on NaN/Inf, or when the box misses the screen; with
+/// `depth`, also when one of its points is.
 HiZScreenBox hizScreenBox(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
                           uint32_t width, uint32_t height, double marginScale = 1.0,
-                          HiZFragmentDepth depth = HiZFragmentDepth::ClampedToPoints);
+                          const HiZDepthPoints* depth = nullptr);
 
 /// \brief Which level a box is looked up at (shared/hiz_layout.h kHiZLookup*).
 enum class HiZLookup {
@@ -129,6 +131,6 @@ struct OcclusionResult {
 /// LESS depth test against the depths the pyramid was built from.
 OcclusionResult hizOcclusionTest(std::span<const glm::dvec3> points, const glm::dmat4& viewProj,
                                  const HiZPyramid& pyramid, HiZLookup lookup = HiZLookup::Paper,
-                                 HiZFragmentDepth depth = HiZFragmentDepth::ClampedToPoints);
+                                 const HiZDepthPoints* depth = nullptr);
 
 }  // namespace osd_cull::bound

@@ -41,9 +41,14 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::C
     out << "plan: off (--adaptive: the plan's cost model needs a uniform level)\n";
     return nullptr;
   }
-  if (args.calibration.empty() && !plan::loadCachedCalibration(plan::calibrationKey(context))) {
-    out << "plan: off, drawing without culling (no calibration of this device cached: run "
-           "`osd-cull calibrate --quick`, or give --plan-calibration FILE)\n";
+  std::string outdated;
+  if (args.calibration.empty() &&
+      !plan::loadCachedCalibration(plan::calibrationKey(context), &outdated)) {
+    out << "plan: off, drawing without culling ("
+        << (outdated.empty() ? "no calibration of this device cached: run `osd-cull calibrate "
+                               "--quick`, or give --plan-calibration FILE"
+                             : outdated)
+        << ")\n";
     return nullptr;
   }
   const plan::Calibration calibration = plan::deviceCalibration(context, args.calibration);

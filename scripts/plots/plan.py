@@ -7,8 +7,17 @@ of no culling, all culling and the planned frame against the tessellation level 
 and the planner's predicted frame time (dashed, same color as planned).
 
     scripts/plots/plan.py docs/results/plan/plan.csv docs/results/plan/plan.png
+
+With `--splice BENCH.md PAGE.md` it also replaces the part of PAGE.md between the lines
+`<!-- bench-plan output: begin -->` and `<!-- bench-plan output: end -->` by BENCH.md
+(bench-plan's standard output, progress lines dropped), so that the results page is the
+benchmark's own markdown plus the reading around it:
+
+    scripts/plots/plan.py plan.csv docs/results/plan/plan.png \
+        --splice bench_plan.md docs/results/plan.md
 """
 import csv
+import re
 import sys
 
 import matplotlib
@@ -21,9 +30,35 @@ SERIES = [("none_ms", "no culling", "#7f7f7f", "o-"), ("all_ms", "all culling", 
           ("predicted_ms", "planned, predicted", "#2ca02c", "--")]
 
 
+BEGIN = "<!-- bench-plan output: begin -->"
+END = "<!-- bench-plan output: end -->"
+
+
+def splice(bench_md, page_md):
+    with open(bench_md) as f:
+        # bench::progress lines ("[   1.3 s] ...") go to stderr; drop them if captured too.
+        body = "".join(line for line in f if not re.match(r"^\[\s*[0-9.]+ s\]", line)).strip()
+    with open(page_md) as f:
+        page = f.read()
+    if BEGIN not in page or END not in page:
+        sys.exit(f"{page_md}: no '{BEGIN}' ... '{END}' lines to splice between")
+    head, rest = page.split(BEGIN, 1)
+    _, tail = rest.split(END, 1)
+    with open(page_md, "w") as f:
+        f.write(head + BEGIN + "\n\n" + body + "\n\n" + END + tail)
+
+
 def main():
-    if len(sys.argv) != 3:
+    args = sys.argv[1:]
+    if "--splice" in args:
+        i = args.index("--splice")
+        if len(args) != i + 3:
+            sys.exit(__doc__)
+        splice(args[i + 1], args[i + 2])
+        args = args[:i]
+    if len(args) != 2:
         sys.exit(__doc__)
+    sys.argv[1:] = args
     with open(sys.argv[1], newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["case"] != "case"]
     cases = list(dict.fromkeys(r["case"] for r in rows))

@@ -6,6 +6,9 @@
 #define OSD_CULL_CULL_OCCLUSION_HIZ_GLSL
 #include "cull_common.glsl"
 #include "hiz/occlusion.glsl"
+#if CULL_DISPLACED
+#include "../common/displaced_reach.glsl"
+#endif
 
 layout(set = 1, binding = 0) uniform sampler2D hizPyramid;
 layout(std140, set = 1, binding = 1) uniform HiZUniform { HiZParams hizParams; };
@@ -25,14 +28,28 @@ uint occlusionVerdict(uint patchIndex, PatchClipBounds bounds) {
   int level;
   ivec2 t0, t1;
   if (!hizFootprint(box, hizParams, level, t0, t1)) return kOcclusionVerdictUntested;
-  // Undisplaced draws clamp fragment depth to the control points' nearest (patch.frag);
-  // the displaced draw does not, and keeps the extrapolation estimate.
 #if CULL_DISPLACED
-  const bool extrapolated = true;
-#else
-  const bool extrapolated = false;
+  // The displaced draw clamps fragment depth to the nearest fp32 depth of the boxes
+  // p_i ± r_i around the control points (patch.tesc, common/displaced_reach.glsl; the same
+  // floats: cones[].xy is (Dmin, Dmax) rounded as the draw's copy): that, minus the
+  // margins, is the nearest depth of every fragment, whatever bound gave the rectangle.
+  // Not tested when a corner is at or behind the eye plane (the draw does not clamp then).
+  HiZBox reach = hizBoxBegin();
+  vec4 range = cones[kConeVec4s * patchIndex];
+  float radius = displacedReachRadius(range.xy);
+  uint first = firstPoint(patchIndex), points = pointCount(patchIndex);
+  for (uint i = 0u; i < points; ++i) {
+    vec3 p = controlPoint(first + i);
+    float r = displacedReach(p, radius);
+    for (int k = 0; k < 8; ++k) {
+      vec3 q = reachCorner(p, r, k);
+      hizBoxAdd(reach, clipPoint(q), absClipPoint(q));
+    }
+  }
+  if (!reach.valid || !isFiniteF(range)) return kOcclusionVerdictUntested;
+  box.nearest = reach.nearest;
 #endif
-  if (hizOccluded(box, hizParams, hizPyramid, extrapolated)) return kOcclusionVerdictOccluded;
+  if (hizOccluded(box, hizParams, hizPyramid)) return kOcclusionVerdictOccluded;
   return kOcclusionVerdictVisible | (uint(level) << kOcclusionVerdictLevelShift);
 }
 #endif

@@ -3,7 +3,7 @@
 //
 // Usage: HiZBox b = hizBoxBegin(); for every control point p (16 Bezier, 20 Gregory):
 // hizBoxAdd(b, viewProj * vec4(p, 1), absViewProj * vec4(abs(p), 1)); then
-// hizOccluded(b, params, pyramid, extrapolated). The margins are kHiZGpuMarginScale times the
+// hizOccluded(b, params, pyramid). The margins are kHiZGpuMarginScale times the
 // reference's, so fp32 rounding can only make this cull less than the reference.
 #ifndef OSD_CULL_HIZ_OCCLUSION_GLSL
 #define OSD_CULL_HIZ_OCCLUSION_GLSL
@@ -71,28 +71,19 @@ bool hizFootprint(HiZBox b, HiZParams hiz, out int level, out ivec2 t0, out ivec
 
 // True when no fragment of the patch can pass a LESS depth test against the depths the
 // pyramid was built from: its nearest depth is not nearer than the farthest of the texels.
-// extrapolated false: the draw clamps each fragment's depth to at least the nearest fp32
-// control-point depth (patch.tesc, patch.frag; bound::HiZFragmentDepth::ClampedToPoints),
-// which b.nearest (2x the reference's margins) never exceeds. true (the displaced draw,
-// which does not clamp): the extrapolation estimate of bound::HiZFragmentDepth::Extrapolated.
-bool hizOccluded(HiZBox b, HiZParams hiz, sampler2D pyramid, bool extrapolated) {
+// The draw clamps each fragment's depth to at least the nearest fp32 control-point depth
+// (patch.tesc, patch.frag; bound::hizScreenBox), or for displaced
+// patches the nearest depth of the boxes around them (common/displaced_reach.glsl, which the
+// displaced kernel puts into b.nearest), which b.nearest (2x the reference's margins) never
+// exceeds.
+bool hizOccluded(HiZBox b, HiZParams hiz, sampler2D pyramid) {
   if (hiz.enabled == 0u) return false;
   int level;
   ivec2 t0, t1;
   if (!hizFootprint(b, hiz, level, t0, t1)) return false;
   float far = max(max(texelFetch(pyramid, t0, level).r, texelFetch(pyramid, ivec2(t1.x, t0.y), level).r),
                   max(texelFetch(pyramid, ivec2(t0.x, t1.y), level).r, texelFetch(pyramid, t1, level).r));
-  float extrapolation = 0.0;
-  if (extrapolated) {
-    // The range between the widened ends is at least the reference's range of the points;
-    // the box side is taken smaller than the reference's (its wider margins add far less
-    // than 0.1 (n + 1) pixels), so its factor is at least the reference's.
-    vec2 side = (b.hi - b.lo) * 0.5 * vec2(hiz.width, hiz.height);
-    float n = 0.9 * max(side.x, side.y) - 0.1;
-    extrapolation = n > kHiZExtrapolationPixels ? kHiZExtrapolationPixels / n : 1.0;
-  }
-  float nearest = b.nearest - extrapolation * (b.farthest - b.nearest) -
-                  kHiZDepthBias * kHiZGpuMarginScale;
+  float nearest = b.nearest - kHiZDepthBias * kHiZGpuMarginScale;
   return nearest >= far;
 }
 #endif

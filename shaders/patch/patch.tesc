@@ -12,6 +12,11 @@ layout(std430, set = kDisplaceSet, binding = kDisplaceBindingEdges) readonly buf
     EdgeDisplacementBuffer {
   vec4 edgeDisplacement[];
 };
+layout(std430, set = kDisplaceSet, binding = kDisplaceBindingRanges) readonly buffer
+    DisplacementRangeBuffer {
+  vec2 displacementRanges[];  // (Dmin, Dmax) per patch
+};
+#include "../common/displaced_reach.glsl"
 
 // The displacement length each edge (Lo and Hi halves) adds, as frame::edgeDisplacementTerms.
 void displacementOffsets(uint patchIndex, uint transition, out vec4 offsetLo, out vec4 offsetHi) {
@@ -41,9 +46,10 @@ layout(location = 0) out vec3 tcPoint[];
 layout(location = 1) patch out uint tcPatch;
 layout(location = 2) patch out vec4 tcLo;
 layout(location = 3) patch out vec4 tcHi;
-// The smallest fp32 depth z/w of the control points, or 0 (no clamp): patch.frag writes no
-// fragment depth below it. Proof that this keeps the image and makes the Hi-Z bound hold
-// (Niessner & Loop §4.1.1; docs/algorithms/occlusion.md, "Sub-pixel patches"):
+// The smallest fp32 depth z/w of the control points (of the region a displaced patch can
+// reach, PATCH_DISPLACED), or 0 (no clamp): patch.frag writes no fragment depth below it.
+// Proof that this keeps the image and makes the Hi-Z bound hold (Niessner & Loop §4.1.1;
+// docs/algorithms/occlusion.md, "Sub-pixel patches" and "Displaced patches"):
 // - the surface lies in the convex hull of its control points (Bezier and Gregory weights
 //   are non-negative and sum to 1), and in clip space a point of the hull is
 //   c = sum a_i c_i with a_i >= 0, so with every w_i > 0 its depth is
@@ -56,24 +62,42 @@ layout(location = 3) patch out vec4 tcHi;
 //   z/w minus err, err bounding the fp32 rounding of exactly this product and quotient, so
 //   it never exceeds the value computed here; every fragment of a culled patch then has
 //   depth >= nearest >= the farthest depth stored under its box and fails LESS.
-// When some w <= 0 (the patch reaches the eye plane) the cull never tests the patch and the
-// hull argument fails, so there is no clamp. The displaced draw moves points off the hull:
-// no clamp either (its cull keeps the extrapolation estimate, HiZFragmentDepth::Extrapolated).
+// Displaced patches (S = P + N D, Niessner & Loop §4.2, Fig. 5, uniform extension): the
+// same argument with the points replaced by the 8 corners of the box p_i ± r_i around every
+// control point (common/displaced_reach.glsl: S lies in the convex hull of those boxes,
+// r_i >= max(Dmax, -Dmin) of the patch, rounded outward as the kernel's cones[] hold it).
+// The displaced cull kernel (cull/occlusion_hiz.glsl) takes its nearest depth from the very
+// same fp32 corners (same include, same per-patch floats) minus its margins, and
+// bound::displacedFragmentDepth in double, so again nearest <= this value: a proof for
+// every displaced kernel, whatever cone or box (OOBB, CAF) gives its screen rectangle.
+// When some w <= 0 (the patch reaches the eye plane) the cull never tests the patch (it
+// requires w > 2^-17 |w| terms, beyond any rounding difference) and the hull argument
+// fails, so there is no clamp.
 layout(location = 4) patch out float tcNearestDepth;
 
-float nearestControlPointDepth(vec3 cp[PATCH_POINTS]) {
-#if defined(PATCH_DISPLACED)
-  return 0.0;
-#else
+// Folds point p into the running minimum of z/w; false when w <= 0 or NaN/Inf (no clamp).
+bool addDepth(inout float nearest, vec3 p) {
+  vec4 c = pc.viewProjection * vec4(p, 1.0);
+  float z = c.z / c.w;
+  if (!(c.w > 0.0) || isinf(c.w) || isnan(z) || isinf(z)) return false;
+  nearest = min(nearest, z);
+  return true;
+}
+
+float nearestControlPointDepth(uint patchIndex, vec3 cp[PATCH_POINTS]) {
   float nearest = 3.4028234e38;
+#if defined(PATCH_DISPLACED)
+  float radius = displacedReachRadius(displacementRanges[patchIndex]);
   for (int i = 0; i < PATCH_POINTS; ++i) {
-    vec4 c = pc.viewProjection * vec4(cp[i], 1.0);
-    float z = c.z / c.w;
-    if (!(c.w > 0.0) || isinf(c.w) || isnan(z) || isinf(z)) return 0.0;
-    nearest = min(nearest, z);
+    float r = displacedReach(cp[i], radius);
+    for (int k = 0; k < 8; ++k)
+      if (!addDepth(nearest, reachCorner(cp[i], r, k))) return 0.0;
   }
-  return nearest;
+#else
+  for (int i = 0; i < PATCH_POINTS; ++i)
+    if (!addDepth(nearest, cp[i])) return 0.0;
 #endif
+  return nearest;
 }
 
 void main() {
@@ -107,6 +131,6 @@ void main() {
     tcPatch = vPatch[0];
     tcLo = lo;
     tcHi = hi;
-    tcNearestDepth = (pc.flags & kFlagNoDepthClamp) != 0u ? 0.0 : nearestControlPointDepth(cp);
+    tcNearestDepth = (pc.flags & kFlagNoDepthClamp) != 0u ? 0.0 : nearestControlPointDepth(patchIndex, cp);
   }
 }

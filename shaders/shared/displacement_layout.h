@@ -17,6 +17,10 @@ OSD_CULL_CONST uint kDisplaceBindingEdges = 3u;   // vec4 edgeDisplacement[3 * p
                                                   // (world units, gl_TessLevelOuter order):
                                                   // whole edge, first half, second half
                                                   // (frame::EdgeDisplacement; patch.tesc)
+OSD_CULL_CONST uint kDisplaceBindingRanges = 4u;  // vec2 ranges[patch]: (Dmin, Dmax) of the
+                                                  // patch, rounded outward as the cull
+                                                  // kernel's (packDisplacementRanges); the
+                                                  // depth clamp of patch.tesc
 
 struct DisplacementParams {
   vec4 map;   // x: scale, y: midlevel, z: level of detail sampled, w: 1 / width (texels)

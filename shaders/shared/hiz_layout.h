@@ -40,14 +40,10 @@ OSD_CULL_CONST float kHiZGpuMarginScale = 2.0f;
 // patches"): lavapipe interpolates depth over a plane through the triangle's float vertices
 // but decides coverage on vertices snapped to 1/256 pixel, so a covered pixel centre can lie
 // outside the triangle and get a depth in front of all three vertices (measured: 5.6 times
-// the depth range of a 0.29 x 0.011 pixel patch). The undisplaced patch draw clamps fragment
-// depth to its nearest control point (patch.tesc), which makes the cull's bound exact. Only
-// the displaced draw, which does not clamp, lowers the nearest depth by an estimate:
-// min(1, kHiZExtrapolationPixels / n) times the depth range of its bound's points, n the
-// larger side of the screen box in pixels (a triangle of a patch n pixels wide at
-// tessellation t is about n/t high and spans about range/t in depth, so 1/256 pixel of
-// snapping extrapolates about range/(256 n)); thin slivers can exceed it.
-OSD_CULL_CONST float kHiZExtrapolationPixels = 0.0625f;
+// the depth range of a 0.29 x 0.011 pixel patch). No margin bounds it; the patch draw
+// clamps fragment depth to its nearest control point (displaced: to the nearest corner of
+// the boxes around them, common/displaced_reach.glsl; patch.tesc), which makes the cull's
+// bound exact.
 
 // HiZParams.lookup: the level a box is looked up at. Paper (§4.1.1): ceil(log2(n)) for an
 // n-pixel box, where 2x2 texels always cover it. Tight: one level finer when the box, as it

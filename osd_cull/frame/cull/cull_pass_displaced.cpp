@@ -105,10 +105,13 @@ std::vector<uint32_t> displacedReferenceCull(const PatchSet& host, const CullPas
         continue;
       }
     }
-    // The displaced draw does not clamp its fragment depth (patch.tesc): the estimate.
-    if (hiz && bound::hizOcclusionTest(b.corners, b.toClip, *hiz, lookup,
-                                       bound::HiZFragmentDepth::Extrapolated)
-                   .culled)
+    // The displaced draw clamps its fragments' depth to the nearest depth of the boxes
+    // around the control points (patch.tesc): their nearest depth bounds the fragments.
+    if (!hiz) continue;
+    const std::vector<glm::dvec3> reach =
+        bound::displacedReachCorners(host.controlPoints(p), data[p].range.maxAbs());
+    const bound::HiZDepthPoints depth{reach, camera.viewProjection()};
+    if (bound::hizOcclusionTest(b.corners, b.toClip, *hiz, lookup, &depth).culled)
       code = (code & ~0xFu) | shader::kStageOcclusion;
   }
   return codes;

@@ -1,6 +1,8 @@
 #include "osd_cull/frame/draw/gpu_displacement.h"
 
+#include "osd_cull/bound/displaced_bounds.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
@@ -25,6 +27,8 @@ std::span<const vulkan::DescriptorBinding> displacementSetBindings() {
       {sh::kDisplaceBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
        VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT},
       {sh::kDisplaceBindingEdges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+       VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT},
+      {sh::kDisplaceBindingRanges, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
        VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT}};
   return bindings;
 }
@@ -119,6 +123,17 @@ GpuDisplacement::GpuDisplacement(vulkan::Context& context, const bound::Displace
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   vulkan::upload<float>(context, edgeBuffer_, edgeFloats);
 
+  // (Dmin, Dmax) per patch, rounded outward exactly as the displaced cull kernel's copy
+  // (packDisplacementRanges): the depth clamp of patch.tesc and the kernel's nearest depth
+  // start from the same floats.
+  std::vector<bound::DisplacementRange> ranges(patchCount);
+  for (uint32_t p = 0; p < patchCount; ++p)
+    ranges[p] = map.displacementOver(bound::patchUvRegion(uvCorners.subspan(4 * size_t{p}, 4)));
+  const std::vector<float> rangeFloats = packDisplacementRanges(ranges);
+  ranges_ = vulkan::Buffer(context, rangeFloats.size() * sizeof(float),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<float>(context, ranges_, rangeFloats);
+
   setLayout_ = vulkan::createDescriptorSetLayout(context, displacementSetBindings());
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, displacementSetBindings());
   set_ = pool_->allocate(setLayout_.get());
@@ -127,6 +142,7 @@ GpuDisplacement::GpuDisplacement(vulkan::Context& context, const bound::Displace
       .buffer(sh::kDisplaceBindingUVs, uvs_)
       .buffer(sh::kDisplaceBindingParams, params_)
       .buffer(sh::kDisplaceBindingEdges, edgeBuffer_)
+      .buffer(sh::kDisplaceBindingRanges, ranges_)
       .update(context.device(), set_);
 }
 

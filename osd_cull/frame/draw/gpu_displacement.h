@@ -55,6 +55,7 @@ class GpuDisplacement {
   vulkan::Buffer params_;
   std::vector<EdgeDisplacement> edges_;
   vulkan::Buffer edgeBuffer_;
+  vulkan::Buffer ranges_;  // (Dmin, Dmax) per patch: the depth clamp (patch.tesc)
   vulkan::UniqueDescriptorSetLayout setLayout_;
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
