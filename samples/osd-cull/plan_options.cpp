@@ -26,6 +26,16 @@ void addPlanOptions(CLI::App& app, PlanArgs& args) {
       ->group("Culling");
 }
 
+std::string missingCalibration(const PlanArgs& args, const vulkan::Context& context) {
+  std::string outdated;
+  if (!args.calibration.empty() ||
+      plan::loadCachedCalibration(plan::calibrationKey(context), &outdated))
+    return "";
+  return outdated.empty() ? "no calibration of this device cached: run `osd-cull calibrate "
+                            "--quick`, or give --plan-calibration FILE"
+                          : outdated;
+}
+
 std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::Context& context,
                                            bool cullGiven, bool uniformTessellation,
                                            std::ostream& out) {
@@ -41,14 +51,8 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::C
     out << "plan: off (--adaptive: the plan's cost model needs a uniform level)\n";
     return nullptr;
   }
-  std::string outdated;
-  if (args.calibration.empty() &&
-      !plan::loadCachedCalibration(plan::calibrationKey(context), &outdated)) {
-    out << "plan: off, drawing without culling ("
-        << (outdated.empty() ? "no calibration of this device cached: run `osd-cull calibrate "
-                               "--quick`, or give --plan-calibration FILE"
-                             : outdated)
-        << ")\n";
+  if (const std::string missing = missingCalibration(args, context); !missing.empty()) {
+    out << "plan: off, drawing without culling (" << missing << ")\n";
     return nullptr;
   }
   const plan::Calibration calibration = plan::deviceCalibration(context, args.calibration);

@@ -26,6 +26,10 @@ struct PlanArgs {
 /// \brief Declares `--plan MODE` and `--plan-calibration FILE` in the "Culling" group.
 void addPlanOptions(CLI::App& app, PlanArgs& args);
 
+/// \brief Why there is no calibration to plan with ("" when there is one): no
+/// --plan-calibration and no (current) calibration of this device in the cache.
+std::string missingCalibration(const PlanArgs& args, const vulkan::Context& context);
+
 /// \brief The planner of a render, or null when the plan is off, with one line to `out`
 /// saying which and why: `--plan off`, an explicit `--cull` (a fixed choice), adaptive
 /// tessellation (the plan needs a uniform level), or no calibration of this device.
