@@ -35,6 +35,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -121,11 +122,13 @@ int run(const Args& a) {
     planner = std::make_unique<plan::Planner>(calibration);
     planned = std::make_unique<scene::ScenePlayer>(
         context, s, options,
-        a.gpuPoints ? frame::PointUpdatePath::Gpu : frame::PointUpdatePath::Cpu);
-    planned->setPlanner(planner.get());
+        a.gpuPoints ? frame::PointUpdatePath::Gpu : frame::PointUpdatePath::Cpu, planner.get());
   }
   std::vector<std::vector<double>> plannedMs(player.viewCount()), predictedMs(player.viewCount());
   std::vector<uint64_t> plannedLost(player.viewCount(), 0);
+  // Per view and instance: how many frames each stage choice ran.
+  std::vector<std::vector<std::map<std::string, uint32_t>>> choices(
+      player.viewCount(), std::vector<std::map<std::string, uint32_t>>(player.instanceCount()));
   std::vector<std::unique_ptr<frame::RenderTarget>> plannedPlain;
   if (planned)
     for (size_t v = 0; v < player.viewCount(); ++v)
@@ -160,6 +163,8 @@ int run(const Args& a) {
       for (const plan::Plan& p : plannedViews[v].plans)
         predicted += p.predicted.totalMs() - p.predicted.updateMs;
       predictedMs[v].push_back(predicted);
+      for (size_t i = 0; i < plannedViews[v].plans.size(); ++i)
+        ++choices[v][i][plannedViews[v].plans[i].stages.describe()];
       const frame::ItemComparison c = planned->compareWithUnculled(v, *plannedPlain[v]).items;
       plannedLost[v] += c.lost;
       failed |= c.lost > 0 || c.differingShare() >= 1e-4;
@@ -214,6 +219,14 @@ int run(const Args& a) {
                   bench::median(predictedMs[v]) / p,
                   static_cast<unsigned long long>(plannedLost[v]));
     }
+    for (size_t v = 0; v < player.viewCount(); ++v)
+      for (size_t i = 0; i < player.instanceCount(); ++i) {
+        std::string line;
+        for (const auto& [choice, n] : choices[v][i])
+          line += (line.empty() ? "" : ", ") + choice + " (" + std::to_string(n) + ")";
+        std::printf("planned %s / %s: %s\n", s.description.views[v].name.c_str(),
+                    s.description.instances[i].name.c_str(), line.c_str());
+      }
     for (const scene::MeshWork& w : planned->work())
       std::printf("planned mesh '%s': %s, %llu point updates, %llu bounds dispatches\n",
                   w.mesh.c_str(), w.deforms ? "deforms" : "static",

@@ -14,12 +14,14 @@
 #include "osd_cull/frame/dynamic_patch_mesh.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
+#include "osd_cull/frame/verify/cull_verification.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/scene/cage_animation.h"
 #include "osd_cull/scene/procedural.h"
 #include "osd_cull/scene/procedural_displacement.h"
+#include "osd_cull/vk/transfer.h"
 #include "support/bounds_check.h"
 #include "support/displacement_test_maps.h"
 #include "support/temp_dir.h"
@@ -244,6 +246,26 @@ TEST_F(AnimatedCullTest, TwoPassFramesOfASkinnedMeshEqualTheUnculledImage) {
   }
 }
 
+// The default mesh with planar UVs, deformable on the GPU, and the procedural map at 8% of
+// its bounding radius.
+struct DisplacedDefaultMesh {
+  explicit DisplacedDefaultMesh(vulkan::Context& context)
+      : cage(test::withPlanarUVs(scene::defaultMesh())),
+        extraction(extractPatches(cage)),
+        uvCorners(extraction.uvCorners),
+        mesh(std::make_unique<frame::DynamicPatchMesh>(context, std::move(extraction),
+                                                       cage.positions)),
+        rest(frame::boundsOf(mesh->patches().points)),
+        map("procedural", 128, 128, scene::proceduralDisplacementTexels(128, 4),
+            0.08 * rest.radius(), 0.5) {}
+  CageMesh cage;
+  PatchExtraction extraction;  // moved into mesh
+  std::vector<glm::dvec2> uvCorners;
+  std::unique_ptr<frame::DynamicPatchMesh> mesh;
+  frame::Bounds rest;
+  bound::DisplacementMap map;
+};
+
 // Issue 11 on a deforming mesh: the default mesh with planar UVs, the procedural
 // displacement and a twist, every frame culled by each of the six displaced kernels (Hi-Z
 // occlusion with the displaced bound, after the displaced frustum test) reading the cones
@@ -251,14 +273,12 @@ TEST_F(AnimatedCullTest, TwoPassFramesOfASkinnedMeshEqualTheUnculledImage) {
 // reference, no culled patch has a pixel in the oracle of the displaced draw, and every GPU
 // cull is a cull of the double-precision kernel reference run with the same cones.
 TEST_F(AnimatedCullTest, DisplacedKernelsHaveNoFalseCullOnEveryFrameOfADeformingMesh) {
-  const CageMesh cage = test::withPlanarUVs(scene::defaultMesh());
-  PatchExtraction ex = extractPatches(cage);
-  const std::vector<glm::dvec2> uvCorners = ex.uvCorners;
-  frame::DynamicPatchMesh mesh(context(), std::move(ex), cage.positions);
-  const frame::Bounds rest = frame::boundsOf(mesh.patches().points);
-  const bound::DisplacementMap map("procedural", 128, 128,
-                                   scene::proceduralDisplacementTexels(128, 4),
-                                   0.08 * rest.radius(), 0.5);
+  const DisplacedDefaultMesh displaced(context());
+  const CageMesh& cage = displaced.cage;
+  const std::vector<glm::dvec2>& uvCorners = displaced.uvCorners;
+  frame::DynamicPatchMesh& mesh = *displaced.mesh;
+  const frame::Bounds rest = displaced.rest;
+  const bound::DisplacementMap& map = displaced.map;
   frame::GpuDisplacement displacement(context(), map, uvCorners, mesh.patches().patchCount());
   mesh.gpu().setDisplacement(&displacement);
   const std::vector<bound::DisplacementRange> ranges =
@@ -345,6 +365,66 @@ TEST_F(AnimatedCullTest, DisplacedKernelsHaveNoFalseCullOnEveryFrameOfADeforming
     std::printf("%s: %.1f%% culled over %d frames\n", k.name.c_str(),
                 100.0 * double(k.culled) / double(patchViews), kFrames);
   }
+}
+
+// `osd-cull verify SCENE` on a deforming displaced instance (scene_verify.cpp) hands the
+// verifier the cones the GPU bounds pass computed for the frame
+// (VerifyOptions::displacedCullData), as ScenePlayer culls with them. With them: no false
+// cull, every GPU cull a cull of the double reference (run on that data with the exact D
+// range). With the same buffer but Dmin = Dmax = 0 (a bound that ignores the displacement)
+// the verifier must see the kernel cull displaced-visible patches: it really culls with the
+// data it was given, and the oracle and the reference catch bad data.
+TEST_F(AnimatedCullTest, VerifierCullsADeformingDisplacedMeshWithItsGpuBoundsPassData) {
+  const DisplacedDefaultMesh displaced(context());
+  frame::DynamicPatchMesh& mesh = *displaced.mesh;
+  scene::DeformerParams d;
+  d.amount = 0.8;
+  const auto twist = scene::makeTwist(displaced.cage.positions, d);
+  std::vector<glm::dvec3> positions(displaced.cage.positions.size());
+  twist->positions(twist->duration() * 0.7, positions);
+  mesh.setCagePositions(positions);
+  ASSERT_TRUE(mesh.update());
+  const vulkan::Buffer& gpuData =
+      mesh.displacedCullData(displaced.map, displaced.uvCorners, bound::DisplacedExtension::CoN);
+  // The same data with Dmin = Dmax = 0 in every patch's first vec4.
+  std::vector<float> flat = vulkan::readback<float>(context(), gpuData);
+  for (size_t p = 0; p < mesh.patches().patchCount(); ++p)
+    flat[4 * shader::kConeVec4s * p] = flat[4 * shader::kConeVec4s * p + 1] = 0.0f;
+  vulkan::Buffer flatData(context(), flat.size() * sizeof(float),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  vulkan::upload<float>(context(), flatData, flat);
+
+  std::vector<frame::Camera> cameras;
+  for (int v = 0; v < 6; ++v)
+    cameras.push_back(frame::orbit(
+        frame::frameBounds(displaced.rest, {0.4, 0.5, 1.0}, {0, 1, 0}, v % 2 ? 25.0 : 45.0, 96, 96),
+        displaced.rest.center(), {0, 1, 0}, 60.0 * v));
+  frame::MethodTotals totals[2];
+  for (int k = 0; k < 2; ++k) {
+    frame::VerifyOptions options;
+    options.tessellation.uniformLevel = 4;
+    options.displacementMap = &displaced.map;
+    options.uvCorners = displaced.uvCorners;
+    options.displacedCullData[bound::DisplacedExtension::CoN] = k == 0 ? &gpuData : &flatData;
+    frame::CullVerifier verifier(context(), mesh.patches(), {"con-caf"}, {false, "displaced"},
+                                 options);
+    for (const frame::Camera& camera : cameras) verifier.verifyView(camera);
+    ASSERT_EQ(verifier.totals().size(), 1u);
+    totals[k] = verifier.totals()[0];
+  }
+  std::printf(
+      "GPU bounds data: %llu culled, %llu false; flat data: %llu culled, %llu false, "
+      "%llu not in the reference\n",
+      static_cast<unsigned long long>(totals[0].culled),
+      static_cast<unsigned long long>(totals[0].falseCulls),
+      static_cast<unsigned long long>(totals[1].culled),
+      static_cast<unsigned long long>(totals[1].falseCulls),
+      static_cast<unsigned long long>(totals[1].notInReference));
+  EXPECT_EQ(totals[0].falseCulls, 0u);
+  EXPECT_EQ(totals[0].notInReference, 0u);
+  EXPECT_GT(totals[0].culled, totals[0].patchViews / 20);
+  EXPECT_GT(totals[1].culled, totals[0].culled);
+  EXPECT_GT(totals[1].notInReference, 0u);
 }
 
 }  // namespace

@@ -70,7 +70,7 @@ std::map<std::string, uint64_t> expectSubsetOfReference(vulkan::Context& context
     settings.drawnEnumerate = enumerate;
     CullPass pass(context, gpu, set, settings);
     EXPECT_TRUE(pass.backPatchEnabled()) << method;
-    uint64_t gpuCulled = 0, cpuCulled = 0, agree = 0, total = 0;
+    uint64_t gpuCulled = 0, cpuCulled = 0, agree = 0, total = 0, gregoryCulled = 0;
     for (const auto& camera : views) {
       pass.run(camera);
       const auto results = pass.results();
@@ -85,6 +85,7 @@ std::map<std::string, uint64_t> expectSubsetOfReference(vulkan::Context& context
             << bound::describe(c);
         EXPECT_EQ(g.frustum(), sh::kNotRun);
         gpuCulled += g.culled();
+        gregoryCulled += g.culled() && set.type(p) == PatchType::Gregory;
         cpuCulled += c.culled();
         agree += g.culled() == c.culled();
         ++total;
@@ -94,6 +95,10 @@ std::map<std::string, uint64_t> expectSubsetOfReference(vulkan::Context& context
     EXPECT_GT(double(gpuCulled) / double(total), minRate) << method;
     EXPECT_GT(double(agree) / double(total), 0.97) << method;
     EXPECT_LE(gpuCulled, cpuCulled) << method;
+    // Drawn triangles respected: only the listed test culls Gregory patches.
+    if (drawnTriangles) {
+      EXPECT_EQ(gregoryCulled > 0, enumerate) << method;
+    }
     culls[method] = gpuCulled;
   }
   return culls;

@@ -148,6 +148,44 @@ TEST(SceneCommand, BadSceneFileNamesThePath) {
       << r.output;
 }
 
+// An animated displaced mesh (the users' case): `verify SCENE` culls its displaced kernel
+// with the cones the GPU bounds pass computed for each frame, as `render` does
+// (scene_verify.cpp), and finds no false cull and no GPU cull outside the double reference.
+TEST(SceneCommand, AnimatedDisplacedMeshVerifiesWithTheGpuBoundsPass) {
+  OSD_CULL_REQUIRE_DATA();
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  test::TempDir dir("scene_cli_");
+  const std::string obj = (test::dataDir() / "shapes/catmark_cube.obj").string();
+  const fs::path scene = dir.write("scene.json", R"({"version": 1,
+  "settings": {"frameCount": 2, "width": 64, "height": 64},
+  "meshes": [{"name": "bumpy", "file": ")" + obj + R"(", "level": 2,
+              "displacement": {"map": "procedural", "scale": 0.1, "bound": "acon", "box": "caf"},
+              "animation": {"deformer": "twist", "axis": 2, "amount": 0.4}}],
+  "instances": [{"name": "bumpy", "mesh": "bumpy"}],
+  "views": [{"name": "main", "camera": {"eye": [0.5, -2.6, 0.9], "target": [0.5, 0, 0]}}]})");
+  const auto v = test::runCommand(test::osdCullProgram().string() + " verify " + scene.string() +
+                                  " --frames 2 --views 2 --width 64 --height 64 --tess 2"
+                                  " --methods frustum --validate --json " +
+                                  (dir.path() / "verify.json").string());
+  ASSERT_EQ(v.exitCode(), 0) << v.output;
+  EXPECT_NE(v.output.find("bumpy: acon-caf reads the cones of the GPU bounds pass"),
+            std::string::npos)
+      << v.output;
+  std::ifstream in(dir.path() / "verify.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j.at("ok").get<bool>());
+  bool kernel = false;
+  for (const auto& m : j.at("methods")) {
+    EXPECT_EQ(m.at("false_culls"), 0) << m.at("name");
+    EXPECT_EQ(m.at("culled_not_in_reference"), 0) << m.at("name");
+    if (m.at("name") == "acon-caf") {
+      kernel = true;
+      EXPECT_GT(m.at("cull_rate").get<double>(), 0.0) << v.output;
+    }
+  }
+  EXPECT_TRUE(kernel) << v.output;
+}
+
 // Issue 11 in scene files: a static displaced mesh (procedural map, con-oobb bound) beside a
 // twisting undisplaced one; every frame renders like the unculled draw and verifies with no
 // false cull, the displaced instance also with its own kernel.

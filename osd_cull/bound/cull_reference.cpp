@@ -136,15 +136,15 @@ uint32_t boundVerdict(const PatchSet& patches, uint32_t patch, const CullView& v
                                                    : uint32_t(BackPatchVerdict::DrawnTriangles);
 }
 
-// boundVerdict, then drawn_triangle_set.h's listed triangles for a patch the worst-case
-// bound keeps.
+// boundVerdict, then drawn_triangle_set.h's listed triangles for a patch (Bézier or Gregory)
+// the worst-case bound keeps.
 uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullView& view,
                           BackPatchMethod method, std::span<const ConeOfNormals> cones,
                           const CullTests& tests) {
   const uint32_t v =
       boundVerdict(patches, patch, view, method, cones, tests.drawnShapes, tests.snapPerDistance);
   if (v != uint32_t(BackPatchVerdict::DrawnTriangles) || !tests.drawnEnumerate || !view.eye ||
-      patches.type(patch) != PatchType::Bezier || !tests.drawnShapes[patch].exactLevels)
+      !tests.drawnShapes[patch].exactLevels)
     return v;
   return drawnTrianglesFaceAway(patches.controlPoints(patch), tests.drawnShapes[patch].levels,
                                 *view.eye, tests.snapPerDistance)

@@ -1,5 +1,6 @@
 #include "osd_cull/bound/drawn_triangle_set.h"
 
+#include "osd_cull/bound/patch_eval.h"
 #include "osd_cull/error.h"
 
 #include <glm/geometric.hpp>
@@ -49,6 +50,25 @@ glm::dvec3 bezierPoint(std::span<const glm::dvec3> b, double u, double v) {
   return p;
 }
 
+// Outer level of edge e (the Lo and Hi halves together).
+double outerLevel(const QuadTessLevels& levels, int e) {
+  return std::ceil(levels.lo[e]) + std::ceil(levels.hi[e]);
+}
+
+// Whether the tessellator draws the quad as two triangles (every outer level 1).
+bool allLevelsOne(const QuadTessLevels& levels) {
+  for (int e = 0; e < 4; ++e)
+    if (outerLevel(levels, e) != 1.0) return false;
+  return true;
+}
+
+// The inner levels as the tessellator rounds OsdComputeTessLevels' averages (at least 2):
+// [0] subdivides u, [1] subdivides v.
+std::array<double, 2> innerLevels(const QuadTessLevels& levels) {
+  return {std::max(2.0, std::ceil(0.5 * (outerLevel(levels, 1) + outerLevel(levels, 3)))),
+          std::max(2.0, std::ceil(0.5 * (outerLevel(levels, 0) + outerLevel(levels, 2))))};
+}
+
 DomainTriangle counterClockwise(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {
   const glm::dvec2 d1 = b - a, d2 = c - a;
   if (d1.x * d2.y - d1.y * d2.x < 0.0) std::swap(b, c);
@@ -87,9 +107,7 @@ void forEachDrawnTriangle(const QuadTessLevels& levels,
     cell({0.0, 0.0}, {1.0, 1.0});
     return;
   }
-  // Inner levels as the tessellator rounds OsdComputeTessLevels' averages (at least 2).
-  const double i0 = std::max(2.0, std::ceil(0.5 * (outer[1] + outer[3])));  // subdivides u
-  const double i1 = std::max(2.0, std::ceil(0.5 * (outer[0] + outer[2])));  // subdivides v
+  const auto [i0, i1] = innerLevels(levels);
   for (double k = 1; k + 1 < i0; ++k)
     for (double l = 1; l + 1 < i1; ++l) cell({k / i0, l / i1}, {(k + 1) / i0, (l + 1) / i1});
   for (int e = 0; e < 4; ++e) {
@@ -121,11 +139,17 @@ void forEachDrawnTriangle(const QuadTessLevels& levels,
   }
 }
 
+double tessellatorPointError(double level) {
+  const double n = std::ceil(level), reciprocal = std::round(65536.0 / n) / 65536.0;
+  return std::floor(n / 2.0) * std::abs(reciprocal - 1.0 / n);
+}
+
 double tessCoordError(const QuadTessLevels& levels) {
-  double l = 1.0;
-  for (int e = 0; e < 4; ++e) l = std::max(l, std::ceil(levels.lo[e]) + std::ceil(levels.hi[e]));
-  // Inner levels average opposite outer levels, so they are at most the largest outer one.
-  return (l + 1.0) * std::ldexp(1.0, -17);
+  const std::array<double, 2> inner = innerLevels(levels);
+  double e = 0.0;
+  if (!allLevelsOne(levels))
+    e = std::max(tessellatorPointError(inner[0]), tessellatorPointError(inner[1]));
+  return e + std::ldexp(1.0, -21);
 }
 
 bool triangleFacesAway(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
@@ -139,19 +163,65 @@ bool triangleFacesAway(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dv
   return glm::dot(v, glm::cross(a, b)) + margin + rounding < 0.0;
 }
 
-bool drawnTrianglesFaceAway(std::span<const glm::dvec3> bezier, const QuadTessLevels& levels,
+double gregoryDerivativeBound(std::span<const glm::dvec3> gregory) {
+  if (gregory.size() != kGregoryPoints)
+    throw Error("gregoryDerivativeBound: a Gregory patch has 20 control points, got " +
+                std::to_string(gregory.size()));
+  // The two nets the blends move between: Fp (a) or Fm (b) at the interior positions.
+  std::array<glm::dvec3, 16> a, b;
+  for (size_t k = 0; k < 16; ++k)
+    if (kGregoryBoundary[k] >= 0) a[k] = b[k] = gregory[kGregoryBoundary[k]];
+  for (const GregoryInterior& g : kGregoryInterior) {
+    a[4 * g.j + g.i] = gregory[g.a];
+    b[4 * g.j + g.i] = gregory[g.b];
+  }
+  auto widest = [&](int p, int q) {
+    return std::max({glm::length(a[p] - a[q]), glm::length(a[p] - b[q]), glm::length(b[p] - a[q]),
+                     glm::length(b[p] - b[q])});
+  };
+  double hodograph = 0.0;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i)
+      hodograph = std::max(
+          {hodograph, widest(4 * j + i, 4 * j + i + 1), widest(4 * i + j, 4 * (i + 1) + j)});
+  double rational = 0.0;
+  for (const GregoryInterior& g : kGregoryInterior)
+    rational += 4.0 / 3.0 * glm::length(gregory[g.a] - gregory[g.b]);
+  return 3.0 * hodograph + rational;
+}
+
+bool drawnTrianglesFaceAway(std::span<const glm::dvec3> points, const QuadTessLevels& levels,
                             const glm::dvec3& eye, double snapPerDistance) {
-  const DerivativeBounds d = bezierDerivativeBounds(bezier);
-  double r = 0.0;
-  for (const glm::dvec3& p : bezier) r = std::max(r, glm::length(eye - p));
-  const double dv =
-      drawnVertexError(d.maxAbs, eye, r, snapPerDistance) + 2.0 * d.g * tessCoordError(levels);
+  const bool gregory = points.size() == kGregoryPoints;
+  if (!gregory && points.size() != kBezierPoints)
+    throw Error(
+        "drawnTrianglesFaceAway: a patch has 16 (Bezier) or 20 (Gregory) control "
+        "points, got " +
+        std::to_string(points.size()));
+  double g = 0.0, maxAbs = 0.0, r = 0.0;
+  if (gregory) {
+    g = gregoryDerivativeBound(points);
+    for (const glm::dvec3& p : points)
+      maxAbs = std::max({maxAbs, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  } else {
+    const DerivativeBounds d = bezierDerivativeBounds(points);
+    g = d.g;
+    maxAbs = d.maxAbs;
+  }
+  // The surface lies in the hull of the points (the Gregory blends are convex).
+  for (const glm::dvec3& p : points) r = std::max(r, glm::length(eye - p));
+  const double dv = drawnVertexError(maxAbs, eye, r, snapPerDistance) +
+                    (gregory ? std::ldexp(kGregoryEvalUlps, -24) * maxAbs : 0.0) +
+                    2.0 * g * tessCoordError(levels);
+  auto point = [&](glm::dvec2 q) {
+    if (!gregory) return bezierPoint(points, q.x, q.y);
+    const std::array<glm::dvec3, 16> net = gregoryBezierNet(points, q.x, q.y);
+    return bezierPoint(net, q.x, q.y);
+  };
   bool away = std::isfinite(dv);
   forEachDrawnTriangle(levels, [&](const DomainTriangle& t, bool) {
     if (!away) return;
-    glm::dvec3 p[3];
-    for (int k = 0; k < 3; ++k) p[k] = bezierPoint(bezier, t[k].x, t[k].y);
-    away = triangleFacesAway(p[0], p[1], p[2], eye, dv);
+    away = triangleFacesAway(point(t[0]), point(t[1]), point(t[2]), eye, dv);
   });
   return away;
 }

@@ -48,13 +48,22 @@ double ringApexOffset(double outerLevel, double innerLevel);
 void forEachDrawnTriangle(const QuadTessLevels& levels,
                           const std::function<void(const DomainTriangle&, bool ring)>& fn);
 
-/// \brief How far (per coordinate) a vertex the tessellator makes for `levels` can lie from
-/// its exact position k / n: the tessellator works in fixed point (lavapipe: 16 fractional
-/// bits) and steps k times by the spacing rounded to 2^-16, so vertex k is off by up to
-/// k 2^-17; we allow (L + 1) 2^-17, L the largest outer or inner level (measured on lavapipe:
-/// at most 0.46 of it). Transition and outer-edge
-/// vertices are re-evaluated from round(t n) / n and exact, inner ones are not.
-/// tests/test_drawn_triangles.cpp checks every captured vertex against it.
+/// \brief How far from k / n the tessellator places point k of `level` = n segments, per
+/// coordinate. Lavapipe tessellates with Mesa's port of the Direct3D 11 reference tessellator
+/// (gallium/auxiliary/tessellator, CHWTessellator::PlacePointIn1D): with integer levels it
+/// places point k at k r_n in 16.16 fixed point, r_n = round(2^16 / n) 2^-16 (its table
+/// s_fixedReciprocal), counting k from the nearer end of the edge (points past the middle are
+/// mirrored, 1 - (n - k) r_n, and the middle of an even level is exactly 1/2). So the error
+/// is at most floor(n / 2) |r_n - 1/n| <= floor(n / 2) 2^-17, and 0 when n is a power of
+/// two (tess 4, 8, 16 and their transition halves). tests/test_drawn_triangles.cpp checks
+/// every vertex the device makes against it.
+double tessellatorPointError(double level);
+
+/// \brief How far (per coordinate) a vertex the draw shaders evaluate for `levels` can lie
+/// from its exact position: tessellatorPointError() of the inner levels (inner vertices are
+/// evaluated at the tessellator's coordinates), plus 2^-21 for the draw shader's fp32
+/// parameter arithmetic (outer-edge and transition vertices are re-evaluated from
+/// round(t n) / n: one division, 2.5 ulps of a value <= 1 by the Vulkan spec).
 double tessCoordError(const QuadTessLevels& levels);
 
 /// \brief Whether the triangle p0 p1 p2 (counter-clockwise in the domain) faces away from
@@ -64,11 +73,36 @@ double tessCoordError(const QuadTessLevels& levels);
 bool triangleFacesAway(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
                        const glm::dvec3& eye, double vertexError);
 
-/// \brief Whether every triangle forEachDrawnTriangle() lists for the 16-point Bézier patch
-/// `bezier` faces away from `eye` (triangleFacesAway() with ε = drawnVertexError() plus
-/// 2 G tessCoordError(): the drawn vertex is B at the tessellator's rounded coordinates).
+/// \brief G of a 20-point Gregory patch: a bound of |∂S/∂u| and |∂S/∂v| over the domain for
+/// the rational surface S(u, v) = Σ B_ij(u, v) q_ij(u, v) itself (not OpenSubdiv's pseudo-
+/// derivatives), as the tessellator's coordinate error needs. Each interior q_ij is a convex
+/// blend of its corner's Fp and Fm, so the hodograph term Σ ∂B_ij q_ij is bounded by 3 times
+/// the largest difference of neighbouring net points over both choices at each interior
+/// position; the rational term B_ij ∂q_ij/∂u is, for corner 0 (q = (s Fp + t Fm)/(s + t)),
+/// 9 s (1-s)² t (1-t)² t / (s + t)² |Fp - Fm| <= 9 s (1-s)² |Fp - Fm| <= 4/3 |Fp - Fm|, and
+/// alike for the other corners and for v; the bound adds all four.
+/// \throws osd_cull::Error if `gregory` does not hold 20 points.
+double gregoryDerivativeBound(std::span<const glm::dvec3> gregory);
+
+/// \brief Extra fp32 error of the draw shader's Gregory evaluation over its Bézier one, in
+/// units of 2^-24 of the largest coordinate: Osd_EvalBasisGregory's interior multiplier
+/// g = s / (s + t) (and its three mirrors) is a quotient of non-negative values, so however
+/// close its corner (where s + t -> 0; at the corner itself the guard makes the weight
+/// B_11 g = 0, exact) it carries at most 8 units of relative error (the sum, 1 - s, 2.5 ulps
+/// of the division the Vulkan spec allows, the product) and 1 - g one more: each interior
+/// Bézier point is off by 17 units of the coordinates, weighted by B_ij (the four interior
+/// weights sum to at most 9/16), plus four more terms in the 20-term sum: below 14, and 16
+/// are allowed.
+inline constexpr double kGregoryEvalUlps = 16.0;
+
+/// \brief Whether every triangle forEachDrawnTriangle() lists for the patch `points` (a
+/// 16-point Bézier or a 20-point Gregory patch, evaluated as the draw shaders do) faces away
+/// from `eye` (triangleFacesAway() with ε = drawnVertexError() (plus kGregoryEvalUlps for
+/// Gregory) plus 2 G tessCoordError(): the drawn vertex is S at the tessellator's rounded
+/// coordinates; G from bezierDerivativeBounds() or gregoryDerivativeBound()).
 /// `snapPerDistance` as for tangentPlaneDrawnMargin().
-bool drawnTrianglesFaceAway(std::span<const glm::dvec3> bezier, const QuadTessLevels& levels,
+/// \throws osd_cull::Error if `points` holds neither 16 nor 20 points.
+bool drawnTrianglesFaceAway(std::span<const glm::dvec3> points, const QuadTessLevels& levels,
                             const glm::dvec3& eye, double snapPerDistance);
 
 }  // namespace osd_cull::bound

@@ -25,8 +25,9 @@
 /// - cones: n_t lies within asin(ΔN / Nmin) of a surface normal (Nmin <= |N| on the
 ///   patch), so the cone's half-angle grows by that angle and its apex moves back
 ///   (widenCone()).
-/// Gregory patches are not covered (their rational blends have no such G and H) and are
-/// never back-patch culled when the drawn triangles must be respected.
+/// Gregory patches are not covered by this bound (their rational blends have no such G and
+/// H): they are back-patch culled, when the drawn triangles must be respected, only by the
+/// listed test (drawn_triangle_set.h), which evaluates their triangles' corners.
 
 #include "osd_cull/bound/cone_of_normals.h"
 

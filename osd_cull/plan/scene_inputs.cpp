@@ -2,6 +2,8 @@
 
 #include "osd_cull/scene/scene_eval.h"
 
+#include <map>
+
 namespace osd_cull::plan {
 
 std::string scenePlanKey(const scene::LoadedScene& scene, size_t view, size_t instance) {
@@ -46,6 +48,21 @@ PlanInput instancePlanInput(const scene::LoadedScene& scene, size_t view, size_t
   return in;
 }
 
+std::vector<bool> selfOccluding(const scene::LoadedScene& scene) {
+  std::map<size_t, bool> perMesh;
+  std::vector<bool> out;
+  for (const scene::InstanceDescription& inst : scene.description.instances) {
+    auto it = perMesh.find(inst.mesh);
+    if (it == perMesh.end()) {
+      const scene::SceneMesh& mesh = scene.meshes.at(inst.mesh);
+      it = perMesh.emplace(inst.mesh, mesh.animation || mayHideItself(mesh.extraction.patches))
+               .first;
+    }
+    out.push_back(it->second);
+  }
+  return out;
+}
+
 std::vector<ScenePlanInput> scenePlanInputs(const scene::LoadedScene& scene, uint32_t frame,
                                             double tess) {
   const scene::SceneDescription& d = scene.description;
@@ -63,12 +80,15 @@ std::vector<ScenePlanInput> scenePlanInputs(const scene::LoadedScene& scene, uin
     allModels.emplace_back(1.0);
   }
   const frame::Bounds world = scene::worldBounds(all, allModels);
+  const std::vector<bool> selfOccludes = selfOccluding(scene);
   std::vector<ScenePlanInput> out;
   for (size_t v = 0; v < d.views.size(); ++v) {
     const frame::Camera camera = scene::viewCamera(d.views[v], d.settings, world, t);
-    for (size_t i = 0; i < d.instances.size(); ++i)
-      out.push_back({scenePlanKey(scene, v, i), v, i,
-                     instancePlanInput(scene, v, i, objectBounds, models, camera, tess, true)});
+    for (size_t i = 0; i < d.instances.size(); ++i) {
+      PlanInput in = instancePlanInput(scene, v, i, objectBounds, models, camera, tess, true);
+      in.selfOccluding = selfOccludes[i];
+      out.push_back({scenePlanKey(scene, v, i), v, i, std::move(in)});
+    }
   }
   return out;
 }

@@ -36,11 +36,16 @@ frame::Bounds posedBounds(const scene::LoadedScene& scene, size_t instance, doub
 /// `objectBounds[instance]` in view `view` seen by `camera`: its patch counts, `tess`,
 /// whether it deforms and its cage moved this frame (`cageMoved`), whether it is displaced,
 /// and occluders = the scene has triangle occluders or another instance whose box is not
-/// outside the view.
+/// outside the view (selfOccluding is left to the caller: selfOccluding()).
 PlanInput instancePlanInput(const scene::LoadedScene& scene, size_t view, size_t instance,
                             std::span<const frame::Bounds> objectBounds,
                             std::span<const glm::dmat4> models, const frame::Camera& camera,
                             double tess, bool cageMoved);
+
+/// \brief Per instance, whether its mesh can hide parts of itself (PlanInput::
+/// selfOccluding): a deforming mesh can (its pose is not its rest shape), a static one as
+/// mayHideItself() finds its patches. Computed once per mesh.
+std::vector<bool> selfOccluding(const scene::LoadedScene& scene);
 
 /// \brief Every (view, instance) of `scene` at frame `frame` drawn with uniform `tess`:
 /// deforming meshes count as moving (their cage is posed at the frame, as the first frame

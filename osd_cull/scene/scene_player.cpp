@@ -35,7 +35,8 @@ struct ScenePlayer::Points {
 };
 
 ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
-                         const frame::CullFrameOptions& options, frame::PointUpdatePath pointUpdate)
+                         const frame::CullFrameOptions& options, frame::PointUpdatePath pointUpdate,
+                         plan::Planner* planner)
     : context_(context), scene_(scene), options_(options) {
   const SceneDescription& d = scene.description;
   if (d.instances.empty()) throw Error("scene " + d.source + ": no instances to draw");
@@ -78,23 +79,32 @@ ScenePlayer::ScenePlayer(vulkan::Context& context, LoadedScene& scene,
     const bound::BackPatchMethod ref = frame::cullMethod(options.cull.backPatch).reference;
     if (frame::BoundsPass::hasCullData(ref)) backPatch_ = ref;
   }
-  std::vector<frame::CullMesh> meshes;
-  for (size_t i = 0; i < instances_.size(); ++i) meshes.push_back(cullMesh(i, nullptr));
   for (const ViewDescription& v : d.views) {
     View view;
     const uint32_t w = v.width ? v.width : d.settings.width;
     const uint32_t h = v.height ? v.height : d.settings.height;
     view.target = std::make_unique<frame::RenderTarget>(context, w, h);
-    auto frame =
-        std::make_unique<frame::CullFrame>(context, *renderer_, *view.target, meshes, options);
-    view.frame = frame.get();
-    view.frames.emplace("", std::move(frame));
     views_.push_back(std::move(view));
   }
   moved_.assign(points_.size(), false);
+  setPlanner(planner);
+  if (!planner)
+    for (size_t v = 0; v < views_.size(); ++v) views_[v].frame = &fixedFrame(v);
 }
 
-frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages) {
+frame::CullFrame& ScenePlayer::fixedFrame(size_t view) {
+  View& v = views_.at(view);
+  std::unique_ptr<frame::CullFrame>& f = v.frames[""];
+  if (!f) {
+    std::vector<frame::CullMesh> meshes;
+    for (size_t i = 0; i < instances_.size(); ++i) meshes.push_back(cullMesh(i, nullptr, nullptr));
+    f = std::make_unique<frame::CullFrame>(context_, *renderer_, *v.target, meshes, options_);
+  }
+  return *f;
+}
+
+frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages,
+                                      const frame::CullMethod::Displaced* kernel) {
   const Instance& inst = instances_[i];
   Points& p = *points_[inst.points];
   const SceneMesh& mesh = scene_.meshes[p.mesh];
@@ -105,9 +115,8 @@ frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages)
     m.displacementMap = &*mesh.displacementMap;
     m.uvCorners = mesh.extraction.uvCorners;
     m.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
-    // A planned displaced kernel (Niessner & Loop Table 1) replaces the scene's.
-    if (stages && !stages->occlusion.empty())
-      if (const auto& k = frame::cullMethod(stages->occlusion).displaced) m.displacedKernel = *k;
+    // A planned displaced bound (Niessner & Loop Table 1) replaces the scene's.
+    if (kernel) m.displacedKernel = *kernel;
   }
   const std::string& method = stages ? stages->backPatch : options_.cull.backPatch;
   // The cone method whose cull data the bounds pass recomputes (the options' or the plan's).
@@ -189,10 +198,12 @@ void ScenePlayer::seek(uint32_t frameIndex) {
 
 void ScenePlayer::setPlanner(plan::Planner* planner) {
   planner_ = planner;
+  if (planner && selfOccluding_.empty()) selfOccluding_ = plan::selfOccluding(scene_);
   for (View& v : views_) v.frame = v.frames.count("") ? v.frames.at("").get() : nullptr;
 }
 
 frame::CullFrame& ScenePlayer::cullFrame(size_t view) {
+  if (!planner_ && !views_.at(view).frame) views_[view].frame = &fixedFrame(view);
   frame::CullFrame* f = views_.at(view).frame;
   if (!f)
     throw Error("ScenePlayer::cullFrame: view '" + scene_.description.views.at(view).name +
@@ -208,7 +219,7 @@ std::vector<ViewFrame> ScenePlayer::render(uint32_t frameIndex) {
       out.push_back(renderPlanned(v, frameIndex));
       continue;
     }
-    views_[v].frame = views_[v].frames.at("").get();
+    views_[v].frame = &fixedFrame(v);
     for (size_t i = 0; i < instances_.size(); ++i)
       views_[v].frame->setModel(i, instances_[i].model);
     out.push_back({scene_.description.views[v].name, views_[v].camera,
@@ -233,7 +244,7 @@ frame::CullFrame& ScenePlayer::plannedFrame(size_t view, const std::vector<plan:
   bool occlusion = false, aggressive = true, full = false;
   std::string key;
   for (const plan::Plan& p : plans) {
-    key += p.stages.describe() + ";";
+    key += p.stages.describe() + (p.displacement.on ? " " + p.displacement.choice : "") + ";";
     if (p.stages.occlusion.empty()) continue;
     occlusion = true;
     aggressive = aggressive && p.stages.aggressive;
@@ -250,7 +261,16 @@ frame::CullFrame& ScenePlayer::plannedFrame(size_t view, const std::vector<plan:
     std::vector<frame::CullMesh> meshes;
     for (size_t i = 0; i < instances_.size(); ++i) {
       const frame::CullStages stages = cullStages(plans[i].stages);
-      meshes.push_back(cullMesh(i, &stages));
+      // The displaced bound the plan's frustum and occlusion stages test (applyPlan).
+      std::optional<frame::CullMethod::Displaced> kernel;
+      if (const SceneMesh& mesh = scene_.meshes[points_[instances_[i].points]->mesh];
+          mesh.displacementMap && plans[i].displacement.on && plans[i].culls()) {
+        frame::CullFrameOptions withMap = options_;
+        withMap.cull.displacementMap = &*mesh.displacementMap;
+        withMap.cull.displacedKernel = {mesh.displacedExtension, mesh.displacedBox};
+        kernel = plan::applyPlan(plans[i], withMap).cull.displacedKernel;
+      }
+      meshes.push_back(cullMesh(i, &stages, kernel ? &*kernel : nullptr));
     }
     it = v.frames
              .emplace(key, std::make_unique<frame::CullFrame>(context_, *renderer_, *v.target,
@@ -277,8 +297,9 @@ ViewFrame ScenePlayer::renderPlanned(size_t view, uint32_t frameIndex) {
   const double tess = options_.render.tessellation.uniformLevel;
   bool culls = false;
   for (size_t i = 0; i < instances_.size(); ++i) {
-    const plan::PlanInput in = plan::instancePlanInput(
-        scene_, view, i, objectBounds, models, v.camera, tess, moved_[instances_[i].points]);
+    plan::PlanInput in = plan::instancePlanInput(scene_, view, i, objectBounds, models, v.camera,
+                                                 tess, moved_[instances_[i].points]);
+    in.selfOccluding = selfOccluding_[i];
     out.plans.push_back(planner_->plan(plan::scenePlanKey(scene_, view, i), in, frameIndex));
     culls = culls || out.plans.back().culls();
   }

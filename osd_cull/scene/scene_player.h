@@ -67,8 +67,11 @@ class ScenePlayer {
   /// `pointUpdate`'s path and is back-patch culled (tcone, ncone, tangent plane) with the
   /// cull data the GPU bounds pass recomputes on every frame it moves; a deforming
   /// displaced mesh with its displaced bound's cones, recomputed the same way.
+  /// With `planner` (setPlanner()) no fixed-stage frame is built up front, so no bounds pass
+  /// of the options' method runs unless a plan asks for it.
   ScenePlayer(vulkan::Context& context, LoadedScene& scene, const frame::CullFrameOptions& options,
-              frame::PointUpdatePath pointUpdate = frame::PointUpdatePath::Cpu);
+              frame::PointUpdatePath pointUpdate = frame::PointUpdatePath::Cpu,
+              plan::Planner* planner = nullptr);
   ~ScenePlayer();
   ScenePlayer(const ScenePlayer&) = delete;
   ScenePlayer& operator=(const ScenePlayer&) = delete;
@@ -94,8 +97,8 @@ class ScenePlayer {
   frame::RenderTarget& target(size_t view) { return *views_.at(view).target; }
   /// \brief The CullFrame view `view` rendered with last (with a planner: the one of the
   /// last frame's choices).
-  /// \throws osd_cull::Error when the view has not been culled yet (a planned view drawn
-  /// without culling so far).
+  /// \throws osd_cull::Error when a planned view has not been culled yet (drawn without
+  /// culling so far).
   frame::CullFrame& cullFrame(size_t view);
   /// \brief CullFrames built for view `view` so far (with a planner: one per set of stage
   /// choices seen, each kept for reuse).
@@ -138,10 +141,13 @@ class ScenePlayer {
   };
 
   uint32_t users(const Points& points) const;  // instances drawing `points`
-  // Instance `i` as a CullMesh culled with `stages` (null: the options' stages), with the
-  // cull data its (deforming, displaced) mesh needs for them.
-  frame::CullMesh cullMesh(size_t i, const frame::CullStages* stages);
+  // Instance `i` as a CullMesh culled with `stages` (null: the options' stages) and, when
+  // its mesh is displaced, the displaced bound `kernel` (null: the scene's), with the cull
+  // data its (deforming, displaced) mesh needs for them.
+  frame::CullMesh cullMesh(size_t i, const frame::CullStages* stages,
+                           const frame::CullMethod::Displaced* kernel);
   // The view's CullFrame of these plans' choices, built on first use (`built` says so).
+  frame::CullFrame& fixedFrame(size_t view);  // the options' stages, built on first use
   frame::CullFrame& plannedFrame(size_t view, const std::vector<plan::Plan>& plans, bool& built);
   ViewFrame renderPlanned(size_t view, uint32_t frameIndex);
   frame::FrameStats drawUnculled(size_t view, frame::RenderTarget& target);
@@ -158,7 +164,8 @@ class ScenePlayer {
   frame::CullFrameOptions options_;
   std::optional<bound::BackPatchMethod> backPatch_;  // the options' cone method, if any
   plan::Planner* planner_ = nullptr;
-  std::vector<bool> moved_;  // per Points: posed anew by the last seek()
+  std::vector<bool> moved_;          // per Points: posed anew by the last seek()
+  std::vector<bool> selfOccluding_;  // per instance (plan::meshMayHideItself), with a planner
 };
 
 }  // namespace osd_cull::scene

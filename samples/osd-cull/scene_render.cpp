@@ -10,7 +10,6 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/draw/png_io.h"
-#include "osd_cull/plan/calibrate.h"
 #include "osd_cull/scene/scene_player.h"
 #include "osd_cull/vk/context.h"
 
@@ -103,10 +102,10 @@ int renderScene(const RenderArgs& args) {
   // The effect plan (docs/algorithms/plan.md, "Scenes"): without --cull, every instance in
   // every view is planned each frame; without a calibration the scene plays with --cull all.
   std::unique_ptr<plan::Planner> planner;
-  if (args.plan.mode == "auto" && args.cull.mode.empty() && args.plan.calibration.empty() &&
-      !plan::loadCachedCalibration(plan::calibrationKey(context)))
-    std::cout << "plan: off, playing with --cull all (no calibration of this device cached: "
-                 "run `osd-cull calibrate --quick`, or give --plan-calibration FILE)\n";
+  const bool wantPlan = args.plan.mode == "auto" && args.cull.mode.empty();
+  if (const std::string missing = wantPlan ? missingCalibration(args.plan, context) : "";
+      !missing.empty())
+    std::cout << "plan: off, playing with --cull all (" << missing << ")\n";
   else
     planner = makePlanner(args.plan, context, !args.cull.mode.empty(), true, std::cout);
   frame::CullFrameOptions options = cull.frame;
@@ -122,8 +121,7 @@ int renderScene(const RenderArgs& args) {
       calibration && calibration->pointUpdateGpuMsPerPatch < calibration->pointUpdateCpuMsPerPatch
           ? frame::PointUpdatePath::Gpu
           : frame::PointUpdatePath::Cpu;
-  scene::ScenePlayer player(context, loaded, options, pointUpdate);
-  player.setPlanner(planner.get());
+  scene::ScenePlayer player(context, loaded, options, pointUpdate, planner.get());
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << loaded.description.source << ", " << player.instanceCount()
             << " instances, " << player.patchCount() << " patches, " << loaded.occluders.size()
@@ -206,7 +204,7 @@ int renderScene(const RenderArgs& args) {
   if (statsPath) {
     nlohmann::json doc{{"device", context.info().name},
                        {"scene", loaded.description.source},
-                       {"cull", cull.mode},
+                       {"cull", planner ? std::string("plan") : cull.mode},
                        {"frameCount", frameCount},
                        {"frames", jsonFrames}};
     std::ofstream file(*statsPath);

@@ -26,7 +26,8 @@ instance (culled in its own coordinates with view · model, each alone, as the m
 from the scene's own views at that frame and V random whole-scene views. Totals are summed
 over instances and frames; the JSON has the mesh form's fields plus "frames". A deforming
 mesh's tcone and ncone use the cones the GPU bounds pass computed for the frame; a displaced
-mesh is also checked with its displaced kernel (e.g. acon-caf).)";
+mesh is also checked with its displaced kernel (e.g. acon-caf), a deforming displaced one
+with the displaced cones its GPU bounds pass computed for the frame, as render culls it.)";
 
 int verifyScene(const VerifyArgs& args) {
   const uint32_t frames = args.frames.value_or(2);
@@ -104,6 +105,19 @@ int verifyScene(const VerifyArgs& args) {
         if (mesh.displacementMap) {
           instanceOptions.displacementMap = &*mesh.displacementMap;
           instanceOptions.uvCorners = mesh.extraction.uvCorners;
+          // A deforming displaced instance: its displaced kernel reads the cones the player's
+          // GPU bounds pass computed for this frame (as `render` culls it), the reference
+          // gets them read back with the exact Dmin/Dmax.
+          if (frame::DynamicPatchMesh* dynamic = player.dynamicMesh(i)) {
+            instanceOptions.displacedCullData[mesh.displacedExtension] =
+                &dynamic->displacedCullData(*mesh.displacementMap, mesh.extraction.uvCorners,
+                                            mesh.displacedExtension);
+            if (f == d.settings.frameStart)
+              std::printf(
+                  "%s: %s reads the cones of the GPU bounds pass (deforming, displaced)\n",
+                  d.instances[i].name.c_str(),
+                  bound::displacedKernelName(mesh.displacedExtension, mesh.displacedBox).c_str());
+          }
         }
         verifiers[i] = std::make_unique<frame::CullVerifier>(context, player.patches(i), methods,
                                                              mesh.validity, instanceOptions);

@@ -35,11 +35,14 @@ vec2 drawnInnerRange(vec2 a, vec2 b) {
   return max(vec2(2.0), vec2(ceil(0.5 * (a.x + b.x)), ceil(0.5 * (a.y + b.y))));
 }
 
-// The Lo and Hi outer levels the draw shaders set for a Bezier patch in this view.
+// The Lo and Hi outer levels the draw shaders set for a patch (Bezier or Gregory) in this
+// view.
 void drawnEdgeLevels(uint patchIndex, out vec4 levelLo, out vec4 levelHi) {
   uint first = firstPoint(patchIndex);
+  bool bezier = isBezier(patchIndex);
   vec3 curves[16];
-  for (int k = 0; k < 16; ++k) curves[k] = controlPoint(first + uint(kEdgeCurveBezier[k]));
+  for (int k = 0; k < 16; ++k)
+    curves[k] = controlPoint(first + uint(bezier ? kEdgeCurveBezier[k] : kEdgeCurveGregory[k]));
   curveEdgeLevels(curves, params[2u * patchIndex] >> 28u, levelLo, levelHi);
 }
 
@@ -100,12 +103,13 @@ float drawnVertexError(float maxAbs, float maxDistance) {
           maxDistance * pc.snapPerDistance) * kDrawnSafety;
 }
 
-// The largest distance of a patch's 16 control points from the eye.
-float drawnMaxDistance(uint first) {
+// The largest distance of a patch's `count` control points from the eye.
+float drawnMaxDistance(uint first, uint count) {
   float r = 0.0;
-  for (uint k = 0u; k < 16u; ++k) r = max(r, length(pc.eye.xyz - controlPoint(first + k)));
+  for (uint k = 0u; k < count; ++k) r = max(r, length(pc.eye.xyz - controlPoint(first + k)));
   return r * kDrawnSafety;
 }
+float drawnMaxDistance(uint first) { return drawnMaxDistance(first, 16u); }
 
 // bound::normalDeviation from (G, H) and the shape.
 float drawnNormalDeviation(float g, float h, vec3 shape, float vertexError) {

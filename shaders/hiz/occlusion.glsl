@@ -72,7 +72,7 @@ bool hizFootprint(HiZBox b, HiZParams hiz, out int level, out ivec2 t0, out ivec
 // True when no fragment of the patch can pass a LESS depth test against the depths the
 // pyramid was built from: its nearest depth is not nearer than the farthest of the texels.
 // The draw clamps each fragment's depth to at least the nearest fp32 control-point depth
-// (patch.tesc, patch.frag; bound::HiZFragmentDepth::ClampedToPoints), or for displaced
+// (patch.tesc, patch.frag; bound::hizScreenBox), or for displaced
 // patches the nearest depth of the boxes around them (common/displaced_reach.glsl, which the
 // displaced kernel puts into b.nearest), which b.nearest (2x the reference's margins) never
 // exceeds.

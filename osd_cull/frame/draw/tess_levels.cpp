@@ -223,7 +223,7 @@ std::vector<bound::TriangleShape> drawnTriangleShapes(const PatchSet& patches,
   const double slack = options.mode == TessellationOptions::Mode::Adaptive ? 1.0 : 0.0;
   std::vector<bound::TriangleShape> shapes(patches.patchCount());
   for (uint32_t p = 0; p < patches.patchCount(); ++p) {
-    if (patches.type(p) != PatchType::Bezier) continue;  // never back-patch culled when drawn
+    // Gregory patches too: the bound never culls them, the listed triangles (exact levels) can.
     const PatchTessLevels levels = patchTessLevels(patches, p, viewProjection, viewport, options);
     shapes[p] = bound::triangleShape({levels.lo, levels.hi}, slack);
   }

@@ -7,6 +7,7 @@
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/error.h"
+#include "osd_cull/vk/transfer.h"
 
 #include <osd_cull/shared/cull_layout.h>
 #include <osd_cull/shared/draw_layout.h>
@@ -20,6 +21,7 @@ struct CullVerifier::Method {
   std::unique_ptr<CullPass> pass;
   MethodTotals* totals = nullptr;
   std::vector<bound::ConeOfNormals> referenceCones;  // with GPU cull data, built once
+  const vulkan::Buffer* displacedData = nullptr;     // VerifyOptions::displacedCullData
 };
 
 double MethodTotals::referenceCullRate() const {
@@ -90,8 +92,14 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
     settings.displacementMap = options.displacementMap;
     settings.uvCorners = options.uvCorners;
     const auto data = options.cullData.find(run[i]->reference);
+    if (run[i]->displaced) {
+      const auto d = options.displacedCullData.find(run[i]->displaced->extension);
+      if (d != options.displacedCullData.end()) m->displacedData = d->second;
+    }
     m->pass = run[i]->stage == CullStage::BackPatch && data != options.cullData.end()
                   ? std::make_unique<CullPass>(context, gpu_, host, settings, *data->second)
+              : m->displacedData
+                  ? std::make_unique<CullPass>(context, gpu_, host, settings, *m->displacedData)
                   : std::make_unique<CullPass>(context, gpu_, host, settings);
     m->totals = &totals_[i];
     totals_[i].name = run[i]->name;
@@ -182,8 +190,20 @@ void CullVerifier::verifyView(const Camera& camera) {
     if (reference) {
       std::vector<uint32_t> codes;
       if (m->pass->displaced()) {
-        codes = displacedReferenceCull(host_, *m->pass, camera, hiz ? &hizReference : nullptr,
-                                       options_.hiz.lookup);
+        if (m->displacedData) {
+          // What the kernel read: the GPU bounds pass's cones, with the exact D range.
+          std::vector<bound::DisplacedPatch> data =
+              unpackDisplacedPatches(vulkan::readback<float>(context_, *m->displacedData), n);
+          if (exactRanges_.empty())
+            exactRanges_ =
+                bound::displacementRanges(host_, options_.uvCorners, *options_.displacementMap);
+          for (uint32_t p = 0; p < n; ++p) data[p].range = exactRanges_[p];
+          codes = displacedReferenceCull(host_, *m->pass, data, camera,
+                                         hiz ? &hizReference : nullptr, options_.hiz.lookup);
+        } else {
+          codes = displacedReferenceCull(host_, *m->pass, camera, hiz ? &hizReference : nullptr,
+                                         options_.hiz.lookup);
+        }
       } else if (hiz) {
         codes.resize(n, shader::kStageNone);
         for (uint32_t p = 0; p < n; ++p)

@@ -16,6 +16,7 @@
 /// reference is bound::hizOcclusionTest on the same depth, read back.
 
 #include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/bound/displaced_bounds.h"
 #include "osd_cull/bound/sampling.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
@@ -65,6 +66,13 @@ struct VerifyOptions {
   /// points (DynamicPatchMesh::cullData; borrowed), read by that method's pass instead of
   /// cones built on the host, so the check covers what a deforming mesh is culled with.
   std::map<bound::BackPatchMethod, const vulkan::Buffer*> cullData;
+  /// Per displaced extension (Full, ACoN, CoN): the displaced cull data the GPU bounds pass
+  /// computed for these points (DynamicPatchMesh::displacedCullData, shared/cull_layout.h
+  /// kConeVec4s vec4 per patch; borrowed), read by the displaced kernels of that extension
+  /// instead of data built on the host, as a deforming displaced mesh is culled
+  /// (ScenePlayer). Their double reference (displacedReferenceCull) then runs on that data
+  /// read back and widened to double, with the exact Dmin/Dmax of the map.
+  std::map<bound::DisplacedExtension, const vulkan::Buffer*> displacedCullData;
   /// Count crack pixels per view (frame::countCracks: two more draws, back faces culled
   /// and not): for displaced meshes, where UV seams open the surface.
   bool countCracks = false;
@@ -169,7 +177,8 @@ class CullVerifier {
   std::vector<std::unique_ptr<Method>> methods_;
   std::vector<MethodTotals> totals_;
   std::vector<std::pair<std::string, std::string>> skipped_;
-  std::vector<bound::SurfaceSamples> samples_;  // per patch, when sampling is on
+  std::vector<bound::SurfaceSamples> samples_;         // per patch, when sampling is on
+  std::vector<bound::DisplacementRange> exactRanges_;  // with displacedCullData, built once
   uint64_t viewIndex_ = 0;
   bool cullBackFaces_ = false;  // of the oracle and image draws
   CrackTotals cracks_;
