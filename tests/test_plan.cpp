@@ -31,6 +31,16 @@ using test::syntheticCalibration;
 
 frame::Bounds unitBox() { return {{-1, -1, -1}, {1, 1, 1}}; }
 
+// `c` with the back-patch accuracies: surface-exact a little cheaper than the bound kernel,
+// the listed test's cost growing with the level, but slower than the draw's (tf + 1)², so
+// that it pays at high levels and not at low ones.
+Calibration withAccuracies(Calibration c) {
+  c.surfaceCullMsPerPatch = {{"tcone", 0.00003}, {"ncone", 0.00004}, {"tangent-plane", 0.002}};
+  for (const char* m : {"tcone", "ncone", "tangent-plane"})
+    c.listedCullMsPerPatch[m] = {{1, 0.0005}, {4, 0.001}, {16, 0.002}, {32, 0.004}};
+  return c;
+}
+
 // A 2000-patch closed mesh in a unit box, seen from `distance` along +z.
 PlanInput meshAt(double distance, double tess) {
   PlanInput in;
@@ -119,6 +129,100 @@ TEST(Plan, CloseHighTessMeshGetsCullingSwitchedOn) {
   EXPECT_EQ(o.cull.occlusion, "hiz");
   EXPECT_FALSE(o.aggressive);
   EXPECT_FALSE(o.hiz.fullResolution);
+}
+
+TEST(PlanAccuracy, BoundAtLowTessListedWhereItPaysSurfaceOnlyWhenAsked) {
+  const Calibration c = withAccuracies(syntheticCalibration());
+  // Tess 4, a cheap draw: the listed test (+0.001 ms per patch) costs more than the
+  // patches it adds save (0.11 to 0.16 of 0.004 ms): the bound, which pays on its own.
+  {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", meshAt(1.6, 4.0), 0);
+    ASSERT_TRUE(p.backPatch.on) << planTable({&p, 1});
+    EXPECT_EQ(p.stages.accuracy, Accuracy::Bound);
+    EXPECT_TRUE(p.accuracy.on);
+    EXPECT_EQ(p.accuracy.choice, "bound");
+    EXPECT_NE(p.accuracy.reason.find("the bound is cheaper at tess 4"), std::string::npos)
+        << p.accuracy.reason;
+    EXPECT_GT(p.accuracy.deltaMs, 0.0);  // listed would cost time
+    const frame::CullFrameOptions o = applyPlan(p, {});
+    EXPECT_TRUE(o.cull.drawnTriangles);
+    EXPECT_FALSE(o.cull.drawnEnumerate);
+  }
+  // Tess 32: the listed test (+0.004 ms) saves about 0.11 of a 0.176 ms patch: listed.
+  {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", meshAt(1.6, 32.0), 0);
+    ASSERT_TRUE(p.backPatch.on) << planTable({&p, 1});
+    EXPECT_EQ(p.stages.accuracy, Accuracy::Listed) << planTable({&p, 1});
+    EXPECT_EQ(p.accuracy.choice, "listed");
+    EXPECT_NE(p.accuracy.reason.find("listed triangles pay at tess 32"), std::string::npos)
+        << p.accuracy.reason;
+    EXPECT_LT(p.accuracy.deltaMs, 0.0);
+    EXPECT_NE(p.stages.describe().find("/listed"), std::string::npos) << p.stages.describe();
+    const frame::CullFrameOptions o = applyPlan(p, {});
+    EXPECT_TRUE(o.cull.drawnTriangles);
+    EXPECT_TRUE(o.cull.drawnEnumerate);
+    // The listed rate is learned on its own key; the bound's stays its prior.
+    const std::string key = rateKey(p.stages.backPatch, Accuracy::Listed);
+    EXPECT_NEAR(planner.rate("main/ball", key), 1.9 * planner.rate("main/ball", p.stages.backPatch),
+                1e-12);
+    planner.observe("main/ball", p, 0, 900, 0, 2000);
+    EXPECT_NEAR(planner.rate("main/ball", key), 0.45, 1e-12);
+    EXPECT_DOUBLE_EQ(planner.rate("main/ball", p.stages.backPatch),
+                     PlannerOptions{}.priorRates.at(p.stages.backPatch));
+    // Without the listed calibration the same case keeps the bound, and says why.
+    Planner without(syntheticCalibration());
+    const Plan b = without.plan("main/ball", meshAt(1.6, 32.0), 0);
+    EXPECT_EQ(b.stages.accuracy, Accuracy::Bound);
+    EXPECT_NE(b.accuracy.reason.find("not calibrated"), std::string::npos) << b.accuracy.reason;
+  }
+  // Surface-exact is never chosen in auto, though its prior rate is the highest and its
+  // kernel the cheapest, at any level ...
+  for (double tess : {1.0, 4.0, 16.0, 32.0}) {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", meshAt(1.6, tess), 0);
+    EXPECT_NE(p.stages.accuracy, Accuracy::Surface) << "tess " << tess;
+    EXPECT_TRUE(applyPlan(p, {}).cull.drawnTriangles) << "tess " << tess;
+  }
+  // ... only when asked for (the plan says what it loses); "listed" forces the listed test.
+  struct Forced {
+    const char* accuracy;
+    double tess;
+    Accuracy expected;
+    const char* reason;
+    bool drawnTriangles, drawnEnumerate;
+  };
+  for (const Forced& f :
+       {Forced{"surface", 4.0, Accuracy::Surface, "NOT conservative", false, false},
+        Forced{"listed", 8.0, Accuracy::Listed, "listed asked for", true, true}}) {
+    PlannerOptions options;
+    options.accuracy = f.accuracy;
+    Planner forced(c, options);
+    const Plan p = forced.plan("main/ball", meshAt(1.6, f.tess), 0);
+    ASSERT_TRUE(p.backPatch.on) << planTable({&p, 1});
+    EXPECT_EQ(p.stages.accuracy, f.expected) << f.accuracy;
+    EXPECT_NE(p.accuracy.reason.find(f.reason), std::string::npos) << p.accuracy.reason;
+    EXPECT_EQ(applyPlan(p, {}).cull.drawnTriangles, f.drawnTriangles) << f.accuracy;
+    EXPECT_EQ(applyPlan(p, {}).cull.drawnEnumerate, f.drawnEnumerate) << f.accuracy;
+  }
+  PlannerOptions surface;
+  surface.accuracy = "surface";
+  // The scene form's one cull frame per view keeps the bound.
+  PlanInput scene = meshAt(1.6, 32.0);
+  scene.ownAccuracy = false;
+  Planner scenePlanner(c, surface);
+  const Plan sc = scenePlanner.plan("main/ball", scene, 0);
+  EXPECT_EQ(sc.stages.accuracy, Accuracy::Bound);
+  // A bad accuracy is named.
+  PlannerOptions bad;
+  bad.accuracy = "exact";
+  try {
+    Planner p(c, bad);
+    FAIL() << "accepted accuracy 'exact'";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'exact'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Plan, StaticMeshMakesNoUpdateAndNoBoundsDispatch) {
@@ -259,6 +363,15 @@ TEST_F(PlanDisplacement, UndisplacedMeshCompilesAndBindsNoDisplacementVariant) {
   EXPECT_TRUE(d.displacement.on);
   EXPECT_FALSE(d.backPatch.on);
   EXPECT_EQ(d.occlusion.choice, "con-caf");
+  // A plan at the listed accuracy builds its pass (its kernel variant is embedded).
+  const Plan listed =
+      Planner(withAccuracies(syntheticCalibration())).plan("main/ball", meshAt(1.6, 32.0), 0);
+  ASSERT_EQ(listed.stages.accuracy, Accuracy::Listed);
+  frame::CullSettings listedSettings = applyPlan(listed, {}).cull;
+  listedSettings.occlusion.clear();
+  listedSettings.backPatchValidity = {true, "closed sphere"};
+  frame::CullPass listedPass(context(), gpu, patches, listedSettings);
+  EXPECT_TRUE(listedPass.drawnTriangles());
 }
 
 TEST(Plan, DisplacedMeshGetsTheCheapestPredictedDisplacedBound) {
@@ -397,6 +510,15 @@ TEST(Calibration, TextRoundTripAndCacheKey) {
   EXPECT_DOUBLE_EQ(back3.displacedDrawFactorAt(32), 1.6);
   EXPECT_NEAR(back3.displacedDrawFactorAt(8), 1.2 + (81.0 - 25.0) / (289.0 - 25.0) * 0.4, 1e-12);
   EXPECT_DOUBLE_EQ(c.displacedDrawFactorAt(8), 1.0);
+  // Format 4: the back-patch accuracies (listed against the level, surface-exact).
+  const Calibration back4 = fromText(toText(withAccuracies(c)), "test");
+  EXPECT_DOUBLE_EQ(back4.surfaceCullMsPerPatch.at("tcone"), 0.00003);
+  EXPECT_DOUBLE_EQ(back4.listedCullMs("tcone", 4), 0.001);
+  EXPECT_NEAR(back4.listedCullMs("tcone", 8), 0.001 + (81.0 - 25.0) / (289.0 - 25.0) * 0.001,
+              1e-12);
+  EXPECT_THROW(c.listedCullMs("tcone", 4), Error);  // not measured: named
+  EXPECT_THROW(fromText(toText(c) + "cull-listed tcone 8 0.1\ncull-listed tcone 4 0.1\n", "x"),
+               Error);  // levels must ascend
   test::TempDir dir("osd_cull_plan_");
   setenv("OSD_CULL_CALIBRATION_CACHE", dir.path().c_str(), 1);
   EXPECT_FALSE(loadCachedCalibration(c.key));
@@ -435,7 +557,7 @@ TEST(Calibration, BadFileNamesLineAndProblem) {
     FAIL() << "accepted format 2";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("old.txt:1: calibration file format 2, this library "
-                                         "reads format 3"),
+                                         "reads format 4"),
               std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("osd-cull calibrate --force"), std::string::npos);

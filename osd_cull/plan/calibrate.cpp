@@ -105,7 +105,17 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
 
   // Cull passes: frustum alone, frustum + each back-patch method, and on the tiny mesh.
   progress("building cull passes");
-  std::map<std::string, std::unique_ptr<frame::CullPass>> passes;
+  std::map<std::string, std::unique_ptr<frame::CullPass>> passes, surfacePasses;
+  // The listed-triangle test costs per patch about what drawing it costs (it lists the
+  // level's triangles): measured on a coarse sphere, against the bound kernel at each level.
+  const PatchSet listedSphere = frame::bezierSphere({0, 0, 0}, 1.0, o.quick ? 6 : 10);
+  frame::GpuPatchSet gpuListed(context, listedSphere);
+  const double nListed = listedSphere.patchCount();
+  const std::vector<uint32_t> listedLevels =
+      o.quick ? std::vector<uint32_t>{2, 8, 16} : std::vector<uint32_t>{1, 2, 4, 8, 16, 32};
+  std::map<std::string,
+           std::pair<std::unique_ptr<frame::CullPass>, std::unique_ptr<frame::CullPass>>>
+      listedPasses;  // bound, listed
   passes["frustum"] = std::make_unique<frame::CullPass>(context, gpuMany, many,
                                                         frame::CullSettings{true, "", "", closed});
   for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch)) {
@@ -114,6 +124,15 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
     if (frame::cullMethod(m).needsFloat64) continue;
     passes[m] = std::make_unique<frame::CullPass>(context, gpuMany, many,
                                                   frame::CullSettings{true, m, "", closed});
+    frame::CullSettings surface{true, m, "", closed};
+    surface.drawnTriangles = false;  // the papers' surface-exact test
+    surfacePasses[m] = std::make_unique<frame::CullPass>(context, gpuMany, many, surface);
+    if (frame::cullMethod(m).lanesPerPatch > 1) continue;  // the study lists one-thread kernels
+    frame::CullSettings listed{true, m, "", closed};
+    listed.drawnEnumerate = true;
+    listedPasses[m] = {std::make_unique<frame::CullPass>(context, gpuListed, listedSphere,
+                                                         frame::CullSettings{true, m, "", closed}),
+                       std::make_unique<frame::CullPass>(context, gpuListed, listedSphere, listed)};
   }
   frame::CullPass tinyPass(context, gpuTiny, tiny, frame::CullSettings{true, "", "", closed});
   // Two-pass frames: the diagnostic mode times the pyramid and the cull (Hi-Z stage
@@ -226,6 +245,8 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
       for (auto& [name, pass] : passes)
         if (name != "frustum")
           one["cull " + name].push_back(pass->run(camera, render.tessellation) - frustum);
+      for (auto& [name, pass] : surfacePasses)
+        one["cull surface " + name].push_back(pass->run(camera, render.tessellation) - frustum);
       const double torusMs = torusFrustum.run(torusCamera, render.tessellation);
       for (auto& [name, pass] : displacedPasses)
         one["cull displaced " + name].push_back(pass->run(torusCamera, render.tessellation) -
@@ -234,6 +255,13 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
           timed([&] { pyramid.build(context, frame::RenderTarget::kDepthLayout); }));
       one["hiz build small"].push_back(
           timed([&] { pyramidSmall.build(context, frame::RenderTarget::kDepthLayout); }));
+    }
+    for (uint32_t level : listedLevels) {
+      frame::TessellationOptions tess = render.tessellation;
+      tess.uniformLevel = level;
+      for (auto& [name, pair] : listedPasses)
+        one["cull listed " + name + " " + std::to_string(level)].push_back(
+            pair.second->run(camera, tess) - pair.first->run(camera, tess));
     }
     one["hiz cull"].push_back(diagnostic.render(camera, {}).cullMs - frustum);
     diagnosticSmall.render(smallCamera, {});
@@ -266,6 +294,12 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   c.cullDispatchMs = m("dispatch");
   for (const auto& [name, pass] : passes) c.cullMsPerPatch[name] = m("cull " + name) / nMany;
   c.cullMsPerPatch["hiz"] = m("hiz cull") / nMany;
+  for (const auto& [name, pass] : surfacePasses)
+    c.surfaceCullMsPerPatch[name] = m("cull surface " + name) / nMany;
+  for (const auto& [name, pair] : listedPasses)
+    for (uint32_t level : listedLevels)
+      c.listedCullMsPerPatch[name].push_back(
+          {level, m("cull listed " + name + " " + std::to_string(level)) / nListed});
   // A displaced kernel is the Hi-Z stage on its displaced bound: the bound's extra cost over
   // the frustum kernel plus the Hi-Z lookup.
   for (const auto& [name, pass] : displacedPasses)

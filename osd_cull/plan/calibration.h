@@ -76,6 +76,13 @@ struct Calibration {
   /// RT(tf) of a displaced patch over that of the same patch undisplaced (the displacement
   /// lookup in the evaluation stage), per measured level, ascending (empty: 1).
   std::vector<std::pair<uint32_t, double>> displacedDrawFactor;
+  /// The back-patch accuracies (docs/algorithms/drawn-triangles.md). Surface-exact (the
+  /// papers' test, CullSettings::drawnTriangles off): CT per method, like cullMsPerPatch.
+  std::map<std::string, double> surfaceCullMsPerPatch;
+  /// The listed-triangle test (CullSettings::drawnEnumerate) per method: what it adds to the
+  /// method's drawn-triangle bound kernel, per patch, against the uniform tessellation level
+  /// (it lists the level's triangles), ascending levels.
+  std::map<std::string, std::vector<std::pair<uint32_t, double>>> listedCullMsPerPatch;
 
   /// \brief RT(tf) per Bézier patch at any level: linear in (tf + 1)² between the measured
   /// levels (the work is (tf + 1)² evaluations), extrapolated with the last two.
@@ -90,6 +97,10 @@ struct Calibration {
   /// (boundsMsPerMethod), else that of the method it shares its pass with (tangent-plane-16:
   /// tangent-plane; the fp64 variants: their fp32 method), else boundsMsPerPatch.
   double boundsMs(const std::string& method) const;
+  /// \brief What the listed-triangle test adds to back-patch method `method`'s CT at level
+  /// `tess`: linear in (tf + 1)² (the triangles it lists) between the measured levels,
+  /// extrapolated with the last two. \throws osd_cull::Error when not measured for `method`.
+  double listedCullMs(const std::string& method, double tess) const;
   /// \brief CT of a stage. \throws osd_cull::Error naming the stage when it is not measured.
   double cullMs(const std::string& stage) const;
   /// \brief The Hi-Z build of a depth image of `pixels`: linear between the samples,

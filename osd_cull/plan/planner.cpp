@@ -111,14 +111,9 @@ bool mayHideItself(const PatchSet& patches, uint64_t maxWork) {
 }
 
 std::vector<std::pair<const char*, const Effect*>> Plan::effects() const {
-  return {{"frustum", &frustum},
-          {"back-patch", &backPatch},
-          {"occlusion", &occlusion},
-          {"passes", &passes},
-          {"hi-z", &hiz},
-          {"update", &update},
-          {"bounds", &bounds},
-          {"displacement", &displacement}};
+  return {{"frustum", &frustum},     {"back-patch", &backPatch}, {"accuracy", &accuracy},
+          {"occlusion", &occlusion}, {"passes", &passes},        {"hi-z", &hiz},
+          {"update", &update},       {"bounds", &bounds},        {"displacement", &displacement}};
 }
 
 Planner::Planner(Calibration calibration, PlannerOptions options)
@@ -129,6 +124,28 @@ Planner::Planner(Calibration calibration, PlannerOptions options)
     throw Error("planner: learnWeight must be in (0, 1], got " +
                 std::to_string(options_.learnWeight));
   calibration_.drawMs(1.0);  // throws without draw costs
+  if (options_.accuracy != "auto" && options_.accuracy != "bound" &&
+      options_.accuracy != "listed" && options_.accuracy != "surface")
+    throw Error("planner: accuracy must be auto, bound, listed or surface, got '" +
+                options_.accuracy + "'");
+  if (!(options_.listedRateFactor > 0.0 && options_.surfaceRateFactor > 0.0))
+    throw Error("planner: the listed and surface rate factors must be positive");
+}
+
+std::string rateKey(const std::string& method, Accuracy accuracy) {
+  return accuracy == Accuracy::Bound ? method : method + "/" + toString(accuracy);
+}
+
+std::vector<Accuracy> Planner::accuracies(const PlanInput& input, const std::string& method) const {
+  if (!input.ownAccuracy) return {Accuracy::Bound};
+  const bool listed = calibration_.listedCullMsPerPatch.count(method) > 0;
+  if (options_.accuracy == "surface")
+    return calibration_.surfaceCullMsPerPatch.count(method) ? std::vector{Accuracy::Surface}
+                                                            : std::vector<Accuracy>{};
+  if (options_.accuracy == "listed")
+    return listed ? std::vector{Accuracy::Listed} : std::vector<Accuracy>{};
+  if (options_.accuracy == "bound" || !listed) return {Accuracy::Bound};
+  return {Accuracy::Bound, Accuracy::Listed};
 }
 
 CostCase Planner::costCase(const PlanInput& input, const StageChoice& stages) const {
@@ -189,20 +206,21 @@ bool Planner::offersOcclusion(const PlanInput& input) const {
 }
 
 std::vector<StageChoice> Planner::candidates(const PlanInput& input) const {
-  std::vector<std::string> backPatch = {""};
+  std::vector<std::pair<std::string, Accuracy>> backPatch = {{"", Accuracy::Bound}};
   if (input.backPatchValidity.enabled && !input.displaced)
     for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch))
       if (calibration_.cullMsPerPatch.count(m) && (!input.deforming || hasBoundsPass(m)))
-        backPatch.push_back(m);
+        for (Accuracy a : accuracies(input, m)) backPatch.push_back({m, a});
   std::vector<std::string> occlusion = {""};
   if (offersOcclusion(input))
     for (const std::string& kernel : occlusionKernels(input))
       if (calibration_.cullMsPerPatch.count(kernel)) occlusion.push_back(kernel);
   std::vector<StageChoice> out;
   for (bool frustum : {false, true})
-    for (const std::string& b : backPatch)
+    for (const auto& [b, a] : backPatch)
       for (const std::string& o : occlusion) {
         StageChoice c{frustum, b, o};
+        c.accuracy = a;
         out.push_back(c);
         if (!o.empty() && options_.allowAggressive) {
           c.aggressive = true;
@@ -216,6 +234,14 @@ double Planner::stageRate(const State& state, const std::string& stage) const {
   if (const auto it = state.rates.find(stage); it != state.rates.end()) return it->second;
   if (const auto it = options_.priorRates.find(stage); it != options_.priorRates.end())
     return it->second;
+  // A back-patch method at another accuracy (rateKey): its bound prior times the study's
+  // factor, at most every patch.
+  if (const size_t slash = stage.find('/'); slash != std::string::npos) {
+    const std::string accuracy = stage.substr(slash + 1);
+    const double factor = accuracy == toString(Accuracy::Listed) ? options_.listedRateFactor
+                                                                 : options_.surfaceRateFactor;
+    return std::min(1.0, factor * stageRate(State{}, stage.substr(0, slash)));
+  }
   // A displaced kernel without its own prior: the Hi-Z one.
   const auto hiz = options_.priorRates.find("hiz");
   return hiz != options_.priorRates.end() ? hiz->second : 0.0;
@@ -226,7 +252,8 @@ CullRates Planner::ratesFor(const State& state, const StageChoice& stages, BoxIn
   r.frustum = box == BoxInView::Outside  ? 1.0
               : box == BoxInView::Inside ? 0.0
                                          : stageRate(state, kFrustum);
-  if (!stages.backPatch.empty()) r.backPatch = stageRate(state, stages.backPatch);
+  if (!stages.backPatch.empty())
+    r.backPatch = stageRate(state, rateKey(stages.backPatch, stages.accuracy));
   if (!stages.occlusion.empty()) r.occlusion = stageRate(state, stages.occlusion);
   return r;
 }
@@ -271,11 +298,13 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
     if (!s.lastRun.count(kind)) s.lastRun[kind] = frameNumber;
   if (options_.reprobeFrames > 0) {
     std::string probeBackPatch;
+    Accuracy probeAccuracy = Accuracy::Bound;
     double probeRate = -1.0;
     for (const StageChoice& c : all)
-      if (!c.backPatch.empty() && stageRate(s, c.backPatch) > probeRate) {
-        probeRate = stageRate(s, c.backPatch);
+      if (!c.backPatch.empty() && stageRate(s, rateKey(c.backPatch, c.accuracy)) > probeRate) {
+        probeRate = stageRate(s, rateKey(c.backPatch, c.accuracy));
         probeBackPatch = c.backPatch;
+        probeAccuracy = c.accuracy;
       }
     auto due = [&](const char* kind) {
       return frameNumber - s.lastRun[kind] >= options_.reprobeFrames;
@@ -284,6 +313,7 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
       p.stages.frustum = p.probe = true;
     } else if (p.stages.backPatch.empty() && !probeBackPatch.empty() && due(kBackPatch)) {
       p.stages.backPatch = probeBackPatch;
+      p.stages.accuracy = probeAccuracy;
       p.probe = true;
     } else if (p.stages.occlusion.empty() && offersOcclusion(input) && due(kOcclusion)) {
       // The kernel with the highest rate learned or assumed (as for the back-patch probe).
@@ -365,6 +395,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     p.backPatch.choice = p.stages.backPatch;
     StageChoice off = p.stages;
     off.backPatch.clear();
+    off.accuracy = Accuracy::Bound;
     if (input.displaced)
       p.backPatch.reason = "displaced mesh: the back-patch tests bound the undisplaced surface";
     else if (!input.backPatchValidity.enabled)
@@ -372,10 +403,12 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     else if (p.backPatch.on) {
       p.backPatch.deltaMs = now - total(off);
       p.backPatch.reason = (p.probe && s.current->backPatch.empty() ? probe : "") +
-                           stageReason(p.stages.backPatch, p.rates.backPatch, p.stages, off);
+                           stageReason(rateKey(p.stages.backPatch, p.stages.accuracy),
+                                       p.rates.backPatch, p.stages, off);
     } else {
       // The best method it could have run.
       std::string bestMethod;
+      Accuracy bestAccuracy = Accuracy::Bound;
       double bestTotal = std::numeric_limits<double>::infinity();
       for (const StageChoice& c : candidates(input))
         if (!c.backPatch.empty() && c.frustum == p.stages.frustum &&
@@ -383,6 +416,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
             total(c) < bestTotal) {
           bestTotal = total(c);
           bestMethod = c.backPatch;
+          bestAccuracy = c.accuracy;
         }
       if (bestMethod.empty()) {
         p.backPatch.reason = input.deforming
@@ -392,9 +426,62 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       } else {
         StageChoice with = p.stages;
         with.backPatch = bestMethod;
+        with.accuracy = bestAccuracy;
+        const std::string key = rateKey(bestMethod, bestAccuracy);
         p.backPatch.choice = bestMethod;
         p.backPatch.deltaMs = bestTotal - now;
-        p.backPatch.reason = stageReason(bestMethod, stageRate(s, bestMethod), with, p.stages);
+        p.backPatch.reason = stageReason(key, stageRate(s, key), with, p.stages);
+      }
+    }
+  }
+  // Accuracy of the back-patch test: the bound or the listed triangles by predicted cost,
+  // surface-exact only when asked for.
+  {
+    p.accuracy.on = !p.stages.backPatch.empty();
+    if (!p.accuracy.on) {
+      p.accuracy.reason = "no back-patch stage";
+    } else {
+      const Accuracy a = p.stages.accuracy;
+      p.accuracy.choice = toString(a);
+      auto at = [&](Accuracy other) {
+        StageChoice c = p.stages;
+        c.accuracy = other;
+        return c;
+      };
+      auto line = [&](Accuracy other) {
+        const std::string key = rateKey(p.stages.backPatch, other);
+        return std::string(toString(other)) + " " + source(key) + " " + percent(stageRate(s, key)) +
+               " predicted " + ms(total(at(other)));
+      };
+      const std::string tessText = " at tess " + std::to_string(int(input.tess));
+      if (!input.ownAccuracy) {
+        p.accuracy.reason =
+            "drawn-triangle bound: the scene's one cull frame per view applies "
+            "one accuracy to every instance";
+      } else if (a == Accuracy::Surface) {
+        p.accuracy.reason =
+            "surface-exact asked for (the papers' test): NOT conservative for the drawn chord "
+            "triangles, can lose silhouette pixels; " +
+            line(a);
+      } else if (options_.accuracy != "auto") {
+        p.accuracy.reason = std::string(toString(a)) +
+                            " asked for (conservative for the drawn "
+                            "triangles); " +
+                            line(a);
+      } else if (!calibration_.listedCullMsPerPatch.count(p.stages.backPatch)) {
+        p.accuracy.reason =
+            "drawn-triangle bound: the listed test of " + p.stages.backPatch + " is not calibrated";
+      } else {
+        const Accuracy other = a == Accuracy::Bound ? Accuracy::Listed : Accuracy::Bound;
+        p.accuracy.deltaMs =
+            a == Accuracy::Listed ? now - total(at(other)) : total(at(other)) - now;
+        char ct[64];
+        std::snprintf(ct, sizeof ct, "listed test +%.3f us/patch",
+                      1e3 * calibration_.listedCullMs(p.stages.backPatch, input.tess));
+        p.accuracy.reason =
+            std::string(a == Accuracy::Listed ? "listed triangles pay" : "the bound is cheaper") +
+            tessText + " (" + ct + "): " + line(a) + " against " + line(other) +
+            "; both conservative for the drawn triangles";
       }
     }
   }
@@ -521,13 +608,16 @@ void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledF
   };
   // The frustum's rate is learned only where the pre-test leaves it open.
   if (plan.stages.frustum && plan.box == BoxInView::Crossing) learn(kFrustum, culledFrustum);
-  if (!plan.stages.backPatch.empty()) learn(plan.stages.backPatch, culledBackPatch);
+  if (!plan.stages.backPatch.empty())
+    learn(rateKey(plan.stages.backPatch, plan.stages.accuracy), culledBackPatch);
   if (!plan.stages.occlusion.empty()) learn(plan.stages.occlusion, culledOcclusion);
 }
 
 frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base) {
   base.cull.frustum = plan.stages.frustum;
   base.cull.backPatch = plan.stages.backPatch;
+  base.cull.drawnTriangles = plan.stages.accuracy != Accuracy::Surface;
+  base.cull.drawnEnumerate = plan.stages.accuracy == Accuracy::Listed;
   base.cull.occlusion = plan.stages.occlusion;
   base.aggressive = plan.stages.aggressive;
   base.hiz.fullResolution = plan.stages.hizFull;

@@ -70,6 +70,10 @@ struct PlanInput {
   /// that does not pay is switched off by its measured rate); mayHideItself() decides it
   /// from the patches.
   bool selfOccluding = true;
+  /// The frame applies this mesh's own back-patch accuracy (the mesh form). False in the
+  /// scene form, whose one cull frame per view takes one CullSettings for every instance:
+  /// then the accuracy stays the drawn-triangle bound.
+  bool ownAccuracy = true;
 };
 
 /// \brief Whether a mesh can hide parts of itself in some view from outside, i.e. whether
@@ -97,7 +101,7 @@ struct Plan {
   uint64_t frame = 0;
   BoxInView box = BoxInView::Crossing;
   StageChoice stages;
-  Effect frustum, backPatch, occlusion, passes, hiz, update, bounds, displacement;
+  Effect frustum, backPatch, accuracy, occlusion, passes, hiz, update, bounds, displacement;
   bool probe = false;  ///< a re-probe frame (a switched-off stage runs once)
   CullRates rates;     ///< the rates the prediction used
   /// Measured / predicted frame time learned on this key's recent frames (1 before the
@@ -148,11 +152,26 @@ struct PlannerOptions {
       {"full-caf", 0.061},
       {"acon-caf", 0.074},
       {"con-caf", 0.076}};
+  /// The back-patch accuracy (Accuracy): "auto" chooses the drawn-triangle bound or the
+  /// listed triangles by predicted cost (both conservative for the drawn triangles);
+  /// "bound", "listed" or "surface" force one. Surface-exact (the papers' test, which can
+  /// lose silhouette pixels of the drawn chord triangles) is never chosen unless asked for.
+  std::string accuracy = "auto";
+  /// Prior rate of a back-patch method at the listed-triangle and surface-exact accuracies,
+  /// as a multiple of its bound prior: docs/results/accuracy-vs-time.md, BigGuy at 1280x720
+  /// tess 4 to 16, listed/bound 1.5 to 2.2 (tcone 30.5% / 13.7%, tangent plane 36.4% /
+  /// 19.1%), surface/bound 2.1 to 2.5 (tcone 34.3%, ncone 39.4% / 17.7%).
+  double listedRateFactor = 1.9;
+  double surfaceRateFactor = 2.2;
   /// The displaced kernel for a displaced mesh when the calibration measured none of the
   /// six (Niessner & Loop Table 1: CoN with the camera-aligned frustum culls most); with
   /// measured ones the planner takes the cheapest predicted.
   std::string displacedKernel = "con-caf";
 };
+
+/// \brief The key of a back-patch method's learned rate at `accuracy`: the method's name for
+/// the bound, "tcone/listed", "tcone/surface" (Planner::rate).
+std::string rateKey(const std::string& method, Accuracy accuracy);
 
 /// \brief The planner. One per program; it keeps a state per key (instance and view).
 class Planner {
@@ -173,7 +192,8 @@ class Planner {
                uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
                double measuredMs = 0.0);
 
-  /// \brief The learned (or prior) rate of `stage` ("frustum" or a method name) for `key`.
+  /// \brief The learned (or prior) rate of `stage` ("frustum", a method name or a rateKey())
+  /// for `key`.
   double rate(const std::string& key, const std::string& stage) const;
   const Calibration& calibration() const { return calibration_; }
   const PlannerOptions& options() const { return options_; }
@@ -194,6 +214,7 @@ class Planner {
   std::string bestOcclusionKernel(const PlanInput& input, const State& state,
                                   const StageChoice& stages, BoxInView box) const;
   std::vector<StageChoice> candidates(const PlanInput& input) const;
+  std::vector<Accuracy> accuracies(const PlanInput& input, const std::string& method) const;
   CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
   double stageRate(const State& state, const std::string& stage) const;
   void explain(Plan& plan, const PlanInput& input, const State& state) const;
@@ -203,7 +224,8 @@ class Planner {
   std::map<std::string, State> states_;
 };
 
-/// \brief `base` with the plan's stages, passes, Hi-Z resolution and displaced kernel.
+/// \brief `base` with the plan's stages, back-patch accuracy (CullSettings::drawnTriangles,
+/// drawnEnumerate), passes, Hi-Z resolution and displaced kernel.
 /// The back-patch validity and the displacement map of `base` are kept (a displaced mesh's
 /// map stays bound only when the plan says displacement is on).
 frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base);

@@ -22,7 +22,8 @@ with its exact TES work, a patch drawn with factor 0 (RT0), each cull stage's co
 patch (CT: frustum, every back-patch method, Hi-Z occlusion and the six displaced kernels),
 the displaced draw against the undisplaced one (a built-in torus with texture coordinates
 and a procedural map), the Hi-Z build at two image sizes, the CPU and GPU control-point
-update and the bounds pass per patch and method; medians over repeats. Stored in the calibration cache ($OSD_CULL_CALIBRATION_CACHE, else
+update and the bounds pass per patch and method, the surface-exact back-patch kernels and
+the listed-triangle test against the tessellation level; medians over repeats. Stored in the calibration cache ($OSD_CULL_CALIBRATION_CACHE, else
 $XDG_CACHE_HOME/osd_cull/calibration or ~/.cache/osd_cull/calibration) under the device,
 driver and library version; `osd-cull plan` and `render --plan auto` read it there. A
 cached calibration is shown, not measured again, unless --force is given.)";
@@ -83,6 +84,17 @@ void print(const plan::Calibration& c) {
     std::printf("bounds pass per patch and method:");
     for (const auto& [method, ms] : c.boundsMsPerMethod)
       std::printf(" %s %.3f us;", method.c_str(), 1e3 * ms);
+    std::printf("\n");
+  }
+  if (!c.surfaceCullMsPerPatch.empty()) {
+    std::printf("surface-exact back-patch CT (us/patch, on top of frustum):");
+    for (const auto& [method, ms] : c.surfaceCullMsPerPatch)
+      std::printf(" %s %.3f;", method.c_str(), 1e3 * ms);
+    std::printf("\n");
+  }
+  for (const auto& [method, levels] : c.listedCullMsPerPatch) {
+    std::printf("listed-triangle test of %s on top of its bound (us/patch):", method.c_str());
+    for (const auto& [level, ms] : levels) std::printf(" tess %u %.3f;", level, 1e3 * ms);
     std::printf("\n");
   }
   std::printf(
