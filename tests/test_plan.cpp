@@ -120,7 +120,7 @@ TEST(Plan, CloseHighTessMeshGetsCullingSwitchedOn) {
   EXPECT_EQ(p.backPatch.choice, "tangent-plane");
   EXPECT_TRUE(p.occlusion.on);
   EXPECT_EQ(p.passes.choice, "two-pass");
-  EXPECT_EQ(p.hiz.choice, "half");
+  EXPECT_EQ(p.hiz.choice, "half/paper");
   EXPECT_LT(p.predicted.totalMs(), 0.8 * p.predictedUnculled.totalMs());
   // The plan becomes the options the frame pipeline takes.
   const frame::CullFrameOptions o = applyPlan(p, {});
@@ -222,6 +222,63 @@ TEST(PlanAccuracy, BoundAtLowTessListedWhereItPaysSurfaceOnlyWhenAsked) {
     FAIL() << "accepted accuracy 'exact'";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'exact'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PlanHiZ, ResolutionAndLookupByCostLearnedPerVariant) {
+  Calibration c = syntheticCalibration();
+  c.hizTightMsPerPatch = 0.00001;  // the tight lookup: nearly free
+  auto occluded = [](uint32_t patches) {
+    PlanInput in = meshAt(1.6, 32.0);
+    in.occluders = true;
+    in.bezier = patches;
+    in.gregory = 0;
+    return in;
+  };
+  // 500 patches: the full-resolution build (10 ms against 3 ms at 1280x720) costs more than
+  // its extra rate saves (0.013 of 500 patches of 0.22 ms); the tight lookup pays.
+  {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", occluded(500), 0);
+    ASSERT_TRUE(p.occlusion.on) << planTable({&p, 1});
+    EXPECT_EQ(p.hiz.choice, "half/tight") << p.hiz.reason;
+    EXPECT_NE(p.hiz.reason.find("cheapest predicted of half/paper"), std::string::npos)
+        << p.hiz.reason;
+    EXPECT_NE(p.hiz.reason.find("tight lookup +0.010 us/patch"), std::string::npos) << p.hiz.reason;
+    const frame::CullFrameOptions o = applyPlan(p, {});
+    EXPECT_EQ(o.hiz.lookup, bound::HiZLookup::Tight);
+    EXPECT_FALSE(o.hiz.fullResolution);
+    // The tight variant's rate is learned on its own key; the paper's stays its prior.
+    planner.observe("main/ball", p, 0, 0, 25, 500);
+    EXPECT_NEAR(planner.rate("main/ball", "hiz/tight"), 0.05, 1e-12);
+    EXPECT_DOUBLE_EQ(planner.rate("main/ball", "hiz"), PlannerOptions{}.priorRates.at("hiz"));
+    EXPECT_NEAR(planner.rate("main/ball", "hiz/full/tight"), 0.1 * 1.13 * 1.13, 1e-12);
+  }
+  // 20000 patches: the finer pyramid's extra rate pays for its build.
+  {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", occluded(20000), 0);
+    ASSERT_TRUE(p.occlusion.on) << planTable({&p, 1});
+    EXPECT_EQ(p.hiz.choice, "full/tight") << p.hiz.reason;
+    EXPECT_TRUE(applyPlan(p, {}).hiz.fullResolution);
+    // The scene form's one pyramid per view: the paper's.
+    PlanInput scene = occluded(20000);
+    scene.ownAccuracy = false;
+    const Plan sc = planner.plan("main/scene", scene, 0);
+    ASSERT_TRUE(sc.occlusion.on);
+    EXPECT_EQ(sc.hiz.choice, "half/paper");
+    EXPECT_NE(sc.hiz.reason.find("one pyramid per view"), std::string::npos) << sc.hiz.reason;
+  }
+  // A dear tight lookup (10 us per patch) is not taken; uncalibrated, never offered.
+  {
+    Calibration dear = c;
+    dear.hizTightMsPerPatch = 0.01;
+    const Plan p = Planner(dear).plan("main/ball", occluded(500), 0);
+    EXPECT_EQ(p.hiz.choice, "half/paper") << p.hiz.reason;
+    const Plan u = Planner(syntheticCalibration()).plan("main/ball", occluded(500), 0);
+    EXPECT_EQ(u.hiz.choice, "half/paper") << u.hiz.reason;
+    EXPECT_NE(u.hiz.reason.find("tight lookup not calibrated"), std::string::npos) << u.hiz.reason;
+    EXPECT_EQ(applyPlan(u, {}).hiz.lookup, bound::HiZLookup::Paper);
   }
 }
 
@@ -517,6 +574,11 @@ TEST(Calibration, TextRoundTripAndCacheKey) {
   EXPECT_NEAR(back4.listedCullMs("tcone", 8), 0.001 + (81.0 - 25.0) / (289.0 - 25.0) * 0.001,
               1e-12);
   EXPECT_THROW(c.listedCullMs("tcone", 4), Error);  // not measured: named
+  // Format 5: the tight Hi-Z lookup.
+  Calibration tight = c;
+  tight.hizTightMsPerPatch = 0.00001;
+  EXPECT_DOUBLE_EQ(*fromText(toText(tight), "test").hizTightMsPerPatch, 0.00001);
+  EXPECT_FALSE(fromText(toText(c), "test").hizTightMsPerPatch);
   EXPECT_THROW(fromText(toText(c) + "cull-listed tcone 8 0.1\ncull-listed tcone 4 0.1\n", "x"),
                Error);  // levels must ascend
   test::TempDir dir("osd_cull_plan_");
@@ -557,7 +619,7 @@ TEST(Calibration, BadFileNamesLineAndProblem) {
     FAIL() << "accepted format 2";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("old.txt:1: calibration file format 2, this library "
-                                         "reads format 4"),
+                                         "reads format 5"),
               std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("osd-cull calibrate --force"), std::string::npos);

@@ -145,6 +145,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   fo.timePasses = true;
   frame::CullFrame diagnostic(context, renderer, target, meshes, fo);
   frame::CullFrame diagnosticSmall(context, renderer, small, meshes, fo);
+  fo.hiz.lookup = bound::HiZLookup::Tight;  // the tight lookup's CT against the paper's
+  frame::CullFrame diagnosticTight(context, renderer, target, meshes, fo);
+  fo.hiz.lookup = bound::HiZLookup::Paper;
   fo.timePasses = false;
   frame::CullFrame filtered(context, renderer, target, meshes, fo);
   fo.drawMode = frame::CullDrawMode::TessFactorZero;
@@ -203,6 +206,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   std::vector<std::pair<uint32_t, double>> tes;
   // Standalone pyramids over the two targets' depth (built again and again below).
   frame::HiZPyramid pyramid(context, target.depth()), pyramidSmall(context, small.depth());
+  frame::HiZOptions fullResolution;
+  fullResolution.fullResolution = true;
+  frame::HiZPyramid pyramidFull(context, target.depth(), fullResolution);
   const frame::PatchDraw draw{&gpu, &sphere, 0}, drawGregory{&gpuGregory, &gregory, 0};
   // Each sample is a difference of two submissions made back to back (paired), so that the
   // load of other processes, which changes over seconds, cancels; the cheap ones are
@@ -253,6 +259,8 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
                                                 torusMs);
       one["hiz build"].push_back(
           timed([&] { pyramid.build(context, frame::RenderTarget::kDepthLayout); }));
+      one["hiz build full"].push_back(
+          timed([&] { pyramidFull.build(context, frame::RenderTarget::kDepthLayout); }));
       one["hiz build small"].push_back(
           timed([&] { pyramidSmall.build(context, frame::RenderTarget::kDepthLayout); }));
     }
@@ -263,7 +271,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
         one["cull listed " + name + " " + std::to_string(level)].push_back(
             pair.second->run(camera, tess) - pair.first->run(camera, tess));
     }
-    one["hiz cull"].push_back(diagnostic.render(camera, {}).cullMs - frustum);
+    const double paperCull = diagnostic.render(camera, {}).cullMs;
+    one["hiz cull"].push_back(paperCull - frustum);
+    one["hiz tight"].push_back(diagnosticTight.render(camera, {}).cullMs - paperCull);
     diagnosticSmall.render(smallCamera, {});
     one["away tf0"].push_back(factorZero.render(away, {}).frameMs -
                               filtered.render(away, {}).frameMs);
@@ -314,7 +324,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   }
 
   c.hizBuild = {{hizPixels(uint64_t(width / 2) * (height / 2), false), m("hiz build small")},
-                {hizPixels(uint64_t(width) * height, false), m("hiz build")}};
+                {hizPixels(uint64_t(width) * height, false), m("hiz build")},
+                {hizPixels(uint64_t(width) * height, true), m("hiz build full")}};
+  c.hizTightMsPerPatch = m("hiz tight") / nMany;
   c.pointUpdateCpuMsPerPatch = m("points cpu") / cagePatches;
   c.pointUpdateGpuMsPerPatch = m("points gpu") / cagePatches;
   c.boundsMsPerPatch = m("bounds") / cagePatches;

@@ -17,10 +17,11 @@ namespace fs = std::filesystem;
 
 // Format 3: per-method bounds passes ("bounds-method"), the displaced kernels ("cull
 // con-caf ...") and the displaced draw ("draw-displaced"). Format 4: the back-patch
-// accuracies ("cull-surface METHOD MS", "cull-listed METHOD LEVEL MS"). Older files are
-// measured again.
+// accuracies ("cull-surface METHOD MS", "cull-listed METHOD LEVEL MS"). Format 5: the tight
+// Hi-Z lookup ("hiz-tight MS"), a full-resolution Hi-Z build among the "hiz" sizes and the
+// displaced bounds passes ("bounds-method acon|con MS"). Older files are measured again.
 constexpr const char* kMagicPrefix = "osd_cull-calibration ";
-constexpr int kFormat = 4;
+constexpr int kFormat = 5;
 const std::string kMagic = kMagicPrefix + std::to_string(kFormat);
 
 // The format of a calibration file's first line; 0 when it is not one.
@@ -137,6 +138,7 @@ std::string toText(const Calibration& c) {
     out << "draw-displaced " << level << " " << number(factor) << "\n";
   for (const auto& [method, ms] : c.boundsMsPerMethod)
     out << "bounds-method " << method << " " << number(ms) << "\n";
+  if (c.hizTightMsPerPatch) out << "hiz-tight " << number(*c.hizTightMsPerPatch) << "\n";
   for (const auto& [method, ms] : c.surfaceCullMsPerPatch)
     out << "cull-surface " << method << " " << number(ms) << "\n";
   for (const auto& [method, levels] : c.listedCullMsPerPatch)
@@ -238,7 +240,11 @@ Calibration fromText(const std::string& text, const std::string& source) {
                     "levels");
     else if (name == "bounds-method")
       readNamed(c.boundsMsPerMethod, "a back-patch method name");
-    else if (name == "cull-surface")
+    else if (name == "hiz-tight") {
+      double ms = 0;
+      read(ms, "ms per patch");
+      c.hizTightMsPerPatch = ms;
+    } else if (name == "cull-surface")
       readNamed(c.surfaceCullMsPerPatch, "a back-patch method name");
     else if (name == "cull-listed") {
       std::string method;
@@ -286,7 +292,8 @@ Calibration loadCalibration(const fs::path& file) {
 std::string outdatedCalibrationMessage(int format) {
   return "calibration file format " + std::to_string(format) + ", this library reads format " +
          std::to_string(kFormat) +
-         " (per-method bounds passes, displaced kernels and draw, back-patch accuracies): measure "
+         " (per-method bounds passes, displaced kernels and draw, back-patch accuracies, Hi-Z "
+         "variants, displaced bounds passes): measure "
          "it again with "
          "`osd-cull calibrate --force`";
 }

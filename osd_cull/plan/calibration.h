@@ -66,10 +66,12 @@ struct Calibration {
   double submitMs = 0.0;            ///< one empty submission and wait
   double cullDispatchMs = 0.0;      ///< the fixed cost of one cull dispatch (no patches)
   std::map<std::string, double> cullMsPerPatch;  ///< CT per stage (see above)
-  std::vector<SizeCost> hizBuild;                ///< Hi-Z build, ascending pixels
-  double pointUpdateCpuMsPerPatch = 0.0;         ///< cage → control points on the CPU
-  double pointUpdateGpuMsPerPatch = 0.0;         ///< the same in Vulkan compute
-  double boundsMsPerPatch = 0.0;                 ///< the bounds pass of TCONE (the update's)
+  /// Hi-Z build against level 0's pixel count, ascending: half-resolution pyramids of two
+  /// image sizes and a full-resolution one (HiZOptions::fullResolution).
+  std::vector<SizeCost> hizBuild;
+  double pointUpdateCpuMsPerPatch = 0.0;  ///< cage → control points on the CPU
+  double pointUpdateGpuMsPerPatch = 0.0;  ///< the same in Vulkan compute
+  double boundsMsPerPatch = 0.0;          ///< the bounds pass of TCONE (the update's)
   /// The bounds pass per back-patch method name ("tcone", "ncone", "tangent-plane", ...):
   /// each writes other cull data (frame/cull/bounds_pass.h), at its own cost.
   std::map<std::string, double> boundsMsPerMethod;
@@ -83,6 +85,10 @@ struct Calibration {
   /// method's drawn-triangle bound kernel, per patch, against the uniform tessellation level
   /// (it lists the level's triangles), ascending levels.
   std::map<std::string, std::vector<std::pair<uint32_t, double>>> listedCullMsPerPatch;
+  /// What the tight Hi-Z lookup (bound::HiZLookup::Tight: one level finer where the box
+  /// still touches at most 2x2 texels) adds to the occlusion stage's CT over the paper's
+  /// lookup, per patch; nullopt when not measured (then the plan keeps the paper's).
+  std::optional<double> hizTightMsPerPatch;
 
   /// \brief RT(tf) per Bézier patch at any level: linear in (tf + 1)² between the measured
   /// levels (the work is (tf + 1)² evaluations), extrapolated with the last two.

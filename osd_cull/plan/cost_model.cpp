@@ -27,8 +27,8 @@ std::string StageChoice::describe() const {
   if (!backPatch.empty())
     add(backPatch + (accuracy == Accuracy::Bound ? "" : std::string("/") + toString(accuracy)));
   if (!occlusion.empty())
-    add(occlusion + (aggressive ? " (aggressive, " : " (two-pass, ") +
-        (hizFull ? "full)" : "half)"));
+    add(occlusion + (aggressive ? " (aggressive, " : " (two-pass, ") + (hizFull ? "full" : "half") +
+        (hizTight ? ", tight)" : ")"));
   return text;
 }
 
@@ -76,7 +76,16 @@ double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages,
         ct += calibration.listedCullMs(stages.backPatch, tess);
     }
   }
-  if (!stages.occlusion.empty()) ct += calibration.cullMs(stages.occlusion);
+  if (!stages.occlusion.empty()) {
+    ct += calibration.cullMs(stages.occlusion);
+    if (stages.hizTight) {
+      if (!calibration.hizTightMsPerPatch)
+        throw Error(
+            "calibration: no tight Hi-Z lookup cost measured (run `osd-cull calibrate "
+            "--force` with this library)");
+      ct += *calibration.hizTightMsPerPatch;
+    }
+  }
   return ct;
 }
 

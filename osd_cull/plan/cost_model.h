@@ -46,6 +46,7 @@ struct StageChoice {
   std::string backPatch;    ///< a back-patch method name; empty: none
   std::string occlusion;    ///< "hiz" or a displaced kernel ("con-caf", ...); empty: none
   bool hizFull = false;     ///< Hi-Z level 0 at full resolution (paper: half)
+  bool hizTight = false;    ///< the tight Hi-Z lookup (paper: HiZLookup::Paper)
   bool aggressive = false;  ///< one pass, newly visible patches a frame late (§3.1)
   Accuracy accuracy = Accuracy::Bound;  ///< of the back-patch test
   /// \brief True when any stage runs (else the mesh is drawn by the plain renderer).

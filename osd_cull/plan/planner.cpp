@@ -132,6 +132,10 @@ Planner::Planner(Calibration calibration, PlannerOptions options)
     throw Error("planner: the listed and surface rate factors must be positive");
 }
 
+std::string occlusionRateKey(const StageChoice& stages) {
+  return stages.occlusion + (stages.hizFull ? "/full" : "") + (stages.hizTight ? "/tight" : "");
+}
+
 std::string rateKey(const std::string& method, Accuracy accuracy) {
   return accuracy == Accuracy::Bound ? method : method + "/" + toString(accuracy);
 }
@@ -215,18 +219,31 @@ std::vector<StageChoice> Planner::candidates(const PlanInput& input) const {
   if (offersOcclusion(input))
     for (const std::string& kernel : occlusionKernels(input))
       if (calibration_.cullMsPerPatch.count(kernel)) occlusion.push_back(kernel);
+  // The pyramid (Hi-Z resolution, lookup): the paper's (half, paper lookup); in the mesh
+  // form also full resolution, and the tight lookup when calibrated.
+  using Pyramid = std::pair<bool, bool>;  // full resolution, tight lookup
+  std::vector<Pyramid> pyramids = {{false, false}};
+  if (input.ownAccuracy) {
+    pyramids.push_back({true, false});
+    if (calibration_.hizTightMsPerPatch)
+      pyramids.insert(pyramids.end(), {{false, true}, {true, true}});
+  }
+  const std::vector<Pyramid> noPyramid = {{false, false}};
   std::vector<StageChoice> out;
   for (bool frustum : {false, true})
     for (const auto& [b, a] : backPatch)
-      for (const std::string& o : occlusion) {
-        StageChoice c{frustum, b, o};
-        c.accuracy = a;
-        out.push_back(c);
-        if (!o.empty() && options_.allowAggressive) {
-          c.aggressive = true;
+      for (const std::string& o : occlusion)
+        for (const auto& [full, tight] : o.empty() ? noPyramid : pyramids) {
+          StageChoice c{frustum, b, o};
+          c.accuracy = a;
+          c.hizFull = full;
+          c.hizTight = tight;
           out.push_back(c);
+          if (!o.empty() && options_.allowAggressive) {
+            c.aggressive = true;
+            out.push_back(c);
+          }
         }
-      }
   return out;
 }
 
@@ -234,12 +251,21 @@ double Planner::stageRate(const State& state, const std::string& stage) const {
   if (const auto it = state.rates.find(stage); it != state.rates.end()) return it->second;
   if (const auto it = options_.priorRates.find(stage); it != options_.priorRates.end())
     return it->second;
-  // A back-patch method at another accuracy (rateKey): its bound prior times the study's
-  // factor, at most every patch.
+  // A back-patch method at another accuracy (rateKey), an occlusion kernel on another
+  // pyramid (occlusionRateKey): its plain prior times each variant's factor, at most 1.
   if (const size_t slash = stage.find('/'); slash != std::string::npos) {
-    const std::string accuracy = stage.substr(slash + 1);
-    const double factor = accuracy == toString(Accuracy::Listed) ? options_.listedRateFactor
-                                                                 : options_.surfaceRateFactor;
+    double factor = 1.0;
+    for (size_t at = slash; at != std::string::npos;) {
+      const size_t next = stage.find('/', at + 1);
+      const std::string variant =
+          stage.substr(at + 1, next == std::string::npos ? next : next - at - 1);
+      factor *= variant == toString(Accuracy::Listed)    ? options_.listedRateFactor
+                : variant == toString(Accuracy::Surface) ? options_.surfaceRateFactor
+                : variant == "full"                      ? options_.fullRateFactor
+                : variant == "tight"                     ? options_.tightRateFactor
+                                                         : 1.0;
+      at = next;
+    }
     return std::min(1.0, factor * stageRate(State{}, stage.substr(0, slash)));
   }
   // A displaced kernel without its own prior: the Hi-Z one.
@@ -254,7 +280,7 @@ CullRates Planner::ratesFor(const State& state, const StageChoice& stages, BoxIn
                                          : stageRate(state, kFrustum);
   if (!stages.backPatch.empty())
     r.backPatch = stageRate(state, rateKey(stages.backPatch, stages.accuracy));
-  if (!stages.occlusion.empty()) r.occlusion = stageRate(state, stages.occlusion);
+  if (!stages.occlusion.empty()) r.occlusion = stageRate(state, occlusionRateKey(stages));
   return r;
 }
 
@@ -316,13 +342,19 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
       p.stages.accuracy = probeAccuracy;
       p.probe = true;
     } else if (p.stages.occlusion.empty() && offersOcclusion(input) && due(kOcclusion)) {
-      // The kernel with the highest rate learned or assumed (as for the back-patch probe).
-      std::string kernel;
+      // The occlusion kernel and pyramid predicted cheapest with the other stages as planned
+      // (so the probe measures what would be switched on).
+      std::optional<StageChoice> with;
       for (const StageChoice& c : all)
-        if (!c.occlusion.empty() &&
-            (kernel.empty() || stageRate(s, c.occlusion) > stageRate(s, kernel)))
-          kernel = c.occlusion;
-      p.stages.occlusion = kernel.empty() ? occlusionKernel(input) : kernel;
+        if (!c.occlusion.empty() && c.frustum == p.stages.frustum &&
+            c.backPatch == p.stages.backPatch && c.accuracy == p.stages.accuracy && !c.aggressive &&
+            (!with || total(c) < total(*with)))
+          with = c;
+      if (with) {
+        p.stages = *with;
+      } else {
+        p.stages.occlusion = occlusionKernel(input);
+      }
       p.probe = true;
     }
   }
@@ -505,18 +537,19 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       p.occlusion.deltaMs = p.occlusion.on ? now - total(without) : total(with) - now;
       // Alone in the view, only the mesh itself can hide its patches: the self-occlusion
       // rule (a non-convex surface), learned from its own frames like the other stages.
-      const double rate = stageRate(s, kernel);
+      const std::string key = occlusionRateKey(with);
+      const double rate = stageRate(s, key);
       const double x = breakEven(with, without, rt);
       p.occlusion.reason =
           (p.probe && p.occlusion.on && s.current->occlusion.empty() ? probe : "") +
           (input.occluders ? std::string()
-                           : "self-occlusion (non-convex surface): " + std::string(source(kernel)) +
+                           : "self-occlusion (non-convex surface): " + std::string(source(key)) +
                                  " " + percent(rate) +
                                  (total(with) < total(without)
                                       ? ", saves " + ms(total(without) - total(with))
                                       : ", costs " + ms(total(with) - total(without))) +
                                  ", " + (rate > x ? "pays" : "does not pay") + "; ") +
-          stageReason(kernel, rate, with, without) + " (Hi-Z build included)";
+          stageReason(key, rate, with, without) + " (Hi-Z build included)";
     }
     p.passes.on = p.occlusion.on;
     p.passes.choice = p.occlusion.on ? (p.stages.aggressive ? "aggressive" : "two-pass") : "one";
@@ -526,14 +559,38 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
                           : "two-pass (§3): the same image as without culling";
     const uint64_t pixels = uint64_t(input.camera.width) * input.camera.height;
     p.hiz.on = p.occlusion.on;
-    p.hiz.choice = p.occlusion.on ? (p.stages.hizFull ? "full" : "half") : "";
+    auto pyramid = [](const StageChoice& c) {
+      return std::string(c.hizFull ? "full" : "half") + (c.hizTight ? "/tight" : "/paper");
+    };
+    p.hiz.choice = p.occlusion.on ? pyramid(p.stages) : "";
     p.hiz.deltaMs =
         p.occlusion.on ? calibration_.hizBuildMs(hizPixels(pixels, p.stages.hizFull)) : 0.0;
-    p.hiz.reason = p.occlusion.on
-                       ? "level 0 at half resolution (Niessner & Loop §4.1): build " +
-                             ms(calibration_.hizBuildMs(hizPixels(pixels, false))) + ", full " +
-                             ms(calibration_.hizBuildMs(hizPixels(pixels, true)))
-                       : "no occlusion: no pyramid";
+    const std::string builds = "build half " +
+                               ms(calibration_.hizBuildMs(hizPixels(pixels, false))) + ", full " +
+                               ms(calibration_.hizBuildMs(hizPixels(pixels, true)));
+    if (!p.occlusion.on) {
+      p.hiz.reason = "no occlusion: no pyramid";
+    } else if (!input.ownAccuracy) {
+      p.hiz.reason =
+          "the scene's one pyramid per view: level 0 at half resolution, the paper's "
+          "lookup (Niessner & Loop §4.1); " +
+          builds;
+    } else {
+      // Every pyramid variant of the same stages: predicted frame and rate.
+      std::string variants;
+      for (const StageChoice& c : candidates(input))
+        if (c.occlusion == p.stages.occlusion && c.frustum == p.stages.frustum &&
+            c.backPatch == p.stages.backPatch && c.accuracy == p.stages.accuracy &&
+            c.aggressive == p.stages.aggressive)
+          variants += (variants.empty() ? "" : ", ") + pyramid(c) + " " + ms(total(c)) + " (" +
+                      source(occlusionRateKey(c)) + " " +
+                      percent(stageRate(s, occlusionRateKey(c))) + ")";
+      char tight[64] = "tight lookup not calibrated";
+      if (calibration_.hizTightMsPerPatch)
+        std::snprintf(tight, sizeof tight, "tight lookup +%.3f us/patch",
+                      1e3 * *calibration_.hizTightMsPerPatch);
+      p.hiz.reason = "cheapest predicted of " + variants + "; " + builds + ", " + tight;
+    }
   }
   // Update and bounds.
   {
@@ -610,7 +667,7 @@ void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledF
   if (plan.stages.frustum && plan.box == BoxInView::Crossing) learn(kFrustum, culledFrustum);
   if (!plan.stages.backPatch.empty())
     learn(rateKey(plan.stages.backPatch, plan.stages.accuracy), culledBackPatch);
-  if (!plan.stages.occlusion.empty()) learn(plan.stages.occlusion, culledOcclusion);
+  if (!plan.stages.occlusion.empty()) learn(occlusionRateKey(plan.stages), culledOcclusion);
 }
 
 frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base) {
@@ -621,6 +678,7 @@ frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base
   base.cull.occlusion = plan.stages.occlusion;
   base.aggressive = plan.stages.aggressive;
   base.hiz.fullResolution = plan.stages.hizFull;
+  base.hiz.lookup = plan.stages.hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
   if (!plan.displacement.on) {
     base.cull.displacementMap = nullptr;
     base.cull.uvCorners = {};

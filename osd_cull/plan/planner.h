@@ -70,9 +70,10 @@ struct PlanInput {
   /// that does not pay is switched off by its measured rate); mayHideItself() decides it
   /// from the patches.
   bool selfOccluding = true;
-  /// The frame applies this mesh's own back-patch accuracy (the mesh form). False in the
-  /// scene form, whose one cull frame per view takes one CullSettings for every instance:
-  /// then the accuracy stays the drawn-triangle bound.
+  /// The frame applies this mesh's own back-patch accuracy and Hi-Z resolution and lookup
+  /// (the mesh form). False in the scene form, whose one cull frame per view takes one
+  /// CullSettings and one pyramid for every instance: then the accuracy stays the
+  /// drawn-triangle bound and the pyramid the paper's (half resolution, paper lookup).
   bool ownAccuracy = true;
 };
 
@@ -163,6 +164,13 @@ struct PlannerOptions {
   /// 19.1%), surface/bound 2.1 to 2.5 (tcone 34.3%, ncone 39.4% / 17.7%).
   double listedRateFactor = 1.9;
   double surfaceRateFactor = 2.2;
+  /// Prior occlusion rate with the tight Hi-Z lookup, and with level 0 at full resolution,
+  /// as a multiple of the paper's (half, paper lookup): docs/results/occlusion.md, the tight
+  /// lookup culls 1.07 to 1.18 times as much (default scene 52.3% / 49.1%, BigGuy level 0
+  /// 28.3% / 23.9%); full resolution is not measured there: taken as the same one-level-
+  /// finer gain. Learned per variant (occlusionRateKey) as soon as one runs.
+  double tightRateFactor = 1.13;
+  double fullRateFactor = 1.13;
   /// The displaced kernel for a displaced mesh when the calibration measured none of the
   /// six (Niessner & Loop Table 1: CoN with the camera-aligned frustum culls most); with
   /// measured ones the planner takes the cheapest predicted.
@@ -172,6 +180,10 @@ struct PlannerOptions {
 /// \brief The key of a back-patch method's learned rate at `accuracy`: the method's name for
 /// the bound, "tcone/listed", "tcone/surface" (Planner::rate).
 std::string rateKey(const std::string& method, Accuracy accuracy);
+
+/// \brief The key of an occlusion stage's learned rate: the kernel's name for the paper's
+/// pyramid (half resolution, paper lookup), else "hiz/full", "hiz/tight", "hiz/full/tight".
+std::string occlusionRateKey(const StageChoice& stages);
 
 /// \brief The planner. One per program; it keeps a state per key (instance and view).
 class Planner {
@@ -225,7 +237,7 @@ class Planner {
 };
 
 /// \brief `base` with the plan's stages, back-patch accuracy (CullSettings::drawnTriangles,
-/// drawnEnumerate), passes, Hi-Z resolution and displaced kernel.
+/// drawnEnumerate), passes, Hi-Z resolution and lookup, and displaced kernel.
 /// The back-patch validity and the displacement map of `base` are kept (a displaced mesh's
 /// map stays bound only when the plan says displacement is on).
 frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base);
