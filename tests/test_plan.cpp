@@ -467,6 +467,46 @@ TEST(Plan, DisplacedMeshGetsTheCheapestPredictedDisplacedBound) {
   EXPECT_EQ(h.cull.displacedKernel.box, bound::DisplacedBox::CAF);
 }
 
+TEST(Plan, DeformingDisplacedMeshChargesItsDisplacedBoundsPass) {
+  // The calibration of DisplacedMeshGetsTheCheapestPredictedDisplacedBound, where con-caf
+  // wins at tess 32 by about 0.0062 ms a patch; now the mesh deforms and its cage moved:
+  // con-caf needs the CoN cones of the moved points every frame (the displaced bounds pass),
+  // full-oobb only its static ranges.
+  Calibration c = syntheticCalibration();
+  c.cullMsPerPatch["full-oobb"] = 0.0003;
+  c.cullMsPerPatch["con-caf"] = 0.004;
+  c.displacedDrawFactor = {{1, 1.5}, {32, 1.5}};
+  PlanInput in = meshAt(1.6, 32.0);
+  in.displaced = true;
+  in.selfOccluding = true;
+  in.deforming = true;
+  in.cageMoved = true;
+  // A cheap CoN pass (0.001 ms a patch): con-caf still pays, with its pass charged.
+  c.boundsMsPerMethod = {{"con", 0.001}};
+  const Plan cheap = Planner(c).plan("rock", in, 0);
+  ASSERT_EQ(cheap.occlusion.choice, "con-caf") << planTable({&cheap, 1});
+  EXPECT_TRUE(cheap.bounds.on);
+  EXPECT_EQ(cheap.bounds.choice, "con");
+  EXPECT_NEAR(cheap.bounds.deltaMs, 2000 * 0.001, 1e-9);
+  EXPECT_NEAR(cheap.predicted.updateMs, 2000 * (0.0002 + 0.001), 1e-9);  // gpu update + pass
+  EXPECT_NE(cheap.bounds.reason.find("charged to the displaced kernel con-caf"), std::string::npos)
+      << cheap.bounds.reason;
+  // A dear CoN pass (0.01 ms a patch) outweighs what con-caf culls more: full-oobb, no pass.
+  c.boundsMsPerMethod = {{"con", 0.01}};
+  const Plan dear = Planner(c).plan("rock", in, 0);
+  ASSERT_TRUE(dear.occlusion.on) << planTable({&dear, 1});
+  EXPECT_EQ(dear.occlusion.choice, "full-oobb") << planTable({&dear, 1});
+  EXPECT_FALSE(dear.bounds.on);
+  EXPECT_NE(dear.bounds.reason.find("only the static ranges"), std::string::npos)
+      << dear.bounds.reason;
+  EXPECT_NEAR(dear.predicted.updateMs, 2000 * 0.0002, 1e-9);
+  // The same mesh with its cage at rest: nothing to recompute, con-caf again.
+  in.cageMoved = false;
+  const Plan still = Planner(c).plan("rock", in, 0);
+  EXPECT_EQ(still.occlusion.choice, "con-caf");
+  EXPECT_FALSE(still.bounds.on);
+}
+
 TEST(Plan, HysteresisHoldsAChoiceForHoldFrames) {
   PlannerOptions options;
   options.holdFrames = 8;

@@ -169,6 +169,14 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
       continue;  // shares the pass of its fp32 / one-thread method (Calibration::boundsMs)
     boundsPasses[m] = std::make_unique<frame::BoundsPass>(context, gpuMesh.gpu(), method.reference);
   }
+  // The displaced bounds passes (issue 10): the ACoN and CoN cones of a displaced mesh's
+  // moved points, per frame; the Full extension needs only the static ranges. The ranges'
+  // values do not change the work: a constant one.
+  const std::vector<bound::DisplacementRange> ranges(gpuMesh.gpu().patchCount(), {-0.01, 0.01});
+  for (const bound::DisplacedExtension extension :
+       {bound::DisplacedExtension::ACoN, bound::DisplacedExtension::CoN})
+    boundsPasses[bound::toString(extension)] =
+        std::make_unique<frame::BoundsPass>(context, gpuMesh.gpu(), extension, ranges);
   std::vector<glm::dvec3> moved(cage.positions.begin(), cage.positions.end());
 
   // Displaced meshes: the displaced draw RT(tf) against the undisplaced one on the UV torus

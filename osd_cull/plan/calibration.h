@@ -72,7 +72,8 @@ struct Calibration {
   double pointUpdateCpuMsPerPatch = 0.0;  ///< cage → control points on the CPU
   double pointUpdateGpuMsPerPatch = 0.0;  ///< the same in Vulkan compute
   double boundsMsPerPatch = 0.0;          ///< the bounds pass of TCONE (the update's)
-  /// The bounds pass per back-patch method name ("tcone", "ncone", "tangent-plane", ...):
+  /// The bounds pass per back-patch method name ("tcone", "ncone", "tangent-plane", ...)
+  /// and per displaced extension ("acon", "con": the cones of a deforming displaced mesh):
   /// each writes other cull data (frame/cull/bounds_pass.h), at its own cost.
   std::map<std::string, double> boundsMsPerMethod;
   /// RT(tf) of a displaced patch over that of the same patch undisplaced (the displacement

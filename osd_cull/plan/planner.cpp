@@ -35,6 +35,13 @@ bool hasBoundsPass(const std::string& method) {
   return frame::BoundsPass::hasCullData(frame::cullMethod(method).reference);
 }
 
+// "full", "acon" or "con": the displaced extension of displaced kernel `kernel`.
+std::string displacedExtensionOf(const std::string& kernel) {
+  for (const frame::CullMethod& m : frame::displacedCullMethods())
+    if (m.name == kernel) return bound::toString(m.displaced->extension);
+  throw Error("planner: '" + kernel + "' is not a displaced kernel");
+}
+
 std::string percent(double rate) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f%%", 100.0 * rate);
@@ -165,6 +172,16 @@ CostCase Planner::costCase(const PlanInput& input, const StageChoice& stages) co
   // points (see hasBoundsPass): its pass is charged to it.
   c.boundsPass = c.pointUpdate && !stages.backPatch.empty();
   c.boundsMethod = c.boundsPass ? stages.backPatch : "";
+  // A deforming displaced mesh: the displaced kernel its stages test needs the per-frame
+  // cones of its extension (ACoN, CoN; the Full bound only the static ranges), recomputed
+  // by the displaced bounds pass (issue 10), which is charged to it.
+  if (c.pointUpdate && input.displaced && stages.any()) {
+    const std::string extension = displacedExtensionOf(displacedBoundsKernel(input, stages));
+    if (extension != bound::toString(bound::DisplacedExtension::Full)) {
+      c.boundsPass = true;
+      c.boundsMethod = extension;
+    }
+  }
   c.displaced = input.displaced;
   return c;
 }
@@ -178,6 +195,26 @@ std::vector<std::string> Planner::occlusionKernels(const PlanInput& input) const
     if (calibration_.cullMsPerPatch.count(m.name)) out.push_back(m.name);
   if (out.empty()) out.push_back(options_.displacedKernel);
   return out;
+}
+
+std::string Planner::displacedBoundsKernel(const PlanInput& input,
+                                           const StageChoice& stages) const {
+  if (!stages.occlusion.empty()) return stages.occlusion;
+  // The frustum stage alone tests the same on any displaced bound: the one whose bounds
+  // pass costs least (the Full bound's none).
+  std::string best;
+  double bestMs = std::numeric_limits<double>::infinity();
+  for (const std::string& kernel : occlusionKernels(input)) {
+    const std::string extension = displacedExtensionOf(kernel);
+    const double ms = extension == bound::toString(bound::DisplacedExtension::Full)
+                          ? 0.0
+                          : calibration_.boundsMs(extension);
+    if (ms < bestMs) {
+      bestMs = ms;
+      best = kernel;
+    }
+  }
+  return best;
 }
 
 std::string Planner::occlusionKernel(const PlanInput& input) const {
@@ -609,14 +646,23 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
                         " (calibrated); the cheaper runs";
     }
     p.bounds.on = base.boundsPass;
-    p.bounds.choice = p.bounds.on ? p.stages.backPatch : "";
-    p.bounds.deltaMs = p.bounds.on ? k * n * calibration_.boundsMs(p.stages.backPatch) : 0.0;
-    p.bounds.reason = !base.pointUpdate ? "points did not move: the cull data stays valid"
-                      : p.bounds.on     ? "recomputes the " + p.stages.backPatch +
-                                          " cull data of the moved points (bounds pass, " +
-                                          ms(n * calibration_.boundsMs(p.stages.backPatch)) +
-                                          " calibrated, charged to the method)"
-                                    : "no back-patch method runs: no bounds pass";
+    p.bounds.choice = p.bounds.on ? base.boundsMethod : "";
+    p.bounds.deltaMs = p.bounds.on ? k * n * calibration_.boundsMs(base.boundsMethod) : 0.0;
+    p.bounds.reason =
+        !base.pointUpdate ? "points did not move: the cull data stays valid"
+        : p.bounds.on
+            ? "recomputes the " + base.boundsMethod +
+                  (input.displaced ? " cones of the displaced bound" : " cull data") +
+                  " of the moved points (bounds pass, " +
+                  ms(n * calibration_.boundsMs(base.boundsMethod)) +
+                  " calibrated, charged to the " +
+                  (input.displaced ? "displaced kernel " + displacedBoundsKernel(input, p.stages)
+                                   : std::string("method")) +
+                  ")"
+        : input.displaced ? (p.stages.any() ? "the displaced bound tested (full) needs only the "
+                                              "static ranges: no bounds pass"
+                                            : "no cull stage: no bounds pass")
+                          : "no back-patch method runs: no bounds pass";
   }
   // Displacement.
   p.displacement.on = input.displaced;
@@ -626,9 +672,11 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     // The displaced bound the frustum and occlusion stages test: the occlusion stage's, or
     // the one predicted cheapest with occlusion (the frustum test alone is the same test on
     // any of them).
-    const std::string kernel = p.stages.occlusion.empty()
-                                   ? bestOcclusionKernel(input, s, p.stages, p.box)
-                                   : p.stages.occlusion;
+    // A deforming mesh whose points moved: the frustum stage alone tests the bound whose
+    // bounds pass costs least (displacedBoundsKernel).
+    const std::string kernel = !p.stages.occlusion.empty() ? p.stages.occlusion
+                               : base.pointUpdate          ? displacedBoundsKernel(input, p.stages)
+                                                  : bestOcclusionKernel(input, s, p.stages, p.box);
     const auto kernels = occlusionKernels(input);
     const auto measured = std::count_if(
         kernels.begin(), kernels.end(),

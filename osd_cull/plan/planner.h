@@ -226,6 +226,7 @@ class Planner {
   std::string bestOcclusionKernel(const PlanInput& input, const State& state,
                                   const StageChoice& stages, BoxInView box) const;
   std::vector<StageChoice> candidates(const PlanInput& input) const;
+  std::string displacedBoundsKernel(const PlanInput& input, const StageChoice& stages) const;
   std::vector<Accuracy> accuracies(const PlanInput& input, const std::string& method) const;
   CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
   double stageRate(const State& state, const std::string& stage) const;
