@@ -564,12 +564,13 @@ TEST(Plan, SwitchedOffMeshIsReprobedAndTurnedOnWhenItPays) {
     }
     planner.observe("k", p, 0, 0, 0, 2000);  // the probes find nothing to cull
   }
-  EXPECT_EQ(probes, (std::vector<uint64_t>{16, 32}));
+  // The first probe after firstProbeFrames (2: the rate is only a prior), then every 16.
+  EXPECT_EQ(probes, (std::vector<uint64_t>{2, 18, 34}));
   // A probe that finds most patches culled switches culling on.
-  Plan p = planner.plan("k", in, 48);
+  Plan p = planner.plan("k", in, 50);
   ASSERT_TRUE(p.probe);
   planner.observe("k", p, 0, 1900, 0, 2000);
-  p = planner.plan("k", in, 49);
+  p = planner.plan("k", in, 51);
   EXPECT_FALSE(p.probe);
   EXPECT_TRUE(p.backPatch.on) << planTable({&p, 1});
 }

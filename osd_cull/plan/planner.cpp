@@ -370,7 +370,10 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
         probeAccuracy = c.accuracy;
       }
     auto due = [&](const char* kind) {
-      return frameNumber - s.lastRun[kind] >= options_.reprobeFrames;
+      const bool prior = !s.measured.count(kind) && options_.firstProbeFrames > 0;
+      return frameNumber - s.lastRun[kind] >=
+             (prior ? std::min(options_.firstProbeFrames, options_.reprobeFrames)
+                    : options_.reprobeFrames);
     };
     if (!p.stages.frustum && p.box == BoxInView::Crossing && due(kFrustum)) {
       p.stages.frustum = p.probe = true;
@@ -712,7 +715,12 @@ void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledF
                                                options_.learnWeight * measured;
   };
   // The frustum's rate is learned only where the pre-test leaves it open.
-  if (plan.stages.frustum && plan.box == BoxInView::Crossing) learn(kFrustum, culledFrustum);
+  if (plan.stages.frustum && plan.box == BoxInView::Crossing) {
+    learn(kFrustum, culledFrustum);
+    s.measured.insert(kFrustum);
+  }
+  if (!plan.stages.backPatch.empty()) s.measured.insert(kBackPatch);
+  if (!plan.stages.occlusion.empty()) s.measured.insert(kOcclusion);
   if (!plan.stages.backPatch.empty())
     learn(rateKey(plan.stages.backPatch, plan.stages.accuracy), culledBackPatch);
   if (!plan.stages.occlusion.empty()) learn(occlusionRateKey(plan.stages), culledOcclusion);

@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -126,6 +127,12 @@ struct PlannerOptions {
   /// A stage switched off runs for one frame after this many frames, to re-measure its
   /// rate (0: never).
   uint32_t reprobeFrames = 48;
+  /// A stage kind (frustum, back-patch, occlusion) never measured for a key, whose rate is
+  /// only a prior (a figure of other meshes), runs for one frame after this many frames
+  /// instead (0: like the others). Without it a stage whose prior lies below its break-even
+  /// waited reprobeFrames before its first measurement (the displaced character of
+  /// docs/results/plan.md, "Scenes": occlusion off for the first 48 frames, then on).
+  uint32_t firstProbeFrames = 2;
   /// Weight of a new measurement in the moving average of a rate.
   double learnWeight = 0.5;
   /// Aggressive culling (§3.1) shows newly visible patches one frame late: only when
@@ -216,6 +223,7 @@ class Planner {
     uint64_t since = 0;  // frame the current choice started
     std::map<std::string, double> rates;
     std::map<std::string, uint64_t> lastRun;  // stage kind → last frame it ran
+    std::set<std::string> measured;           // stage kinds observed at least once
     uint64_t lastFrame = 0;
     double scale = 1.0;  // Plan::timeScale
   };
