@@ -132,7 +132,7 @@ TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
 
 class PlanCommandCache : public test::VkTest {};
 
-TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndNotUsed) {
+TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndMeasuredAgainByRender) {
   if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
   // This device's cache file, written in the previous format (before the displaced kernels).
   test::TempDir cache("osd_cull_plan_cache_");
@@ -147,18 +147,28 @@ TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndNotUsed) {
   std::ofstream(file, std::ios::binary) << text;
   const std::string program = "OSD_CULL_CALIBRATION_CACHE=" + cache.path().string() + " " +
                               test::osdCullProgram().string() + " ";
-  // render plans nothing with it and draws without culling, saying why.
-  const auto r = test::runCommand(program + "render --out " + (cache.path() / "r.png").string());
-  EXPECT_EQ(r.exitCode(), 0) << r.output;
-  EXPECT_NE(r.output.find("plan: off, drawing without culling (" + file.string() +
-                          ": calibration file format 2, this library reads format 5"),
-            std::string::npos)
-      << r.output;
-  // plan refuses it with the same reason.
+  // plan refuses it, saying why and how to measure it again.
   const auto p = test::runCommand(program + "plan");
   EXPECT_EQ(p.exitCode(), 1) << p.output;
   EXPECT_NE(p.output.find("measure it again with `osd-cull calibrate --force`"), std::string::npos)
       << p.output;
+  // render says why and measures a quick calibration into the cache, then plans with it.
+  const auto r = test::runCommand(program + "render --width 64 --height 64 --out " +
+                                  (cache.path() / "r.png").string());
+  EXPECT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find(file.string() + ": calibration file format 2, this library reads format"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("measuring a quick calibration of this device"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("plan: auto, calibration of "), std::string::npos) << r.output;
+  const plan::Calibration stored = plan::loadCalibration(file);
+  EXPECT_TRUE(stored.quick);
+  EXPECT_EQ(stored.key, plan::calibrationKey(context()));
+  EXPECT_GT(stored.drawMs(4.0), 0.0);
+  // ... and plan now uses the stored one.
+  const auto p2 = test::runCommand(program + "plan");
+  EXPECT_EQ(p2.exitCode(), 0) << p2.output;
 }
 
 TEST_F(PlanCommand, CalibrateChecksItsOutputBeforeMeasuring) {

@@ -4,9 +4,12 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/plan/calibrate.h"
+#include "osd_cull/plan/calibration.h"
 #include "osd_cull/vk/context.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <iostream>
 #include <ostream>
 
 namespace osd_cull::cli {
@@ -38,17 +41,29 @@ void addPlanOptions(CLI::App& app, PlanArgs& args) {
   addPlanAccuracyOption(app, args.accuracy);
 }
 
-std::string missingCalibration(const PlanArgs& args, const vulkan::Context& context) {
+std::string missingCalibration(const PlanArgs& args, vulkan::Context& context) {
+  if (!args.calibration.empty()) return "";
+  const plan::CalibrationKey key = plan::calibrationKey(context);
   std::string outdated;
-  if (!args.calibration.empty() ||
-      plan::loadCachedCalibration(plan::calibrationKey(context), &outdated))
-    return "";
-  return outdated.empty() ? "no calibration of this device cached: run `osd-cull calibrate "
-                            "--quick`, or give --plan-calibration FILE"
-                          : outdated;
+  if (plan::loadCachedCalibration(key, &outdated)) return "";
+  const std::string why = outdated.empty() ? "no calibration of this device cached" : outdated;
+  // With a cache to keep it in, the first planned render measures a quick calibration
+  // (under 30 s, plan/calibrate.h) instead of giving up the plan: a user who never ran
+  // `osd-cull calibrate` still gets culling that pays. Without a cache
+  // (OSD_CULL_CALIBRATION_CACHE=off, as in the tests) it would be measured on every run.
+  if (plan::calibrationCacheDirectory().empty())
+    return why + ": run `osd-cull calibrate --quick`, or give --plan-calibration FILE";
+  const std::filesystem::path file = plan::calibrationCacheFile(key);
+  std::cerr << "plan: " << why << "; measuring a quick calibration of this device (under 30 s, "
+            << "kept in " << file.string() << "; `osd-cull calibrate` measures the full one)\n";
+  plan::CalibrateOptions o;
+  o.quick = true;
+  o.progress = [](const std::string& line) { std::cerr << "calibrate: " << line << "\n"; };
+  plan::storeCalibration(plan::calibrate(context, o), file);
+  return "";
 }
 
-std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::Context& context,
+std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context& context,
                                            bool cullGiven, bool uniformTessellation,
                                            std::ostream& out) {
   if (args.mode == "off") {

@@ -33,14 +33,16 @@ void addPlanAccuracyOption(CLI::App& app, std::string& accuracy);
 void addPlanOptions(CLI::App& app, PlanArgs& args);
 
 /// \brief Why there is no calibration to plan with ("" when there is one): no
-/// --plan-calibration and no (current) calibration of this device in the cache.
-std::string missingCalibration(const PlanArgs& args, const vulkan::Context& context);
+/// --plan-calibration and no (current) calibration of this device in the cache. With the
+/// cache on, a missing or outdated calibration is measured (`calibrate --quick`, progress
+/// on stderr) and stored instead, and the answer is "".
+std::string missingCalibration(const PlanArgs& args, vulkan::Context& context);
 
 /// \brief The planner of a render, or null when the plan is off, with one line to `out`
 /// saying which and why: `--plan off`, an explicit `--cull` (a fixed choice), adaptive
 /// tessellation (the plan needs a uniform level), or no calibration of this device.
 /// \throws osd_cull::Error for a --plan-calibration file that does not load.
-std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, const vulkan::Context& context,
+std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context& context,
                                            bool cullGiven, bool uniformTessellation,
                                            std::ostream& out);
 
