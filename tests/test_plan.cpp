@@ -31,6 +31,16 @@ using test::syntheticCalibration;
 
 frame::Bounds unitBox() { return {{-1, -1, -1}, {1, 1, 1}}; }
 
+// `c` with the back-patch accuracies: surface-exact a little cheaper than the bound kernel,
+// the listed test's cost growing with the level, but slower than the draw's (tf + 1)², so
+// that it pays at high levels and not at low ones.
+Calibration withAccuracies(Calibration c) {
+  c.surfaceCullMsPerPatch = {{"tcone", 0.00003}, {"ncone", 0.00004}, {"tangent-plane", 0.002}};
+  for (const char* m : {"tcone", "ncone", "tangent-plane"})
+    c.listedCullMsPerPatch[m] = {{1, 0.0005}, {4, 0.001}, {16, 0.002}, {32, 0.004}};
+  return c;
+}
+
 // A 2000-patch closed mesh in a unit box, seen from `distance` along +z.
 PlanInput meshAt(double distance, double tess) {
   PlanInput in;
@@ -110,7 +120,7 @@ TEST(Plan, CloseHighTessMeshGetsCullingSwitchedOn) {
   EXPECT_EQ(p.backPatch.choice, "tangent-plane");
   EXPECT_TRUE(p.occlusion.on);
   EXPECT_EQ(p.passes.choice, "two-pass");
-  EXPECT_EQ(p.hiz.choice, "half");
+  EXPECT_EQ(p.hiz.choice, "half/paper");
   EXPECT_LT(p.predicted.totalMs(), 0.8 * p.predictedUnculled.totalMs());
   // The plan becomes the options the frame pipeline takes.
   const frame::CullFrameOptions o = applyPlan(p, {});
@@ -119,6 +129,157 @@ TEST(Plan, CloseHighTessMeshGetsCullingSwitchedOn) {
   EXPECT_EQ(o.cull.occlusion, "hiz");
   EXPECT_FALSE(o.aggressive);
   EXPECT_FALSE(o.hiz.fullResolution);
+}
+
+TEST(PlanAccuracy, BoundAtLowTessListedWhereItPaysSurfaceOnlyWhenAsked) {
+  const Calibration c = withAccuracies(syntheticCalibration());
+  // Tess 4, a cheap draw: the listed test (+0.001 ms per patch) costs more than the
+  // patches it adds save (0.11 to 0.16 of 0.004 ms): the bound, which pays on its own.
+  {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", meshAt(1.6, 4.0), 0);
+    ASSERT_TRUE(p.backPatch.on) << planTable({&p, 1});
+    EXPECT_EQ(p.stages.accuracy, Accuracy::Bound);
+    EXPECT_TRUE(p.accuracy.on);
+    EXPECT_EQ(p.accuracy.choice, "bound");
+    EXPECT_NE(p.accuracy.reason.find("the bound is cheaper at tess 4"), std::string::npos)
+        << p.accuracy.reason;
+    EXPECT_GT(p.accuracy.deltaMs, 0.0);  // listed would cost time
+    const frame::CullFrameOptions o = applyPlan(p, {});
+    EXPECT_TRUE(o.cull.drawnTriangles);
+    EXPECT_FALSE(o.cull.drawnEnumerate);
+  }
+  // Tess 32: the listed test (+0.004 ms) saves about 0.11 of a 0.176 ms patch: listed.
+  {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", meshAt(1.6, 32.0), 0);
+    ASSERT_TRUE(p.backPatch.on) << planTable({&p, 1});
+    EXPECT_EQ(p.stages.accuracy, Accuracy::Listed) << planTable({&p, 1});
+    EXPECT_EQ(p.accuracy.choice, "listed");
+    EXPECT_NE(p.accuracy.reason.find("listed triangles pay at tess 32"), std::string::npos)
+        << p.accuracy.reason;
+    EXPECT_LT(p.accuracy.deltaMs, 0.0);
+    EXPECT_NE(p.stages.describe().find("/listed"), std::string::npos) << p.stages.describe();
+    const frame::CullFrameOptions o = applyPlan(p, {});
+    EXPECT_TRUE(o.cull.drawnTriangles);
+    EXPECT_TRUE(o.cull.drawnEnumerate);
+    // The listed rate is learned on its own key; the bound's stays its prior.
+    const std::string key = rateKey(p.stages.backPatch, Accuracy::Listed);
+    EXPECT_NEAR(planner.rate("main/ball", key), 1.9 * planner.rate("main/ball", p.stages.backPatch),
+                1e-12);
+    planner.observe("main/ball", p, 0, 900, 0, 2000);
+    EXPECT_NEAR(planner.rate("main/ball", key), 0.45, 1e-12);
+    EXPECT_DOUBLE_EQ(planner.rate("main/ball", p.stages.backPatch),
+                     PlannerOptions{}.priorRates.at(p.stages.backPatch));
+    // Without the listed calibration the same case keeps the bound, and says why.
+    Planner without(syntheticCalibration());
+    const Plan b = without.plan("main/ball", meshAt(1.6, 32.0), 0);
+    EXPECT_EQ(b.stages.accuracy, Accuracy::Bound);
+    EXPECT_NE(b.accuracy.reason.find("not calibrated"), std::string::npos) << b.accuracy.reason;
+  }
+  // Surface-exact is never chosen in auto, though its prior rate is the highest and its
+  // kernel the cheapest, at any level ...
+  for (double tess : {1.0, 4.0, 16.0, 32.0}) {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", meshAt(1.6, tess), 0);
+    EXPECT_NE(p.stages.accuracy, Accuracy::Surface) << "tess " << tess;
+    EXPECT_TRUE(applyPlan(p, {}).cull.drawnTriangles) << "tess " << tess;
+  }
+  // ... only when asked for (the plan says what it loses); "listed" forces the listed test.
+  struct Forced {
+    const char* accuracy;
+    double tess;
+    Accuracy expected;
+    const char* reason;
+    bool drawnTriangles, drawnEnumerate;
+  };
+  for (const Forced& f :
+       {Forced{"surface", 4.0, Accuracy::Surface, "NOT conservative", false, false},
+        Forced{"listed", 8.0, Accuracy::Listed, "listed asked for", true, true}}) {
+    PlannerOptions options;
+    options.accuracy = f.accuracy;
+    Planner forced(c, options);
+    const Plan p = forced.plan("main/ball", meshAt(1.6, f.tess), 0);
+    ASSERT_TRUE(p.backPatch.on) << planTable({&p, 1});
+    EXPECT_EQ(p.stages.accuracy, f.expected) << f.accuracy;
+    EXPECT_NE(p.accuracy.reason.find(f.reason), std::string::npos) << p.accuracy.reason;
+    EXPECT_EQ(applyPlan(p, {}).cull.drawnTriangles, f.drawnTriangles) << f.accuracy;
+    EXPECT_EQ(applyPlan(p, {}).cull.drawnEnumerate, f.drawnEnumerate) << f.accuracy;
+  }
+  PlannerOptions surface;
+  surface.accuracy = "surface";
+  // The scene form's one cull frame per view keeps the bound.
+  PlanInput scene = meshAt(1.6, 32.0);
+  scene.ownAccuracy = false;
+  Planner scenePlanner(c, surface);
+  const Plan sc = scenePlanner.plan("main/ball", scene, 0);
+  EXPECT_EQ(sc.stages.accuracy, Accuracy::Bound);
+  // A bad accuracy is named.
+  PlannerOptions bad;
+  bad.accuracy = "exact";
+  try {
+    Planner p(c, bad);
+    FAIL() << "accepted accuracy 'exact'";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'exact'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PlanHiZ, ResolutionAndLookupByCostLearnedPerVariant) {
+  Calibration c = syntheticCalibration();
+  c.hizTightMsPerPatch = 0.00001;  // the tight lookup: nearly free
+  auto occluded = [](uint32_t patches) {
+    PlanInput in = meshAt(1.6, 32.0);
+    in.occluders = true;
+    in.bezier = patches;
+    in.gregory = 0;
+    return in;
+  };
+  // 500 patches: the full-resolution build (10 ms against 3 ms at 1280x720) costs more than
+  // its extra rate saves (0.013 of 500 patches of 0.22 ms); the tight lookup pays.
+  {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", occluded(500), 0);
+    ASSERT_TRUE(p.occlusion.on) << planTable({&p, 1});
+    EXPECT_EQ(p.hiz.choice, "half/tight") << p.hiz.reason;
+    EXPECT_NE(p.hiz.reason.find("cheapest predicted of half/paper"), std::string::npos)
+        << p.hiz.reason;
+    EXPECT_NE(p.hiz.reason.find("tight lookup +0.010 us/patch"), std::string::npos) << p.hiz.reason;
+    const frame::CullFrameOptions o = applyPlan(p, {});
+    EXPECT_EQ(o.hiz.lookup, bound::HiZLookup::Tight);
+    EXPECT_FALSE(o.hiz.fullResolution);
+    // The tight variant's rate is learned on its own key; the paper's stays its prior.
+    planner.observe("main/ball", p, 0, 0, 25, 500);
+    EXPECT_NEAR(planner.rate("main/ball", "hiz/tight"), 0.05, 1e-12);
+    EXPECT_DOUBLE_EQ(planner.rate("main/ball", "hiz"), PlannerOptions{}.priorRates.at("hiz"));
+    EXPECT_NEAR(planner.rate("main/ball", "hiz/full/tight"), 0.1 * 1.13 * 1.13, 1e-12);
+  }
+  // 20000 patches: the finer pyramid's extra rate pays for its build.
+  {
+    Planner planner(c);
+    const Plan p = planner.plan("main/ball", occluded(20000), 0);
+    ASSERT_TRUE(p.occlusion.on) << planTable({&p, 1});
+    EXPECT_EQ(p.hiz.choice, "full/tight") << p.hiz.reason;
+    EXPECT_TRUE(applyPlan(p, {}).hiz.fullResolution);
+    // The scene form's one pyramid per view: the paper's.
+    PlanInput scene = occluded(20000);
+    scene.ownAccuracy = false;
+    const Plan sc = planner.plan("main/scene", scene, 0);
+    ASSERT_TRUE(sc.occlusion.on);
+    EXPECT_EQ(sc.hiz.choice, "half/paper");
+    EXPECT_NE(sc.hiz.reason.find("one pyramid per view"), std::string::npos) << sc.hiz.reason;
+  }
+  // A dear tight lookup (10 us per patch) is not taken; uncalibrated, never offered.
+  {
+    Calibration dear = c;
+    dear.hizTightMsPerPatch = 0.01;
+    const Plan p = Planner(dear).plan("main/ball", occluded(500), 0);
+    EXPECT_EQ(p.hiz.choice, "half/paper") << p.hiz.reason;
+    const Plan u = Planner(syntheticCalibration()).plan("main/ball", occluded(500), 0);
+    EXPECT_EQ(u.hiz.choice, "half/paper") << u.hiz.reason;
+    EXPECT_NE(u.hiz.reason.find("tight lookup not calibrated"), std::string::npos) << u.hiz.reason;
+    EXPECT_EQ(applyPlan(u, {}).hiz.lookup, bound::HiZLookup::Paper);
+  }
 }
 
 TEST(Plan, StaticMeshMakesNoUpdateAndNoBoundsDispatch) {
@@ -259,6 +420,15 @@ TEST_F(PlanDisplacement, UndisplacedMeshCompilesAndBindsNoDisplacementVariant) {
   EXPECT_TRUE(d.displacement.on);
   EXPECT_FALSE(d.backPatch.on);
   EXPECT_EQ(d.occlusion.choice, "con-caf");
+  // A plan at the listed accuracy builds its pass (its kernel variant is embedded).
+  const Plan listed =
+      Planner(withAccuracies(syntheticCalibration())).plan("main/ball", meshAt(1.6, 32.0), 0);
+  ASSERT_EQ(listed.stages.accuracy, Accuracy::Listed);
+  frame::CullSettings listedSettings = applyPlan(listed, {}).cull;
+  listedSettings.occlusion.clear();
+  listedSettings.backPatchValidity = {true, "closed sphere"};
+  frame::CullPass listedPass(context(), gpu, patches, listedSettings);
+  EXPECT_TRUE(listedPass.drawnTriangles());
 }
 
 TEST(Plan, DisplacedMeshGetsTheCheapestPredictedDisplacedBound) {
@@ -295,6 +465,46 @@ TEST(Plan, DisplacedMeshGetsTheCheapestPredictedDisplacedBound) {
   const frame::CullFrameOptions h = applyPlan(high, {});
   EXPECT_EQ(h.cull.displacedKernel.extension, bound::DisplacedExtension::CoN);
   EXPECT_EQ(h.cull.displacedKernel.box, bound::DisplacedBox::CAF);
+}
+
+TEST(Plan, DeformingDisplacedMeshChargesItsDisplacedBoundsPass) {
+  // The calibration of DisplacedMeshGetsTheCheapestPredictedDisplacedBound, where con-caf
+  // wins at tess 32 by about 0.0062 ms a patch; now the mesh deforms and its cage moved:
+  // con-caf needs the CoN cones of the moved points every frame (the displaced bounds pass),
+  // full-oobb only its static ranges.
+  Calibration c = syntheticCalibration();
+  c.cullMsPerPatch["full-oobb"] = 0.0003;
+  c.cullMsPerPatch["con-caf"] = 0.004;
+  c.displacedDrawFactor = {{1, 1.5}, {32, 1.5}};
+  PlanInput in = meshAt(1.6, 32.0);
+  in.displaced = true;
+  in.selfOccluding = true;
+  in.deforming = true;
+  in.cageMoved = true;
+  // A cheap CoN pass (0.001 ms a patch): con-caf still pays, with its pass charged.
+  c.boundsMsPerMethod = {{"con", 0.001}};
+  const Plan cheap = Planner(c).plan("rock", in, 0);
+  ASSERT_EQ(cheap.occlusion.choice, "con-caf") << planTable({&cheap, 1});
+  EXPECT_TRUE(cheap.bounds.on);
+  EXPECT_EQ(cheap.bounds.choice, "con");
+  EXPECT_NEAR(cheap.bounds.deltaMs, 2000 * 0.001, 1e-9);
+  EXPECT_NEAR(cheap.predicted.updateMs, 2000 * (0.0002 + 0.001), 1e-9);  // gpu update + pass
+  EXPECT_NE(cheap.bounds.reason.find("charged to the displaced kernel con-caf"), std::string::npos)
+      << cheap.bounds.reason;
+  // A dear CoN pass (0.01 ms a patch) outweighs what con-caf culls more: full-oobb, no pass.
+  c.boundsMsPerMethod = {{"con", 0.01}};
+  const Plan dear = Planner(c).plan("rock", in, 0);
+  ASSERT_TRUE(dear.occlusion.on) << planTable({&dear, 1});
+  EXPECT_EQ(dear.occlusion.choice, "full-oobb") << planTable({&dear, 1});
+  EXPECT_FALSE(dear.bounds.on);
+  EXPECT_NE(dear.bounds.reason.find("only the static ranges"), std::string::npos)
+      << dear.bounds.reason;
+  EXPECT_NEAR(dear.predicted.updateMs, 2000 * 0.0002, 1e-9);
+  // The same mesh with its cage at rest: nothing to recompute, con-caf again.
+  in.cageMoved = false;
+  const Plan still = Planner(c).plan("rock", in, 0);
+  EXPECT_EQ(still.occlusion.choice, "con-caf");
+  EXPECT_FALSE(still.bounds.on);
 }
 
 TEST(Plan, HysteresisHoldsAChoiceForHoldFrames) {
@@ -354,12 +564,13 @@ TEST(Plan, SwitchedOffMeshIsReprobedAndTurnedOnWhenItPays) {
     }
     planner.observe("k", p, 0, 0, 0, 2000);  // the probes find nothing to cull
   }
-  EXPECT_EQ(probes, (std::vector<uint64_t>{16, 32}));
+  // The first probe after firstProbeFrames (2: the rate is only a prior), then every 16.
+  EXPECT_EQ(probes, (std::vector<uint64_t>{2, 18, 34}));
   // A probe that finds most patches culled switches culling on.
-  Plan p = planner.plan("k", in, 48);
+  Plan p = planner.plan("k", in, 50);
   ASSERT_TRUE(p.probe);
   planner.observe("k", p, 0, 1900, 0, 2000);
-  p = planner.plan("k", in, 49);
+  p = planner.plan("k", in, 51);
   EXPECT_FALSE(p.probe);
   EXPECT_TRUE(p.backPatch.on) << planTable({&p, 1});
 }
@@ -397,6 +608,20 @@ TEST(Calibration, TextRoundTripAndCacheKey) {
   EXPECT_DOUBLE_EQ(back3.displacedDrawFactorAt(32), 1.6);
   EXPECT_NEAR(back3.displacedDrawFactorAt(8), 1.2 + (81.0 - 25.0) / (289.0 - 25.0) * 0.4, 1e-12);
   EXPECT_DOUBLE_EQ(c.displacedDrawFactorAt(8), 1.0);
+  // Format 4: the back-patch accuracies (listed against the level, surface-exact).
+  const Calibration back4 = fromText(toText(withAccuracies(c)), "test");
+  EXPECT_DOUBLE_EQ(back4.surfaceCullMsPerPatch.at("tcone"), 0.00003);
+  EXPECT_DOUBLE_EQ(back4.listedCullMs("tcone", 4), 0.001);
+  EXPECT_NEAR(back4.listedCullMs("tcone", 8), 0.001 + (81.0 - 25.0) / (289.0 - 25.0) * 0.001,
+              1e-12);
+  EXPECT_THROW(c.listedCullMs("tcone", 4), Error);  // not measured: named
+  // Format 5: the tight Hi-Z lookup.
+  Calibration tight = c;
+  tight.hizTightMsPerPatch = 0.00001;
+  EXPECT_DOUBLE_EQ(*fromText(toText(tight), "test").hizTightMsPerPatch, 0.00001);
+  EXPECT_FALSE(fromText(toText(c), "test").hizTightMsPerPatch);
+  EXPECT_THROW(fromText(toText(c) + "cull-listed tcone 8 0.1\ncull-listed tcone 4 0.1\n", "x"),
+               Error);  // levels must ascend
   test::TempDir dir("osd_cull_plan_");
   setenv("OSD_CULL_CALIBRATION_CACHE", dir.path().c_str(), 1);
   EXPECT_FALSE(loadCachedCalibration(c.key));
@@ -435,7 +660,7 @@ TEST(Calibration, BadFileNamesLineAndProblem) {
     FAIL() << "accepted format 2";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("old.txt:1: calibration file format 2, this library "
-                                         "reads format 3"),
+                                         "reads format 5"),
               std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("osd-cull calibrate --force"), std::string::npos);

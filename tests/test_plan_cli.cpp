@@ -6,6 +6,7 @@
 #include "support/plan_calibration.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 #include "support/vk_test_context.h"
 
 #include <gtest/gtest.h>
@@ -53,12 +54,38 @@ TEST_F(PlanCommand, PrintsEachInstancesEffectsWithReasons) {
   EXPECT_NE(r.output.find("predicted:"), std::string::npos);
 }
 
+TEST_F(PlanCommand, PrintsTheBackPatchAccuracyAndSurfaceOnlyWhenAsked) {
+  const std::string mesh = (test::dataDir() / "characters" / "bigguy.obj").string();
+  // Auto on the synthetic calibration without listed costs: the bound, and why.
+  auto r = run("plan " + mesh + " --tess 8 --calibration " + calibration_.string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("| accuracy | on | bound |"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("listed test of"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("| accuracy | on | surface |"), std::string::npos) << r.output;
+  // Asked for: surface-exact, with what it loses. (The synthetic calibration has no
+  // surface costs: add them.)
+  plan::Calibration c = test::syntheticCalibration();
+  c.surfaceCullMsPerPatch = {{"tcone", 0.00003}, {"ncone", 0.00004}, {"tangent-plane", 0.002}};
+  const fs::path withSurface = dir_.path() / "surface.txt";
+  plan::storeCalibration(c, withSurface);
+  r = run("plan " + mesh + " --tess 8 --plan-accuracy surface --calibration " +
+          withSurface.string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("| accuracy | on | surface |"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("NOT conservative for the drawn chord triangles"), std::string::npos)
+      << r.output;
+  // A bad accuracy is a usage error naming the option.
+  r = run("plan " + mesh + " --plan-accuracy exact --calibration " + calibration_.string());
+  EXPECT_NE(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("--plan-accuracy"), std::string::npos) << r.output;
+}
+
 TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
   const auto r = run("plan built-in:scene");
   EXPECT_EQ(r.exitCode(), 1) << r.output;
   EXPECT_NE(r.output.find("the calibration cache is off"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("osd-cull calibrate --quick"), std::string::npos) << r.output;
-  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 3\ndevice x\ndraw 1 fast\n");
+  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 5\ndevice x\ndraw 1 fast\n");
   const auto b = run("plan --calibration " + bad.string());
   EXPECT_EQ(b.exitCode(), 1) << b.output;
   EXPECT_NE(b.output.find("bad.txt:3: 'draw' needs ms per patch, got '1 fast'"), std::string::npos)
@@ -68,7 +95,7 @@ TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
   const fs::path old = dir_.write("old.txt", "osd_cull-calibration 2\ndevice x\n");
   const auto o = run("plan --calibration " + old.string());
   EXPECT_EQ(o.exitCode(), 1) << o.output;
-  EXPECT_NE(o.output.find("old.txt:1: calibration file format 2, this library reads format 3"),
+  EXPECT_NE(o.output.find("old.txt:1: calibration file format 2, this library reads format 5"),
             std::string::npos)
       << o.output;
   EXPECT_NE(o.output.find("osd-cull calibrate --force"), std::string::npos) << o.output;

@@ -105,7 +105,17 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
 
   // Cull passes: frustum alone, frustum + each back-patch method, and on the tiny mesh.
   progress("building cull passes");
-  std::map<std::string, std::unique_ptr<frame::CullPass>> passes;
+  std::map<std::string, std::unique_ptr<frame::CullPass>> passes, surfacePasses;
+  // The listed-triangle test costs per patch about what drawing it costs (it lists the
+  // level's triangles): measured on a coarse sphere, against the bound kernel at each level.
+  const PatchSet listedSphere = frame::bezierSphere({0, 0, 0}, 1.0, o.quick ? 6 : 10);
+  frame::GpuPatchSet gpuListed(context, listedSphere);
+  const double nListed = listedSphere.patchCount();
+  const std::vector<uint32_t> listedLevels =
+      o.quick ? std::vector<uint32_t>{2, 8, 16} : std::vector<uint32_t>{1, 2, 4, 8, 16, 32};
+  std::map<std::string,
+           std::pair<std::unique_ptr<frame::CullPass>, std::unique_ptr<frame::CullPass>>>
+      listedPasses;  // bound, listed
   passes["frustum"] = std::make_unique<frame::CullPass>(context, gpuMany, many,
                                                         frame::CullSettings{true, "", "", closed});
   for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch)) {
@@ -114,6 +124,15 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
     if (frame::cullMethod(m).needsFloat64) continue;
     passes[m] = std::make_unique<frame::CullPass>(context, gpuMany, many,
                                                   frame::CullSettings{true, m, "", closed});
+    frame::CullSettings surface{true, m, "", closed};
+    surface.drawnTriangles = false;  // the papers' surface-exact test
+    surfacePasses[m] = std::make_unique<frame::CullPass>(context, gpuMany, many, surface);
+    if (frame::cullMethod(m).lanesPerPatch > 1) continue;  // the study lists one-thread kernels
+    frame::CullSettings listed{true, m, "", closed};
+    listed.drawnEnumerate = true;
+    listedPasses[m] = {std::make_unique<frame::CullPass>(context, gpuListed, listedSphere,
+                                                         frame::CullSettings{true, m, "", closed}),
+                       std::make_unique<frame::CullPass>(context, gpuListed, listedSphere, listed)};
   }
   frame::CullPass tinyPass(context, gpuTiny, tiny, frame::CullSettings{true, "", "", closed});
   // Two-pass frames: the diagnostic mode times the pyramid and the cull (Hi-Z stage
@@ -126,6 +145,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   fo.timePasses = true;
   frame::CullFrame diagnostic(context, renderer, target, meshes, fo);
   frame::CullFrame diagnosticSmall(context, renderer, small, meshes, fo);
+  fo.hiz.lookup = bound::HiZLookup::Tight;  // the tight lookup's CT against the paper's
+  frame::CullFrame diagnosticTight(context, renderer, target, meshes, fo);
+  fo.hiz.lookup = bound::HiZLookup::Paper;
   fo.timePasses = false;
   frame::CullFrame filtered(context, renderer, target, meshes, fo);
   fo.drawMode = frame::CullDrawMode::TessFactorZero;
@@ -147,6 +169,14 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
       continue;  // shares the pass of its fp32 / one-thread method (Calibration::boundsMs)
     boundsPasses[m] = std::make_unique<frame::BoundsPass>(context, gpuMesh.gpu(), method.reference);
   }
+  // The displaced bounds passes (issue 10): the ACoN and CoN cones of a displaced mesh's
+  // moved points, per frame; the Full extension needs only the static ranges. The ranges'
+  // values do not change the work: a constant one.
+  const std::vector<bound::DisplacementRange> ranges(gpuMesh.gpu().patchCount(), {-0.01, 0.01});
+  for (const bound::DisplacedExtension extension :
+       {bound::DisplacedExtension::ACoN, bound::DisplacedExtension::CoN})
+    boundsPasses[bound::toString(extension)] =
+        std::make_unique<frame::BoundsPass>(context, gpuMesh.gpu(), extension, ranges);
   std::vector<glm::dvec3> moved(cage.positions.begin(), cage.positions.end());
 
   // Displaced meshes: the displaced draw RT(tf) against the undisplaced one on the UV torus
@@ -184,6 +214,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   std::vector<std::pair<uint32_t, double>> tes;
   // Standalone pyramids over the two targets' depth (built again and again below).
   frame::HiZPyramid pyramid(context, target.depth()), pyramidSmall(context, small.depth());
+  frame::HiZOptions fullResolution;
+  fullResolution.fullResolution = true;
+  frame::HiZPyramid pyramidFull(context, target.depth(), fullResolution);
   const frame::PatchDraw draw{&gpu, &sphere, 0}, drawGregory{&gpuGregory, &gregory, 0};
   // Each sample is a difference of two submissions made back to back (paired), so that the
   // load of other processes, which changes over seconds, cancels; the cheap ones are
@@ -226,16 +259,29 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
       for (auto& [name, pass] : passes)
         if (name != "frustum")
           one["cull " + name].push_back(pass->run(camera, render.tessellation) - frustum);
+      for (auto& [name, pass] : surfacePasses)
+        one["cull surface " + name].push_back(pass->run(camera, render.tessellation) - frustum);
       const double torusMs = torusFrustum.run(torusCamera, render.tessellation);
       for (auto& [name, pass] : displacedPasses)
         one["cull displaced " + name].push_back(pass->run(torusCamera, render.tessellation) -
                                                 torusMs);
       one["hiz build"].push_back(
           timed([&] { pyramid.build(context, frame::RenderTarget::kDepthLayout); }));
+      one["hiz build full"].push_back(
+          timed([&] { pyramidFull.build(context, frame::RenderTarget::kDepthLayout); }));
       one["hiz build small"].push_back(
           timed([&] { pyramidSmall.build(context, frame::RenderTarget::kDepthLayout); }));
     }
-    one["hiz cull"].push_back(diagnostic.render(camera, {}).cullMs - frustum);
+    for (uint32_t level : listedLevels) {
+      frame::TessellationOptions tess = render.tessellation;
+      tess.uniformLevel = level;
+      for (auto& [name, pair] : listedPasses)
+        one["cull listed " + name + " " + std::to_string(level)].push_back(
+            pair.second->run(camera, tess) - pair.first->run(camera, tess));
+    }
+    const double paperCull = diagnostic.render(camera, {}).cullMs;
+    one["hiz cull"].push_back(paperCull - frustum);
+    one["hiz tight"].push_back(diagnosticTight.render(camera, {}).cullMs - paperCull);
     diagnosticSmall.render(smallCamera, {});
     one["away tf0"].push_back(factorZero.render(away, {}).frameMs -
                               filtered.render(away, {}).frameMs);
@@ -266,6 +312,12 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   c.cullDispatchMs = m("dispatch");
   for (const auto& [name, pass] : passes) c.cullMsPerPatch[name] = m("cull " + name) / nMany;
   c.cullMsPerPatch["hiz"] = m("hiz cull") / nMany;
+  for (const auto& [name, pass] : surfacePasses)
+    c.surfaceCullMsPerPatch[name] = m("cull surface " + name) / nMany;
+  for (const auto& [name, pair] : listedPasses)
+    for (uint32_t level : listedLevels)
+      c.listedCullMsPerPatch[name].push_back(
+          {level, m("cull listed " + name + " " + std::to_string(level)) / nListed});
   // A displaced kernel is the Hi-Z stage on its displaced bound: the bound's extra cost over
   // the frustum kernel plus the Hi-Z lookup.
   for (const auto& [name, pass] : displacedPasses)
@@ -280,7 +332,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   }
 
   c.hizBuild = {{hizPixels(uint64_t(width / 2) * (height / 2), false), m("hiz build small")},
-                {hizPixels(uint64_t(width) * height, false), m("hiz build")}};
+                {hizPixels(uint64_t(width) * height, false), m("hiz build")},
+                {hizPixels(uint64_t(width) * height, true), m("hiz build full")}};
+  c.hizTightMsPerPatch = m("hiz tight") / nMany;
   c.pointUpdateCpuMsPerPatch = m("points cpu") / cagePatches;
   c.pointUpdateGpuMsPerPatch = m("points gpu") / cagePatches;
   c.boundsMsPerPatch = m("bounds") / cagePatches;

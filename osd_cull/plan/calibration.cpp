@@ -16,9 +16,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // Format 3: per-method bounds passes ("bounds-method"), the displaced kernels ("cull
-// con-caf ...") and the displaced draw ("draw-displaced"). Older files are measured again.
+// con-caf ...") and the displaced draw ("draw-displaced"). Format 4: the back-patch
+// accuracies ("cull-surface METHOD MS", "cull-listed METHOD LEVEL MS"). Format 5: the tight
+// Hi-Z lookup ("hiz-tight MS"), a full-resolution Hi-Z build among the "hiz" sizes and the
+// displaced bounds passes ("bounds-method acon|con MS"). Older files are measured again.
 constexpr const char* kMagicPrefix = "osd_cull-calibration ";
-constexpr int kFormat = 3;
+constexpr int kFormat = 5;
 const std::string kMagic = kMagicPrefix + std::to_string(kFormat);
 
 // The format of a calibration file's first line; 0 when it is not one.
@@ -84,6 +87,16 @@ double Calibration::boundsMs(const std::string& method) const {
   return boundsMsPerPatch;
 }
 
+double Calibration::listedCullMs(const std::string& method, double tess) const {
+  const auto it = listedCullMsPerPatch.find(method);
+  if (it == listedCullMsPerPatch.end() || it->second.empty())
+    throw Error("calibration: no listed-triangle cost measured for back-patch method '" + method +
+                "' (run `osd-cull calibrate --force` with this library)");
+  std::vector<std::pair<double, double>> s;
+  for (const auto& [level, ms] : it->second) s.push_back({(level + 1.0) * (level + 1.0), ms});
+  return interpolate(s, (tess + 1.0) * (tess + 1.0));
+}
+
 double Calibration::cullMs(const std::string& stage) const {
   const auto it = cullMsPerPatch.find(stage);
   if (it == cullMsPerPatch.end())
@@ -125,6 +138,12 @@ std::string toText(const Calibration& c) {
     out << "draw-displaced " << level << " " << number(factor) << "\n";
   for (const auto& [method, ms] : c.boundsMsPerMethod)
     out << "bounds-method " << method << " " << number(ms) << "\n";
+  if (c.hizTightMsPerPatch) out << "hiz-tight " << number(*c.hizTightMsPerPatch) << "\n";
+  for (const auto& [method, ms] : c.surfaceCullMsPerPatch)
+    out << "cull-surface " << method << " " << number(ms) << "\n";
+  for (const auto& [method, levels] : c.listedCullMsPerPatch)
+    for (const auto& [level, ms] : levels)
+      out << "cull-listed " << method << " " << level << " " << number(ms) << "\n";
   return out.str();
 }
 
@@ -221,7 +240,19 @@ Calibration fromText(const std::string& text, const std::string& source) {
                     "levels");
     else if (name == "bounds-method")
       readNamed(c.boundsMsPerMethod, "a back-patch method name");
-    else
+    else if (name == "hiz-tight") {
+      double ms = 0;
+      read(ms, "ms per patch");
+      c.hizTightMsPerPatch = ms;
+    } else if (name == "cull-surface")
+      readNamed(c.surfaceCullMsPerPatch, "a back-patch method name");
+    else if (name == "cull-listed") {
+      std::string method;
+      read(method, "a back-patch method name");
+      readAscending(c.listedCullMsPerPatch[method], &std::pair<uint32_t, double>::first,
+                    &std::pair<uint32_t, double>::second, "a tessellation level", "ms per patch",
+                    "levels of one method");
+    } else
       throw fail("unknown entry '" + name + "'");
   }
   if (!sawDevice) throw Error(source + ": no 'device' line");
@@ -261,7 +292,9 @@ Calibration loadCalibration(const fs::path& file) {
 std::string outdatedCalibrationMessage(int format) {
   return "calibration file format " + std::to_string(format) + ", this library reads format " +
          std::to_string(kFormat) +
-         " (per-method bounds passes, displaced kernels and draw): measure it again with "
+         " (per-method bounds passes, displaced kernels and draw, back-patch accuracies, Hi-Z "
+         "variants, displaced bounds passes): measure "
+         "it again with "
          "`osd-cull calibrate --force`";
 }
 

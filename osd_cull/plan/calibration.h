@@ -66,16 +66,30 @@ struct Calibration {
   double submitMs = 0.0;            ///< one empty submission and wait
   double cullDispatchMs = 0.0;      ///< the fixed cost of one cull dispatch (no patches)
   std::map<std::string, double> cullMsPerPatch;  ///< CT per stage (see above)
-  std::vector<SizeCost> hizBuild;                ///< Hi-Z build, ascending pixels
-  double pointUpdateCpuMsPerPatch = 0.0;         ///< cage → control points on the CPU
-  double pointUpdateGpuMsPerPatch = 0.0;         ///< the same in Vulkan compute
-  double boundsMsPerPatch = 0.0;                 ///< the bounds pass of TCONE (the update's)
-  /// The bounds pass per back-patch method name ("tcone", "ncone", "tangent-plane", ...):
+  /// Hi-Z build against level 0's pixel count, ascending: half-resolution pyramids of two
+  /// image sizes and a full-resolution one (HiZOptions::fullResolution).
+  std::vector<SizeCost> hizBuild;
+  double pointUpdateCpuMsPerPatch = 0.0;  ///< cage → control points on the CPU
+  double pointUpdateGpuMsPerPatch = 0.0;  ///< the same in Vulkan compute
+  double boundsMsPerPatch = 0.0;          ///< the bounds pass of TCONE (the update's)
+  /// The bounds pass per back-patch method name ("tcone", "ncone", "tangent-plane", ...)
+  /// and per displaced extension ("acon", "con": the cones of a deforming displaced mesh):
   /// each writes other cull data (frame/cull/bounds_pass.h), at its own cost.
   std::map<std::string, double> boundsMsPerMethod;
   /// RT(tf) of a displaced patch over that of the same patch undisplaced (the displacement
   /// lookup in the evaluation stage), per measured level, ascending (empty: 1).
   std::vector<std::pair<uint32_t, double>> displacedDrawFactor;
+  /// The back-patch accuracies (docs/algorithms/drawn-triangles.md). Surface-exact (the
+  /// papers' test, CullSettings::drawnTriangles off): CT per method, like cullMsPerPatch.
+  std::map<std::string, double> surfaceCullMsPerPatch;
+  /// The listed-triangle test (CullSettings::drawnEnumerate) per method: what it adds to the
+  /// method's drawn-triangle bound kernel, per patch, against the uniform tessellation level
+  /// (it lists the level's triangles), ascending levels.
+  std::map<std::string, std::vector<std::pair<uint32_t, double>>> listedCullMsPerPatch;
+  /// What the tight Hi-Z lookup (bound::HiZLookup::Tight: one level finer where the box
+  /// still touches at most 2x2 texels) adds to the occlusion stage's CT over the paper's
+  /// lookup, per patch; nullopt when not measured (then the plan keeps the paper's).
+  std::optional<double> hizTightMsPerPatch;
 
   /// \brief RT(tf) per Bézier patch at any level: linear in (tf + 1)² between the measured
   /// levels (the work is (tf + 1)² evaluations), extrapolated with the last two.
@@ -90,6 +104,10 @@ struct Calibration {
   /// (boundsMsPerMethod), else that of the method it shares its pass with (tangent-plane-16:
   /// tangent-plane; the fp64 variants: their fp32 method), else boundsMsPerPatch.
   double boundsMs(const std::string& method) const;
+  /// \brief What the listed-triangle test adds to back-patch method `method`'s CT at level
+  /// `tess`: linear in (tf + 1)² (the triangles it lists) between the measured levels,
+  /// extrapolated with the last two. \throws osd_cull::Error when not measured for `method`.
+  double listedCullMs(const std::string& method, double tess) const;
   /// \brief CT of a stage. \throws osd_cull::Error naming the stage when it is not measured.
   double cullMs(const std::string& stage) const;
   /// \brief The Hi-Z build of a depth image of `pixels`: linear between the samples,

@@ -1,19 +1,34 @@
 #include "osd_cull/plan/cost_model.h"
 
+#include "osd_cull/error.h"
+
 #include <algorithm>
 #include <limits>
 
 namespace osd_cull::plan {
+
+const char* toString(Accuracy accuracy) {
+  switch (accuracy) {
+    case Accuracy::Bound:
+      return "bound";
+    case Accuracy::Listed:
+      return "listed";
+    case Accuracy::Surface:
+      return "surface";
+  }
+  return "?";
+}
 
 std::string StageChoice::describe() const {
   if (!any()) return "none";
   std::string text;
   auto add = [&](const std::string& part) { text += (text.empty() ? "" : " + ") + part; };
   if (frustum) add("frustum");
-  if (!backPatch.empty()) add(backPatch);
+  if (!backPatch.empty())
+    add(backPatch + (accuracy == Accuracy::Bound ? "" : std::string("/") + toString(accuracy)));
   if (!occlusion.empty())
-    add(occlusion + (aggressive ? " (aggressive, " : " (two-pass, ") +
-        (hizFull ? "full)" : "half)"));
+    add(occlusion + (aggressive ? " (aggressive, " : " (two-pass, ") + (hizFull ? "full" : "half") +
+        (hizTight ? ", tight)" : ")"));
   return text;
 }
 
@@ -41,13 +56,36 @@ double backDrawMsPerPatch(const Calibration& calibration, const CostCase& c) {
   return perPatch(calibration, c, calibration.backDrawMs(c.tess));
 }
 
-double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages) {
+double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages, double tess) {
   double ct = 0.0;
   // A back-patch or occlusion stage's calibrated cost is what it adds to a frustum kernel,
   // so a kernel without the frustum stage still pays for the kernel itself.
   if (stages.any()) ct += calibration.cullMs("frustum");
-  if (!stages.backPatch.empty()) ct += calibration.cullMs(stages.backPatch);
-  if (!stages.occlusion.empty()) ct += calibration.cullMs(stages.occlusion);
+  if (!stages.backPatch.empty()) {
+    if (stages.accuracy == Accuracy::Surface) {
+      const auto it = calibration.surfaceCullMsPerPatch.find(stages.backPatch);
+      if (it == calibration.surfaceCullMsPerPatch.end())
+        throw Error("calibration: no surface-exact cull cost measured for back-patch method '" +
+                    stages.backPatch + "' (run `osd-cull calibrate --force` with this library)");
+      ct += it->second;
+    } else {
+      ct += calibration.cullMs(stages.backPatch);
+      // The listed test runs after the bound, on the patches it keeps (§ "listed triangles"
+      // of docs/algorithms/drawn-triangles.md): its cost adds to the bound kernel's.
+      if (stages.accuracy == Accuracy::Listed)
+        ct += calibration.listedCullMs(stages.backPatch, tess);
+    }
+  }
+  if (!stages.occlusion.empty()) {
+    ct += calibration.cullMs(stages.occlusion);
+    if (stages.hizTight) {
+      if (!calibration.hizTightMsPerPatch)
+        throw Error(
+            "calibration: no tight Hi-Z lookup cost measured (run `osd-cull calibrate "
+            "--force` with this library)");
+      ct += *calibration.hizTightMsPerPatch;
+    }
+  }
   return ct;
 }
 
@@ -71,7 +109,7 @@ Prediction predict(const Calibration& calibration, const CostCase& c, const Stag
   p.fixedMs = calibration.submitMs;
   if (stages.any()) {
     // Zachmann: T = t + (1 - P)·R, with the factor-0 draws of the culled patches (§5).
-    p.cullMs = n * cullMsPerPatch(calibration, stages) + calibration.cullDispatchMs;
+    p.cullMs = n * cullMsPerPatch(calibration, stages, c.tess) + calibration.cullDispatchMs;
     p.drawMs = std::max(0.0, n * rt - facingAway * n * (rtBack - rt0) - hidden * n * (rt - rt0));
   } else {
     p.drawMs = n * rt;

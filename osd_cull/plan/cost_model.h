@@ -30,17 +30,29 @@ struct CullRates {
   double occlusion = 0.0;
 };
 
+/// \brief The accuracy of the back-patch test (docs/algorithms/drawn-triangles.md):
+/// conservative for the drawn chord triangles by the worst-case bound (Bound, the default and
+/// cheapest), by testing the listed triangles the tessellator draws where the bound keeps a
+/// patch (Listed, CullSettings::drawnEnumerate: culls about twice as much, at a per-patch
+/// cost that grows with the level), or the papers' surface-exact test (Surface, not
+/// conservative for the drawn triangles: it can lose silhouette pixels).
+enum class Accuracy { Bound, Listed, Surface };
+/// \brief "bound", "listed", "surface".
+const char* toString(Accuracy accuracy);
+
 /// \brief Which cull stages run for a mesh in a view, and how.
 struct StageChoice {
   bool frustum = false;
   std::string backPatch;    ///< a back-patch method name; empty: none
   std::string occlusion;    ///< "hiz" or a displaced kernel ("con-caf", ...); empty: none
   bool hizFull = false;     ///< Hi-Z level 0 at full resolution (paper: half)
+  bool hizTight = false;    ///< the tight Hi-Z lookup (paper: HiZLookup::Paper)
   bool aggressive = false;  ///< one pass, newly visible patches a frame late (§3.1)
+  Accuracy accuracy = Accuracy::Bound;  ///< of the back-patch test
   /// \brief True when any stage runs (else the mesh is drawn by the plain renderer).
   bool any() const { return frustum || !backPatch.empty() || !occlusion.empty(); }
   bool operator==(const StageChoice&) const = default;
-  /// \brief "none", "frustum", "frustum + tcone + hiz (two-pass, half)".
+  /// \brief "none", "frustum", "frustum + tcone + hiz (two-pass, half)", "tcone/listed".
   std::string describe() const;
 };
 
@@ -84,8 +96,9 @@ double drawMsPerPatch(const Calibration& calibration, const CostCase& c);
 /// over the patch types: what a patch culled by the frustum or back-patch stage saves.
 double backDrawMsPerPatch(const Calibration& calibration, const CostCase& c);
 
-/// \brief CT of `stages` per patch (the sum of the stages' calibrated costs).
-double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages);
+/// \brief CT of `stages` per patch at uniform level `tess` (the sum of the stages'
+/// calibrated costs; the back-patch stage's at its accuracy, the listed test's at `tess`).
+double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages, double tess);
 
 /// \brief T = t + (1 - P)·R (+ P·RT0) plus the fixed costs, for `stages` culling at
 /// `rates` (only the rates of stages that run count).

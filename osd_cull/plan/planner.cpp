@@ -35,6 +35,13 @@ bool hasBoundsPass(const std::string& method) {
   return frame::BoundsPass::hasCullData(frame::cullMethod(method).reference);
 }
 
+// "full", "acon" or "con": the displaced extension of displaced kernel `kernel`.
+std::string displacedExtensionOf(const std::string& kernel) {
+  for (const frame::CullMethod& m : frame::displacedCullMethods())
+    if (m.name == kernel) return bound::toString(m.displaced->extension);
+  throw Error("planner: '" + kernel + "' is not a displaced kernel");
+}
+
 std::string percent(double rate) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f%%", 100.0 * rate);
@@ -111,14 +118,9 @@ bool mayHideItself(const PatchSet& patches, uint64_t maxWork) {
 }
 
 std::vector<std::pair<const char*, const Effect*>> Plan::effects() const {
-  return {{"frustum", &frustum},
-          {"back-patch", &backPatch},
-          {"occlusion", &occlusion},
-          {"passes", &passes},
-          {"hi-z", &hiz},
-          {"update", &update},
-          {"bounds", &bounds},
-          {"displacement", &displacement}};
+  return {{"frustum", &frustum},     {"back-patch", &backPatch}, {"accuracy", &accuracy},
+          {"occlusion", &occlusion}, {"passes", &passes},        {"hi-z", &hiz},
+          {"update", &update},       {"bounds", &bounds},        {"displacement", &displacement}};
 }
 
 Planner::Planner(Calibration calibration, PlannerOptions options)
@@ -129,6 +131,32 @@ Planner::Planner(Calibration calibration, PlannerOptions options)
     throw Error("planner: learnWeight must be in (0, 1], got " +
                 std::to_string(options_.learnWeight));
   calibration_.drawMs(1.0);  // throws without draw costs
+  if (options_.accuracy != "auto" && options_.accuracy != "bound" &&
+      options_.accuracy != "listed" && options_.accuracy != "surface")
+    throw Error("planner: accuracy must be auto, bound, listed or surface, got '" +
+                options_.accuracy + "'");
+  if (!(options_.listedRateFactor > 0.0 && options_.surfaceRateFactor > 0.0))
+    throw Error("planner: the listed and surface rate factors must be positive");
+}
+
+std::string occlusionRateKey(const StageChoice& stages) {
+  return stages.occlusion + (stages.hizFull ? "/full" : "") + (stages.hizTight ? "/tight" : "");
+}
+
+std::string rateKey(const std::string& method, Accuracy accuracy) {
+  return accuracy == Accuracy::Bound ? method : method + "/" + toString(accuracy);
+}
+
+std::vector<Accuracy> Planner::accuracies(const PlanInput& input, const std::string& method) const {
+  if (!input.ownAccuracy) return {Accuracy::Bound};
+  const bool listed = calibration_.listedCullMsPerPatch.count(method) > 0;
+  if (options_.accuracy == "surface")
+    return calibration_.surfaceCullMsPerPatch.count(method) ? std::vector{Accuracy::Surface}
+                                                            : std::vector<Accuracy>{};
+  if (options_.accuracy == "listed")
+    return listed ? std::vector{Accuracy::Listed} : std::vector<Accuracy>{};
+  if (options_.accuracy == "bound" || !listed) return {Accuracy::Bound};
+  return {Accuracy::Bound, Accuracy::Listed};
 }
 
 CostCase Planner::costCase(const PlanInput& input, const StageChoice& stages) const {
@@ -144,6 +172,16 @@ CostCase Planner::costCase(const PlanInput& input, const StageChoice& stages) co
   // points (see hasBoundsPass): its pass is charged to it.
   c.boundsPass = c.pointUpdate && !stages.backPatch.empty();
   c.boundsMethod = c.boundsPass ? stages.backPatch : "";
+  // A deforming displaced mesh: the displaced kernel its stages test needs the per-frame
+  // cones of its extension (ACoN, CoN; the Full bound only the static ranges), recomputed
+  // by the displaced bounds pass (issue 10), which is charged to it.
+  if (c.pointUpdate && input.displaced && stages.any()) {
+    const std::string extension = displacedExtensionOf(displacedBoundsKernel(input, stages));
+    if (extension != bound::toString(bound::DisplacedExtension::Full)) {
+      c.boundsPass = true;
+      c.boundsMethod = extension;
+    }
+  }
   c.displaced = input.displaced;
   return c;
 }
@@ -157,6 +195,26 @@ std::vector<std::string> Planner::occlusionKernels(const PlanInput& input) const
     if (calibration_.cullMsPerPatch.count(m.name)) out.push_back(m.name);
   if (out.empty()) out.push_back(options_.displacedKernel);
   return out;
+}
+
+std::string Planner::displacedBoundsKernel(const PlanInput& input,
+                                           const StageChoice& stages) const {
+  if (!stages.occlusion.empty()) return stages.occlusion;
+  // The frustum stage alone tests the same on any displaced bound: the one whose bounds
+  // pass costs least (the Full bound's none).
+  std::string best;
+  double bestMs = std::numeric_limits<double>::infinity();
+  for (const std::string& kernel : occlusionKernels(input)) {
+    const std::string extension = displacedExtensionOf(kernel);
+    const double ms = extension == bound::toString(bound::DisplacedExtension::Full)
+                          ? 0.0
+                          : calibration_.boundsMs(extension);
+    if (ms < bestMs) {
+      bestMs = ms;
+      best = kernel;
+    }
+  }
+  return best;
 }
 
 std::string Planner::occlusionKernel(const PlanInput& input) const {
@@ -189,26 +247,40 @@ bool Planner::offersOcclusion(const PlanInput& input) const {
 }
 
 std::vector<StageChoice> Planner::candidates(const PlanInput& input) const {
-  std::vector<std::string> backPatch = {""};
+  std::vector<std::pair<std::string, Accuracy>> backPatch = {{"", Accuracy::Bound}};
   if (input.backPatchValidity.enabled && !input.displaced)
     for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch))
       if (calibration_.cullMsPerPatch.count(m) && (!input.deforming || hasBoundsPass(m)))
-        backPatch.push_back(m);
+        for (Accuracy a : accuracies(input, m)) backPatch.push_back({m, a});
   std::vector<std::string> occlusion = {""};
   if (offersOcclusion(input))
     for (const std::string& kernel : occlusionKernels(input))
       if (calibration_.cullMsPerPatch.count(kernel)) occlusion.push_back(kernel);
+  // The pyramid (Hi-Z resolution, lookup): the paper's (half, paper lookup); in the mesh
+  // form also full resolution, and the tight lookup when calibrated.
+  using Pyramid = std::pair<bool, bool>;  // full resolution, tight lookup
+  std::vector<Pyramid> pyramids = {{false, false}};
+  if (input.ownAccuracy) {
+    pyramids.push_back({true, false});
+    if (calibration_.hizTightMsPerPatch)
+      pyramids.insert(pyramids.end(), {{false, true}, {true, true}});
+  }
+  const std::vector<Pyramid> noPyramid = {{false, false}};
   std::vector<StageChoice> out;
   for (bool frustum : {false, true})
-    for (const std::string& b : backPatch)
-      for (const std::string& o : occlusion) {
-        StageChoice c{frustum, b, o};
-        out.push_back(c);
-        if (!o.empty() && options_.allowAggressive) {
-          c.aggressive = true;
+    for (const auto& [b, a] : backPatch)
+      for (const std::string& o : occlusion)
+        for (const auto& [full, tight] : o.empty() ? noPyramid : pyramids) {
+          StageChoice c{frustum, b, o};
+          c.accuracy = a;
+          c.hizFull = full;
+          c.hizTight = tight;
           out.push_back(c);
+          if (!o.empty() && options_.allowAggressive) {
+            c.aggressive = true;
+            out.push_back(c);
+          }
         }
-      }
   return out;
 }
 
@@ -216,6 +288,23 @@ double Planner::stageRate(const State& state, const std::string& stage) const {
   if (const auto it = state.rates.find(stage); it != state.rates.end()) return it->second;
   if (const auto it = options_.priorRates.find(stage); it != options_.priorRates.end())
     return it->second;
+  // A back-patch method at another accuracy (rateKey), an occlusion kernel on another
+  // pyramid (occlusionRateKey): its plain prior times each variant's factor, at most 1.
+  if (const size_t slash = stage.find('/'); slash != std::string::npos) {
+    double factor = 1.0;
+    for (size_t at = slash; at != std::string::npos;) {
+      const size_t next = stage.find('/', at + 1);
+      const std::string variant =
+          stage.substr(at + 1, next == std::string::npos ? next : next - at - 1);
+      factor *= variant == toString(Accuracy::Listed)    ? options_.listedRateFactor
+                : variant == toString(Accuracy::Surface) ? options_.surfaceRateFactor
+                : variant == "full"                      ? options_.fullRateFactor
+                : variant == "tight"                     ? options_.tightRateFactor
+                                                         : 1.0;
+      at = next;
+    }
+    return std::min(1.0, factor * stageRate(State{}, stage.substr(0, slash)));
+  }
   // A displaced kernel without its own prior: the Hi-Z one.
   const auto hiz = options_.priorRates.find("hiz");
   return hiz != options_.priorRates.end() ? hiz->second : 0.0;
@@ -226,8 +315,9 @@ CullRates Planner::ratesFor(const State& state, const StageChoice& stages, BoxIn
   r.frustum = box == BoxInView::Outside  ? 1.0
               : box == BoxInView::Inside ? 0.0
                                          : stageRate(state, kFrustum);
-  if (!stages.backPatch.empty()) r.backPatch = stageRate(state, stages.backPatch);
-  if (!stages.occlusion.empty()) r.occlusion = stageRate(state, stages.occlusion);
+  if (!stages.backPatch.empty())
+    r.backPatch = stageRate(state, rateKey(stages.backPatch, stages.accuracy));
+  if (!stages.occlusion.empty()) r.occlusion = stageRate(state, occlusionRateKey(stages));
   return r;
 }
 
@@ -271,28 +361,40 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
     if (!s.lastRun.count(kind)) s.lastRun[kind] = frameNumber;
   if (options_.reprobeFrames > 0) {
     std::string probeBackPatch;
+    Accuracy probeAccuracy = Accuracy::Bound;
     double probeRate = -1.0;
     for (const StageChoice& c : all)
-      if (!c.backPatch.empty() && stageRate(s, c.backPatch) > probeRate) {
-        probeRate = stageRate(s, c.backPatch);
+      if (!c.backPatch.empty() && stageRate(s, rateKey(c.backPatch, c.accuracy)) > probeRate) {
+        probeRate = stageRate(s, rateKey(c.backPatch, c.accuracy));
         probeBackPatch = c.backPatch;
+        probeAccuracy = c.accuracy;
       }
     auto due = [&](const char* kind) {
-      return frameNumber - s.lastRun[kind] >= options_.reprobeFrames;
+      const bool prior = !s.measured.count(kind) && options_.firstProbeFrames > 0;
+      return frameNumber - s.lastRun[kind] >=
+             (prior ? std::min(options_.firstProbeFrames, options_.reprobeFrames)
+                    : options_.reprobeFrames);
     };
     if (!p.stages.frustum && p.box == BoxInView::Crossing && due(kFrustum)) {
       p.stages.frustum = p.probe = true;
     } else if (p.stages.backPatch.empty() && !probeBackPatch.empty() && due(kBackPatch)) {
       p.stages.backPatch = probeBackPatch;
+      p.stages.accuracy = probeAccuracy;
       p.probe = true;
     } else if (p.stages.occlusion.empty() && offersOcclusion(input) && due(kOcclusion)) {
-      // The kernel with the highest rate learned or assumed (as for the back-patch probe).
-      std::string kernel;
+      // The occlusion kernel and pyramid predicted cheapest with the other stages as planned
+      // (so the probe measures what would be switched on).
+      std::optional<StageChoice> with;
       for (const StageChoice& c : all)
-        if (!c.occlusion.empty() &&
-            (kernel.empty() || stageRate(s, c.occlusion) > stageRate(s, kernel)))
-          kernel = c.occlusion;
-      p.stages.occlusion = kernel.empty() ? occlusionKernel(input) : kernel;
+        if (!c.occlusion.empty() && c.frustum == p.stages.frustum &&
+            c.backPatch == p.stages.backPatch && c.accuracy == p.stages.accuracy && !c.aggressive &&
+            (!with || total(c) < total(*with)))
+          with = c;
+      if (with) {
+        p.stages = *with;
+      } else {
+        p.stages.occlusion = occlusionKernel(input);
+      }
       p.probe = true;
     }
   }
@@ -365,6 +467,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     p.backPatch.choice = p.stages.backPatch;
     StageChoice off = p.stages;
     off.backPatch.clear();
+    off.accuracy = Accuracy::Bound;
     if (input.displaced)
       p.backPatch.reason = "displaced mesh: the back-patch tests bound the undisplaced surface";
     else if (!input.backPatchValidity.enabled)
@@ -372,10 +475,12 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     else if (p.backPatch.on) {
       p.backPatch.deltaMs = now - total(off);
       p.backPatch.reason = (p.probe && s.current->backPatch.empty() ? probe : "") +
-                           stageReason(p.stages.backPatch, p.rates.backPatch, p.stages, off);
+                           stageReason(rateKey(p.stages.backPatch, p.stages.accuracy),
+                                       p.rates.backPatch, p.stages, off);
     } else {
       // The best method it could have run.
       std::string bestMethod;
+      Accuracy bestAccuracy = Accuracy::Bound;
       double bestTotal = std::numeric_limits<double>::infinity();
       for (const StageChoice& c : candidates(input))
         if (!c.backPatch.empty() && c.frustum == p.stages.frustum &&
@@ -383,6 +488,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
             total(c) < bestTotal) {
           bestTotal = total(c);
           bestMethod = c.backPatch;
+          bestAccuracy = c.accuracy;
         }
       if (bestMethod.empty()) {
         p.backPatch.reason = input.deforming
@@ -392,9 +498,62 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       } else {
         StageChoice with = p.stages;
         with.backPatch = bestMethod;
+        with.accuracy = bestAccuracy;
+        const std::string key = rateKey(bestMethod, bestAccuracy);
         p.backPatch.choice = bestMethod;
         p.backPatch.deltaMs = bestTotal - now;
-        p.backPatch.reason = stageReason(bestMethod, stageRate(s, bestMethod), with, p.stages);
+        p.backPatch.reason = stageReason(key, stageRate(s, key), with, p.stages);
+      }
+    }
+  }
+  // Accuracy of the back-patch test: the bound or the listed triangles by predicted cost,
+  // surface-exact only when asked for.
+  {
+    p.accuracy.on = !p.stages.backPatch.empty();
+    if (!p.accuracy.on) {
+      p.accuracy.reason = "no back-patch stage";
+    } else {
+      const Accuracy a = p.stages.accuracy;
+      p.accuracy.choice = toString(a);
+      auto at = [&](Accuracy other) {
+        StageChoice c = p.stages;
+        c.accuracy = other;
+        return c;
+      };
+      auto line = [&](Accuracy other) {
+        const std::string key = rateKey(p.stages.backPatch, other);
+        return std::string(toString(other)) + " " + source(key) + " " + percent(stageRate(s, key)) +
+               " predicted " + ms(total(at(other)));
+      };
+      const std::string tessText = " at tess " + std::to_string(int(input.tess));
+      if (!input.ownAccuracy) {
+        p.accuracy.reason =
+            "drawn-triangle bound: the scene's one cull frame per view applies "
+            "one accuracy to every instance";
+      } else if (a == Accuracy::Surface) {
+        p.accuracy.reason =
+            "surface-exact asked for (the papers' test): NOT conservative for the drawn chord "
+            "triangles, can lose silhouette pixels; " +
+            line(a);
+      } else if (options_.accuracy != "auto") {
+        p.accuracy.reason = std::string(toString(a)) +
+                            " asked for (conservative for the drawn "
+                            "triangles); " +
+                            line(a);
+      } else if (!calibration_.listedCullMsPerPatch.count(p.stages.backPatch)) {
+        p.accuracy.reason =
+            "drawn-triangle bound: the listed test of " + p.stages.backPatch + " is not calibrated";
+      } else {
+        const Accuracy other = a == Accuracy::Bound ? Accuracy::Listed : Accuracy::Bound;
+        p.accuracy.deltaMs =
+            a == Accuracy::Listed ? now - total(at(other)) : total(at(other)) - now;
+        char ct[64];
+        std::snprintf(ct, sizeof ct, "listed test +%.3f us/patch",
+                      1e3 * calibration_.listedCullMs(p.stages.backPatch, input.tess));
+        p.accuracy.reason =
+            std::string(a == Accuracy::Listed ? "listed triangles pay" : "the bound is cheaper") +
+            tessText + " (" + ct + "): " + line(a) + " against " + line(other) +
+            "; both conservative for the drawn triangles";
       }
     }
   }
@@ -418,18 +577,19 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       p.occlusion.deltaMs = p.occlusion.on ? now - total(without) : total(with) - now;
       // Alone in the view, only the mesh itself can hide its patches: the self-occlusion
       // rule (a non-convex surface), learned from its own frames like the other stages.
-      const double rate = stageRate(s, kernel);
+      const std::string key = occlusionRateKey(with);
+      const double rate = stageRate(s, key);
       const double x = breakEven(with, without, rt);
       p.occlusion.reason =
           (p.probe && p.occlusion.on && s.current->occlusion.empty() ? probe : "") +
           (input.occluders ? std::string()
-                           : "self-occlusion (non-convex surface): " + std::string(source(kernel)) +
+                           : "self-occlusion (non-convex surface): " + std::string(source(key)) +
                                  " " + percent(rate) +
                                  (total(with) < total(without)
                                       ? ", saves " + ms(total(without) - total(with))
                                       : ", costs " + ms(total(with) - total(without))) +
                                  ", " + (rate > x ? "pays" : "does not pay") + "; ") +
-          stageReason(kernel, rate, with, without) + " (Hi-Z build included)";
+          stageReason(key, rate, with, without) + " (Hi-Z build included)";
     }
     p.passes.on = p.occlusion.on;
     p.passes.choice = p.occlusion.on ? (p.stages.aggressive ? "aggressive" : "two-pass") : "one";
@@ -439,14 +599,38 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
                           : "two-pass (§3): the same image as without culling";
     const uint64_t pixels = uint64_t(input.camera.width) * input.camera.height;
     p.hiz.on = p.occlusion.on;
-    p.hiz.choice = p.occlusion.on ? (p.stages.hizFull ? "full" : "half") : "";
+    auto pyramid = [](const StageChoice& c) {
+      return std::string(c.hizFull ? "full" : "half") + (c.hizTight ? "/tight" : "/paper");
+    };
+    p.hiz.choice = p.occlusion.on ? pyramid(p.stages) : "";
     p.hiz.deltaMs =
         p.occlusion.on ? calibration_.hizBuildMs(hizPixels(pixels, p.stages.hizFull)) : 0.0;
-    p.hiz.reason = p.occlusion.on
-                       ? "level 0 at half resolution (Niessner & Loop §4.1): build " +
-                             ms(calibration_.hizBuildMs(hizPixels(pixels, false))) + ", full " +
-                             ms(calibration_.hizBuildMs(hizPixels(pixels, true)))
-                       : "no occlusion: no pyramid";
+    const std::string builds = "build half " +
+                               ms(calibration_.hizBuildMs(hizPixels(pixels, false))) + ", full " +
+                               ms(calibration_.hizBuildMs(hizPixels(pixels, true)));
+    if (!p.occlusion.on) {
+      p.hiz.reason = "no occlusion: no pyramid";
+    } else if (!input.ownAccuracy) {
+      p.hiz.reason =
+          "the scene's one pyramid per view: level 0 at half resolution, the paper's "
+          "lookup (Niessner & Loop §4.1); " +
+          builds;
+    } else {
+      // Every pyramid variant of the same stages: predicted frame and rate.
+      std::string variants;
+      for (const StageChoice& c : candidates(input))
+        if (c.occlusion == p.stages.occlusion && c.frustum == p.stages.frustum &&
+            c.backPatch == p.stages.backPatch && c.accuracy == p.stages.accuracy &&
+            c.aggressive == p.stages.aggressive)
+          variants += (variants.empty() ? "" : ", ") + pyramid(c) + " " + ms(total(c)) + " (" +
+                      source(occlusionRateKey(c)) + " " +
+                      percent(stageRate(s, occlusionRateKey(c))) + ")";
+      char tight[64] = "tight lookup not calibrated";
+      if (calibration_.hizTightMsPerPatch)
+        std::snprintf(tight, sizeof tight, "tight lookup +%.3f us/patch",
+                      1e3 * *calibration_.hizTightMsPerPatch);
+      p.hiz.reason = "cheapest predicted of " + variants + "; " + builds + ", " + tight;
+    }
   }
   // Update and bounds.
   {
@@ -465,14 +649,23 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
                         " (calibrated); the cheaper runs";
     }
     p.bounds.on = base.boundsPass;
-    p.bounds.choice = p.bounds.on ? p.stages.backPatch : "";
-    p.bounds.deltaMs = p.bounds.on ? k * n * calibration_.boundsMs(p.stages.backPatch) : 0.0;
-    p.bounds.reason = !base.pointUpdate ? "points did not move: the cull data stays valid"
-                      : p.bounds.on     ? "recomputes the " + p.stages.backPatch +
-                                          " cull data of the moved points (bounds pass, " +
-                                          ms(n * calibration_.boundsMs(p.stages.backPatch)) +
-                                          " calibrated, charged to the method)"
-                                    : "no back-patch method runs: no bounds pass";
+    p.bounds.choice = p.bounds.on ? base.boundsMethod : "";
+    p.bounds.deltaMs = p.bounds.on ? k * n * calibration_.boundsMs(base.boundsMethod) : 0.0;
+    p.bounds.reason =
+        !base.pointUpdate ? "points did not move: the cull data stays valid"
+        : p.bounds.on
+            ? "recomputes the " + base.boundsMethod +
+                  (input.displaced ? " cones of the displaced bound" : " cull data") +
+                  " of the moved points (bounds pass, " +
+                  ms(n * calibration_.boundsMs(base.boundsMethod)) +
+                  " calibrated, charged to the " +
+                  (input.displaced ? "displaced kernel " + displacedBoundsKernel(input, p.stages)
+                                   : std::string("method")) +
+                  ")"
+        : input.displaced ? (p.stages.any() ? "the displaced bound tested (full) needs only the "
+                                              "static ranges: no bounds pass"
+                                            : "no cull stage: no bounds pass")
+                          : "no back-patch method runs: no bounds pass";
   }
   // Displacement.
   p.displacement.on = input.displaced;
@@ -482,9 +675,11 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     // The displaced bound the frustum and occlusion stages test: the occlusion stage's, or
     // the one predicted cheapest with occlusion (the frustum test alone is the same test on
     // any of them).
-    const std::string kernel = p.stages.occlusion.empty()
-                                   ? bestOcclusionKernel(input, s, p.stages, p.box)
-                                   : p.stages.occlusion;
+    // A deforming mesh whose points moved: the frustum stage alone tests the bound whose
+    // bounds pass costs least (displacedBoundsKernel).
+    const std::string kernel = !p.stages.occlusion.empty() ? p.stages.occlusion
+                               : base.pointUpdate          ? displacedBoundsKernel(input, p.stages)
+                                                  : bestOcclusionKernel(input, s, p.stages, p.box);
     const auto kernels = occlusionKernels(input);
     const auto measured = std::count_if(
         kernels.begin(), kernels.end(),
@@ -520,17 +715,26 @@ void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledF
                                                options_.learnWeight * measured;
   };
   // The frustum's rate is learned only where the pre-test leaves it open.
-  if (plan.stages.frustum && plan.box == BoxInView::Crossing) learn(kFrustum, culledFrustum);
-  if (!plan.stages.backPatch.empty()) learn(plan.stages.backPatch, culledBackPatch);
-  if (!plan.stages.occlusion.empty()) learn(plan.stages.occlusion, culledOcclusion);
+  if (plan.stages.frustum && plan.box == BoxInView::Crossing) {
+    learn(kFrustum, culledFrustum);
+    s.measured.insert(kFrustum);
+  }
+  if (!plan.stages.backPatch.empty()) s.measured.insert(kBackPatch);
+  if (!plan.stages.occlusion.empty()) s.measured.insert(kOcclusion);
+  if (!plan.stages.backPatch.empty())
+    learn(rateKey(plan.stages.backPatch, plan.stages.accuracy), culledBackPatch);
+  if (!plan.stages.occlusion.empty()) learn(occlusionRateKey(plan.stages), culledOcclusion);
 }
 
 frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base) {
   base.cull.frustum = plan.stages.frustum;
   base.cull.backPatch = plan.stages.backPatch;
+  base.cull.drawnTriangles = plan.stages.accuracy != Accuracy::Surface;
+  base.cull.drawnEnumerate = plan.stages.accuracy == Accuracy::Listed;
   base.cull.occlusion = plan.stages.occlusion;
   base.aggressive = plan.stages.aggressive;
   base.hiz.fullResolution = plan.stages.hizFull;
+  base.hiz.lookup = plan.stages.hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
   if (!plan.displacement.on) {
     base.cull.displacementMap = nullptr;
     base.cull.uvCorners = {};

@@ -32,6 +32,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -70,6 +71,11 @@ struct PlanInput {
   /// that does not pay is switched off by its measured rate); mayHideItself() decides it
   /// from the patches.
   bool selfOccluding = true;
+  /// The frame applies this mesh's own back-patch accuracy and Hi-Z resolution and lookup
+  /// (the mesh form). False in the scene form, whose one cull frame per view takes one
+  /// CullSettings and one pyramid for every instance: then the accuracy stays the
+  /// drawn-triangle bound and the pyramid the paper's (half resolution, paper lookup).
+  bool ownAccuracy = true;
 };
 
 /// \brief Whether a mesh can hide parts of itself in some view from outside, i.e. whether
@@ -97,7 +103,7 @@ struct Plan {
   uint64_t frame = 0;
   BoxInView box = BoxInView::Crossing;
   StageChoice stages;
-  Effect frustum, backPatch, occlusion, passes, hiz, update, bounds, displacement;
+  Effect frustum, backPatch, accuracy, occlusion, passes, hiz, update, bounds, displacement;
   bool probe = false;  ///< a re-probe frame (a switched-off stage runs once)
   CullRates rates;     ///< the rates the prediction used
   /// Measured / predicted frame time learned on this key's recent frames (1 before the
@@ -121,6 +127,12 @@ struct PlannerOptions {
   /// A stage switched off runs for one frame after this many frames, to re-measure its
   /// rate (0: never).
   uint32_t reprobeFrames = 48;
+  /// A stage kind (frustum, back-patch, occlusion) never measured for a key, whose rate is
+  /// only a prior (a figure of other meshes), runs for one frame after this many frames
+  /// instead (0: like the others). Without it a stage whose prior lies below its break-even
+  /// waited reprobeFrames before its first measurement (the displaced character of
+  /// docs/results/plan.md, "Scenes": occlusion off for the first 48 frames, then on).
+  uint32_t firstProbeFrames = 2;
   /// Weight of a new measurement in the moving average of a rate.
   double learnWeight = 0.5;
   /// Aggressive culling (§3.1) shows newly visible patches one frame late: only when
@@ -148,11 +160,37 @@ struct PlannerOptions {
       {"full-caf", 0.061},
       {"acon-caf", 0.074},
       {"con-caf", 0.076}};
+  /// The back-patch accuracy (Accuracy): "auto" chooses the drawn-triangle bound or the
+  /// listed triangles by predicted cost (both conservative for the drawn triangles);
+  /// "bound", "listed" or "surface" force one. Surface-exact (the papers' test, which can
+  /// lose silhouette pixels of the drawn chord triangles) is never chosen unless asked for.
+  std::string accuracy = "auto";
+  /// Prior rate of a back-patch method at the listed-triangle and surface-exact accuracies,
+  /// as a multiple of its bound prior: docs/results/accuracy-vs-time.md, BigGuy at 1280x720
+  /// tess 4 to 16, listed/bound 1.5 to 2.2 (tcone 30.5% / 13.7%, tangent plane 36.4% /
+  /// 19.1%), surface/bound 2.1 to 2.5 (tcone 34.3%, ncone 39.4% / 17.7%).
+  double listedRateFactor = 1.9;
+  double surfaceRateFactor = 2.2;
+  /// Prior occlusion rate with the tight Hi-Z lookup, and with level 0 at full resolution,
+  /// as a multiple of the paper's (half, paper lookup): docs/results/occlusion.md, the tight
+  /// lookup culls 1.07 to 1.18 times as much (default scene 52.3% / 49.1%, BigGuy level 0
+  /// 28.3% / 23.9%); full resolution is not measured there: taken as the same one-level-
+  /// finer gain. Learned per variant (occlusionRateKey) as soon as one runs.
+  double tightRateFactor = 1.13;
+  double fullRateFactor = 1.13;
   /// The displaced kernel for a displaced mesh when the calibration measured none of the
   /// six (Niessner & Loop Table 1: CoN with the camera-aligned frustum culls most); with
   /// measured ones the planner takes the cheapest predicted.
   std::string displacedKernel = "con-caf";
 };
+
+/// \brief The key of a back-patch method's learned rate at `accuracy`: the method's name for
+/// the bound, "tcone/listed", "tcone/surface" (Planner::rate).
+std::string rateKey(const std::string& method, Accuracy accuracy);
+
+/// \brief The key of an occlusion stage's learned rate: the kernel's name for the paper's
+/// pyramid (half resolution, paper lookup), else "hiz/full", "hiz/tight", "hiz/full/tight".
+std::string occlusionRateKey(const StageChoice& stages);
 
 /// \brief The planner. One per program; it keeps a state per key (instance and view).
 class Planner {
@@ -173,7 +211,8 @@ class Planner {
                uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
                double measuredMs = 0.0);
 
-  /// \brief The learned (or prior) rate of `stage` ("frustum" or a method name) for `key`.
+  /// \brief The learned (or prior) rate of `stage` ("frustum", a method name or a rateKey())
+  /// for `key`.
   double rate(const std::string& key, const std::string& stage) const;
   const Calibration& calibration() const { return calibration_; }
   const PlannerOptions& options() const { return options_; }
@@ -184,6 +223,7 @@ class Planner {
     uint64_t since = 0;  // frame the current choice started
     std::map<std::string, double> rates;
     std::map<std::string, uint64_t> lastRun;  // stage kind → last frame it ran
+    std::set<std::string> measured;           // stage kinds observed at least once
     uint64_t lastFrame = 0;
     double scale = 1.0;  // Plan::timeScale
   };
@@ -194,6 +234,8 @@ class Planner {
   std::string bestOcclusionKernel(const PlanInput& input, const State& state,
                                   const StageChoice& stages, BoxInView box) const;
   std::vector<StageChoice> candidates(const PlanInput& input) const;
+  std::string displacedBoundsKernel(const PlanInput& input, const StageChoice& stages) const;
+  std::vector<Accuracy> accuracies(const PlanInput& input, const std::string& method) const;
   CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
   double stageRate(const State& state, const std::string& stage) const;
   void explain(Plan& plan, const PlanInput& input, const State& state) const;
@@ -203,7 +245,8 @@ class Planner {
   std::map<std::string, State> states_;
 };
 
-/// \brief `base` with the plan's stages, passes, Hi-Z resolution and displaced kernel.
+/// \brief `base` with the plan's stages, back-patch accuracy (CullSettings::drawnTriangles,
+/// drawnEnumerate), passes, Hi-Z resolution and lookup, and displaced kernel.
 /// The back-patch validity and the displacement map of `base` are kept (a displaced mesh's
 /// map stays bound only when the plan says displacement is on).
 frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base);

@@ -45,6 +45,9 @@ PlanInput instancePlanInput(const scene::LoadedScene& scene, size_t view, size_t
   for (size_t j = 0; j < d.instances.size() && !in.occluders; ++j)
     in.occluders =
         j != instance && boxInView(objectBounds[j], models[j], camera) != BoxInView::Outside;
+  // One cull frame per view culls every instance with one CullSettings: the scene form
+  // keeps the default accuracy (the drawn-triangle bound) for all of them.
+  in.ownAccuracy = false;
   return in;
 }
 

@@ -21,8 +21,10 @@ const char* kDescription =
 with its exact TES work, a patch drawn with factor 0 (RT0), each cull stage's cost per
 patch (CT: frustum, every back-patch method, Hi-Z occlusion and the six displaced kernels),
 the displaced draw against the undisplaced one (a built-in torus with texture coordinates
-and a procedural map), the Hi-Z build at two image sizes, the CPU and GPU control-point
-update and the bounds pass per patch and method; medians over repeats. Stored in the calibration cache ($OSD_CULL_CALIBRATION_CACHE, else
+and a procedural map), the Hi-Z build at two image sizes and at full resolution, the tight
+Hi-Z lookup against the paper's, the CPU and GPU control-point
+update and the bounds pass per patch and method, the surface-exact back-patch kernels and
+the listed-triangle test against the tessellation level; medians over repeats. Stored in the calibration cache ($OSD_CULL_CALIBRATION_CACHE, else
 $XDG_CACHE_HOME/osd_cull/calibration or ~/.cache/osd_cull/calibration) under the device,
 driver and library version; `osd-cull plan` and `render --plan auto` read it there. A
 cached calibration is shown, not measured again, unless --force is given.)";
@@ -70,6 +72,8 @@ void print(const plan::Calibration& c) {
   std::printf("\nHi-Z build:");
   for (const plan::SizeCost& h : c.hizBuild)
     std::printf(" %llu px level 0: %.2f ms;", static_cast<unsigned long long>(h.pixels), h.ms);
+  if (c.hizTightMsPerPatch)
+    std::printf(" tight lookup over the paper's: %.3f us/patch;", 1e3 * *c.hizTightMsPerPatch);
   std::printf("\npoint update per patch: cpu %.3f us, gpu %.3f us; bounds pass %.3f us\n",
               1e3 * c.pointUpdateCpuMsPerPatch, 1e3 * c.pointUpdateGpuMsPerPatch,
               1e3 * c.boundsMsPerPatch);
@@ -83,6 +87,17 @@ void print(const plan::Calibration& c) {
     std::printf("bounds pass per patch and method:");
     for (const auto& [method, ms] : c.boundsMsPerMethod)
       std::printf(" %s %.3f us;", method.c_str(), 1e3 * ms);
+    std::printf("\n");
+  }
+  if (!c.surfaceCullMsPerPatch.empty()) {
+    std::printf("surface-exact back-patch CT (us/patch, on top of frustum):");
+    for (const auto& [method, ms] : c.surfaceCullMsPerPatch)
+      std::printf(" %s %.3f;", method.c_str(), 1e3 * ms);
+    std::printf("\n");
+  }
+  for (const auto& [method, levels] : c.listedCullMsPerPatch) {
+    std::printf("listed-triangle test of %s on top of its bound (us/patch):", method.c_str());
+    for (const auto& [level, ms] : levels) std::printf(" tess %u %.3f;", level, 1e3 * ms);
     std::printf("\n");
   }
   std::printf(

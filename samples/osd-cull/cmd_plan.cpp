@@ -6,6 +6,7 @@
 #include "mesh_patches.h"
 #include "mesh_source.h"
 #include "option_checks.h"
+#include "plan_options.h"
 #include "scene_source.h"
 
 #include "osd_cull/error.h"
@@ -24,14 +25,14 @@ namespace {
 const char* kDescription =
     R"(Prints the effect plan of SCENE (a scene file, an OBJ sequence, built-in:scene; the
 default) or of MESH seen framed from the default direction: per instance and view which
-cull stages run (frustum, which back-patch method, Hi-Z occlusion), one or two passes, the
+cull stages run (frustum, which back-patch method and at which accuracy, Hi-Z occlusion), one or two passes, the
 Hi-Z resolution, whether and where the control points are updated, the bounds pass and the
 displacement kernel, each with its reason and the predicted change in ms, and the
 predicted frame against no culling. The plan is made from this device's calibration
 (`osd-cull calibrate`, or --calibration FILE) with prior cull rates: it is the first
 frame's plan; while a scene plays (`render`) the rates are measured and the plan follows.)";
 
-struct PlanArgs {
+struct PlanCommandArgs {
   MeshSource source;
   PatchOptions patchOptions;
   uint32_t tess = 4;
@@ -39,10 +40,11 @@ struct PlanArgs {
   std::optional<uint32_t> width, height;
   bool displaced = false;
   std::string calibration;
+  std::string accuracy = "auto";
   vulkan::ContextOptions device;
 };
 
-std::vector<plan::ScenePlanInput> meshInputs(const PlanArgs& args) {
+std::vector<plan::ScenePlanInput> meshInputs(const PlanCommandArgs& args) {
   if (!std::filesystem::exists(*args.source.path))
     throw Error(*args.source.path + ": no such file");
   const LoadedMesh loaded = loadMeshSource(args.source);
@@ -65,7 +67,7 @@ std::vector<plan::ScenePlanInput> meshInputs(const PlanArgs& args) {
   return {{"default/0", 0, 0, in}};
 }
 
-int run(const PlanArgs& args) {
+int run(const PlanCommandArgs& args) {
   const std::string argument = args.source.path.value_or("built-in:scene");
   const bool isScene = isSceneArgument(argument);
   if (args.displaced && isScene) throw UsageError("--displaced applies to a MESH, not to a scene");
@@ -83,7 +85,9 @@ int run(const PlanArgs& args) {
   std::cout << "plan of " << argument << " at frame " << args.frame << ", tess " << args.tess
             << ", calibration of " << calibration.key.device << " (" << calibration.key.driver
             << (calibration.quick ? ", quick" : "") << ")\n\n";
-  plan::Planner planner(calibration);
+  plan::PlannerOptions options;
+  options.accuracy = args.accuracy;
+  plan::Planner planner(calibration, options);
   std::vector<plan::Plan> plans;
   for (const plan::ScenePlanInput& s : inputs)
     plans.push_back(planner.plan(s.key, s.input, args.frame));
@@ -101,7 +105,7 @@ int run(const PlanArgs& args) {
 }
 
 Runner setup(CLI::App& app) {
-  auto args = std::make_shared<PlanArgs>();
+  auto args = std::make_shared<PlanCommandArgs>();
   addMeshOptions(app, args->source);
   addPatchOptions(app, args->patchOptions);
   addSizeOptions(app, args->width, args->height, 16, "the scene's, or 1280 x 720");
@@ -115,6 +119,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--calibration", args->calibration,
                  "a calibration file instead of this device's cached one")
       ->type_name("FILE.txt");
+  addPlanAccuracyOption(app, args->accuracy);
   addDeviceOptions(app, args->device);
   return [args] { return run(*args); };
 }

@@ -14,6 +14,17 @@
 
 namespace osd_cull::cli {
 
+void addPlanAccuracyOption(CLI::App& app, std::string& accuracy) {
+  app.add_option("--plan-accuracy", accuracy,
+                 "the back-patch accuracy the plan may choose: auto (default: the\n"
+                 "drawn-triangle bound or the listed triangles, whichever is predicted\n"
+                 "cheaper; both conservative for the drawn triangles), bound, listed, or\n"
+                 "surface (the papers' surface-exact test: can lose silhouette pixels)")
+      ->type_name("MODE")
+      ->check(oneOf({"auto", "bound", "listed", "surface"}))
+      ->group("Culling");
+}
+
 void addPlanOptions(CLI::App& app, PlanArgs& args) {
   app.add_option("--plan", args.mode,
                  "auto: the effect plan chooses the cull stages each frame from this\n"
@@ -27,6 +38,7 @@ void addPlanOptions(CLI::App& app, PlanArgs& args) {
                  "plan with this calibration file instead of the device's cached one")
       ->type_name("FILE.txt")
       ->group("Culling");
+  addPlanAccuracyOption(app, args.accuracy);
 }
 
 std::string missingCalibration(const PlanArgs& args, vulkan::Context& context) {
@@ -73,7 +85,9 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context
   const plan::Calibration calibration = plan::deviceCalibration(context, args.calibration);
   out << "plan: auto, calibration of " << calibration.key.device
       << (calibration.quick ? " (quick)" : "") << "\n";
-  return std::make_unique<plan::Planner>(calibration);
+  plan::PlannerOptions options;
+  options.accuracy = args.accuracy;
+  return std::make_unique<plan::Planner>(calibration, options);
 }
 
 void printPlanChange(const plan::Plan* last, const plan::Plan& p, std::ostream& out,

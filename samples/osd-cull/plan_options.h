@@ -19,11 +19,17 @@ namespace osd_cull::cli {
 
 /// \brief The plan options as given.
 struct PlanArgs {
-  std::string mode = "auto";  ///< auto or off
-  std::string calibration;    ///< a calibration file instead of the device's cached one
+  std::string mode = "auto";      ///< auto or off
+  std::string calibration;        ///< a calibration file instead of the device's cached one
+  std::string accuracy = "auto";  ///< plan::PlannerOptions::accuracy
 };
 
-/// \brief Declares `--plan MODE` and `--plan-calibration FILE` in the "Culling" group.
+/// \brief Declares `--plan-accuracy auto|bound|listed|surface` (plan::PlannerOptions::
+/// accuracy) in the "Culling" group.
+void addPlanAccuracyOption(CLI::App& app, std::string& accuracy);
+
+/// \brief Declares `--plan MODE`, `--plan-calibration FILE` and `--plan-accuracy` in the
+/// "Culling" group.
 void addPlanOptions(CLI::App& app, PlanArgs& args);
 
 /// \brief Why there is no calibration to plan with ("" when there is one): no
