@@ -85,7 +85,7 @@ TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
   EXPECT_EQ(r.exitCode(), 1) << r.output;
   EXPECT_NE(r.output.find("the calibration cache is off"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("osd-cull calibrate --quick"), std::string::npos) << r.output;
-  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 5\ndevice x\ndraw 1 fast\n");
+  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 6\ndevice x\ndraw 1 fast\n");
   const auto b = run("plan --calibration " + bad.string());
   EXPECT_EQ(b.exitCode(), 1) << b.output;
   EXPECT_NE(b.output.find("bad.txt:3: 'draw' needs ms per patch, got '1 fast'"), std::string::npos)
@@ -95,7 +95,7 @@ TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
   const fs::path old = dir_.write("old.txt", "osd_cull-calibration 2\ndevice x\n");
   const auto o = run("plan --calibration " + old.string());
   EXPECT_EQ(o.exitCode(), 1) << o.output;
-  EXPECT_NE(o.output.find("old.txt:1: calibration file format 2, this library reads format 5"),
+  EXPECT_NE(o.output.find("old.txt:1: calibration file format 2, this library reads format 6"),
             std::string::npos)
       << o.output;
   EXPECT_NE(o.output.find("osd-cull calibrate --force"), std::string::npos) << o.output;

@@ -1,5 +1,6 @@
 #include "osd_cull/plan/calibrate.h"
 
+#include "osd_cull/bound/back_patch.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/cull/cull_methods.h"
@@ -16,10 +17,13 @@
 #include "osd_cull/version.h"
 #include "osd_cull/vk/context.h"
 
+#include <osd_cull/shared/cull_layout.h>
+
 #include <algorithm>
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <span>
 
 namespace osd_cull::plan {
 namespace {
@@ -53,6 +57,16 @@ PatchExtraction uvTorus(int u, int v) {
       cage.faceUVs.insert(cage.faceUVs.end(),
                           {uv(i, j), uv(i + 1, j), uv(i + 1, j + 1), uv(i, j + 1)});
   return extractPatches(cage);
+}
+
+// The patches of a drawn-triangle bound pass on which the listed test would run: those
+// whose back-patch verdict is DrawnTriangles (the surface faces away, but a drawn triangle
+// may not; shaders/cull/cull_main.glsl).
+uint32_t listedTestRuns(std::span<const uint32_t> results) {
+  return uint32_t(std::count_if(results.begin(), results.end(), [](uint32_t r) {
+    return ((r >> shader::kResultShiftBackPatch) & 0xFFu) ==
+           uint32_t(bound::BackPatchVerdict::DrawnTriangles);
+  }));
 }
 
 }  // namespace
@@ -110,12 +124,12 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   // level's triangles): measured on a coarse sphere, against the bound kernel at each level.
   const PatchSet listedSphere = frame::bezierSphere({0, 0, 0}, 1.0, o.quick ? 6 : 10);
   frame::GpuPatchSet gpuListed(context, listedSphere);
-  const double nListed = listedSphere.patchCount();
   const std::vector<uint32_t> listedLevels =
       o.quick ? std::vector<uint32_t>{2, 8, 16} : std::vector<uint32_t>{1, 2, 4, 8, 16, 32};
   std::map<std::string,
            std::pair<std::unique_ptr<frame::CullPass>, std::unique_ptr<frame::CullPass>>>
-      listedPasses;  // bound, listed
+      listedPasses;                            // bound, listed
+  std::map<std::string, uint32_t> listedRuns;  // "method level": patches reaching the test
   passes["frustum"] = std::make_unique<frame::CullPass>(context, gpuMany, many,
                                                         frame::CullSettings{true, "", "", closed});
   for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch)) {
@@ -275,9 +289,13 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
     for (uint32_t level : listedLevels) {
       frame::TessellationOptions tess = render.tessellation;
       tess.uniformLevel = level;
-      for (auto& [name, pair] : listedPasses)
-        one["cull listed " + name + " " + std::to_string(level)].push_back(
-            pair.second->run(camera, tess) - pair.first->run(camera, tess));
+      for (auto& [name, pair] : listedPasses) {
+        const std::string key = name + " " + std::to_string(level);
+        const double listedMs = pair.second->run(camera, tess);
+        const double boundMs = pair.first->run(camera, tess);
+        one["cull listed " + key].push_back(listedMs - boundMs);
+        listedRuns[key] = listedTestRuns(pair.first->results());
+      }
     }
     const double paperCull = diagnostic.render(camera, {}).cullMs;
     one["hiz cull"].push_back(paperCull - frustum);
@@ -314,10 +332,16 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   c.cullMsPerPatch["hiz"] = m("hiz cull") / nMany;
   for (const auto& [name, pass] : surfacePasses)
     c.surfaceCullMsPerPatch[name] = m("cull surface " + name) / nMany;
+  // Per patch the listed test runs on: its cost on a mesh is this times the share of the
+  // mesh's patches that reach it (CullRates::listedRuns), which differs from mesh to mesh
+  // (on the smooth calibration sphere the bound culls nearly every back-facing patch; on a
+  // character a fifth of all patches reach the listed test).
   for (const auto& [name, pair] : listedPasses)
-    for (uint32_t level : listedLevels)
+    for (uint32_t level : listedLevels) {
+      const std::string key = name + " " + std::to_string(level);
       c.listedCullMsPerPatch[name].push_back(
-          {level, m("cull listed " + name + " " + std::to_string(level)) / nListed});
+          {level, m("cull listed " + key) / std::max(1.0, double(listedRuns[key]))});
+    }
   // A displaced kernel is the Hi-Z stage on its displaced bound: the bound's extra cost over
   // the frustum kernel plus the Hi-Z lookup.
   for (const auto& [name, pass] : displacedPasses)

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 // Hi-Z lookup ("hiz-tight MS"), a full-resolution Hi-Z build among the "hiz" sizes and the
 // displaced bounds passes ("bounds-method acon|con MS"). Older files are measured again.
 constexpr const char* kMagicPrefix = "osd_cull-calibration ";
-constexpr int kFormat = 5;
+constexpr int kFormat = 6;  // 6: the listed test per patch it runs on
 const std::string kMagic = kMagicPrefix + std::to_string(kFormat);
 
 // The format of a calibration file's first line; 0 when it is not one.

@@ -83,8 +83,9 @@ struct Calibration {
   /// papers' test, CullSettings::drawnTriangles off): CT per method, like cullMsPerPatch.
   std::map<std::string, double> surfaceCullMsPerPatch;
   /// The listed-triangle test (CullSettings::drawnEnumerate) per method: what it adds to the
-  /// method's drawn-triangle bound kernel, per patch, against the uniform tessellation level
-  /// (it lists the level's triangles), ascending levels.
+  /// method's drawn-triangle bound kernel, per patch it runs on (those the surface test
+  /// culls and the bound keeps), against the uniform tessellation level (it lists the
+  /// level's triangles), ascending levels.
   std::map<std::string, std::vector<std::pair<uint32_t, double>>> listedCullMsPerPatch;
   /// What the tight Hi-Z lookup (bound::HiZLookup::Tight: one level finer where the box
   /// still touches at most 2x2 texels) adds to the occlusion stage's CT over the paper's

@@ -56,7 +56,8 @@ double backDrawMsPerPatch(const Calibration& calibration, const CostCase& c) {
   return perPatch(calibration, c, calibration.backDrawMs(c.tess));
 }
 
-double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages, double tess) {
+double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages, double tess,
+                      const CullRates& rates) {
   double ct = 0.0;
   // A back-patch or occlusion stage's calibrated cost is what it adds to a frustum kernel,
   // so a kernel without the frustum stage still pays for the kernel itself.
@@ -70,10 +71,11 @@ double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages,
       ct += it->second;
     } else {
       ct += calibration.cullMs(stages.backPatch);
-      // The listed test runs after the bound, on the patches it keeps (§ "listed triangles"
-      // of docs/algorithms/drawn-triangles.md): its cost adds to the bound kernel's.
+      // The listed test runs after the bound, on the patches it keeps where the surface
+      // faces away (§ "listed triangles" of docs/algorithms/drawn-triangles.md): its cost
+      // per patch it runs on, times their share, adds to the bound kernel's.
       if (stages.accuracy == Accuracy::Listed)
-        ct += calibration.listedCullMs(stages.backPatch, tess);
+        ct += rates.listedRuns * calibration.listedCullMs(stages.backPatch, tess);
     }
   }
   if (!stages.occlusion.empty()) {
@@ -109,7 +111,7 @@ Prediction predict(const Calibration& calibration, const CostCase& c, const Stag
   p.fixedMs = calibration.submitMs;
   if (stages.any()) {
     // Zachmann: T = t + (1 - P)·R, with the factor-0 draws of the culled patches (§5).
-    p.cullMs = n * cullMsPerPatch(calibration, stages, c.tess) + calibration.cullDispatchMs;
+    p.cullMs = n * cullMsPerPatch(calibration, stages, c.tess, rates) + calibration.cullDispatchMs;
     p.drawMs = std::max(0.0, n * rt - facingAway * n * (rtBack - rt0) - hidden * n * (rt - rt0));
   } else {
     p.drawMs = n * rt;

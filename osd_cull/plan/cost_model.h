@@ -28,6 +28,9 @@ struct CullRates {
   double frustum = 0.0;
   double backPatch = 0.0;
   double occlusion = 0.0;
+  /// With the listed-triangle accuracy: the share of patches the listed test runs on (those
+  /// the surface test culls and the bound keeps), which its calibrated cost is per.
+  double listedRuns = 0.0;
 };
 
 /// \brief The accuracy of the back-patch test (docs/algorithms/drawn-triangles.md):
@@ -97,8 +100,10 @@ double drawMsPerPatch(const Calibration& calibration, const CostCase& c);
 double backDrawMsPerPatch(const Calibration& calibration, const CostCase& c);
 
 /// \brief CT of `stages` per patch at uniform level `tess` (the sum of the stages'
-/// calibrated costs; the back-patch stage's at its accuracy, the listed test's at `tess`).
-double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages, double tess);
+/// calibrated costs; the back-patch stage's at its accuracy, the listed test's at `tess`
+/// times the share of patches it runs on, `rates.listedRuns`).
+double cullMsPerPatch(const Calibration& calibration, const StageChoice& stages, double tess,
+                      const CullRates& rates);
 
 /// \brief T = t + (1 - P)·R (+ P·RT0) plus the fixed costs, for `stages` culling at
 /// `rates` (only the rates of stages that run count).

@@ -225,8 +225,16 @@ class Planner {
     std::map<std::string, uint64_t> lastRun;  // stage kind → last frame it ran
     std::set<std::string> measured;           // stage kinds observed at least once
     uint64_t lastFrame = 0;
-    double scale = 1.0;  // Plan::timeScale
+    // Plan::timeScale, learned apart for frames that cull and frames that do not: the
+    // calibration's draw and cull costs can be off by different factors for a given mesh
+    // (its screen coverage, its patch shapes), and only the two kinds of frames tell them
+    // apart. Until one kind is measured it takes the other's.
+    double culledScale = 1.0, unculledScale = 1.0;
+    bool culledMeasured = false, unculledMeasured = false;
+    std::optional<uint64_t> lastUnculled;     // frame the plan last culled nothing
+    std::optional<StageChoice> lastObserved;  // the stages of the last observed frame
   };
+  static double scaleFor(const State& state, bool culls);
   CostCase costCase(const PlanInput& input, const StageChoice& stages) const;
   bool offersOcclusion(const PlanInput& input) const;
   std::string occlusionKernel(const PlanInput& input) const;

@@ -96,7 +96,8 @@ void print(const plan::Calibration& c) {
     std::printf("\n");
   }
   for (const auto& [method, levels] : c.listedCullMsPerPatch) {
-    std::printf("listed-triangle test of %s on top of its bound (us/patch):", method.c_str());
+    std::printf("listed-triangle test of %s on top of its bound (us per patch it runs on):",
+                method.c_str());
     for (const auto& [level, ms] : levels) std::printf(" tess %u %.3f;", level, 1e3 * ms);
     std::printf("\n");
   }
