@@ -735,12 +735,13 @@ void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledF
   if (total == 0) return;
   State& s = states_[key];
   const double predicted = (plan.predicted.totalMs() - plan.predicted.updateMs) / plan.timeScale;
-  // A culling frame right after a change of stages is not timed into the scale: it is the
-  // first run of its passes (pipelines, descriptor sets and buffers first touched), which on
-  // lavapipe costs several frames' time. A frame without culling has no pass of its own.
+  // The first frame of a stage choice is not timed into the scale: it is the first run of
+  // its passes (pipelines, descriptor sets and buffers first touched), which on lavapipe
+  // costs several frames' time. A frame without culling has no pass of its own.
   const bool culls = plan.stages.any();
-  const bool warm = !culls || (s.lastObserved && *s.lastObserved == plan.stages);
-  s.lastObserved = plan.stages;
+  const bool warm =
+      !culls || std::find(s.observed.begin(), s.observed.end(), plan.stages) != s.observed.end();
+  if (!warm) s.observed.push_back(plan.stages);
   if (warm && measuredMs > 0.0 && predicted > 0.0 && std::isfinite(measuredMs)) {
     const double ratio = std::clamp(measuredMs / predicted, 0.05, 20.0);
     double& scale = culls ? s.culledScale : s.unculledScale;

@@ -231,8 +231,8 @@ class Planner {
     // apart. Until one kind is measured it takes the other's.
     double culledScale = 1.0, unculledScale = 1.0;
     bool culledMeasured = false, unculledMeasured = false;
-    std::optional<uint64_t> lastUnculled;     // frame the plan last culled nothing
-    std::optional<StageChoice> lastObserved;  // the stages of the last observed frame
+    std::optional<uint64_t> lastUnculled;  // frame the plan last culled nothing
+    std::vector<StageChoice> observed;     // the stage choices observed at least once
   };
   static double scaleFor(const State& state, bool culls);
   CostCase costCase(const PlanInput& input, const StageChoice& stages) const;
