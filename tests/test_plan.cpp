@@ -618,7 +618,9 @@ TEST(Plan, TheUnculledFrameIsMeasuredTooAndChosenWhereItIsCheaper) {
   Plan p;
   for (uint64_t f = 0; f < 12; ++f) {
     p = planner.plan("k", in, f);
-    if (f == 0) ASSERT_TRUE(p.culls()) << planTable({&p, 1});
+    if (f == 0) {
+      ASSERT_TRUE(p.culls()) << planTable({&p, 1});
+    }
     if (p.probe && !p.culls()) unculledProbes.push_back(f);
     // Culled frames take what the model says; the unculled frame a third of it.
     const double ms =

@@ -348,7 +348,8 @@ def agreement(best, plan):
         if runs.get("back-patch") != best["method"]:
             return "differ"
         if best["option"] == "listed":
-            return "agree on the method; the plan has no listed-triangle choice"
+            return ("agree on the method; the scene form keeps the drawn-triangle bound (one "
+                    "cull frame per view); the mesh form chooses it by cost")
         extra = f", the plan adds {runs['occlusion']}" if "occlusion" in runs else ""
         return "agree" + extra
     if best["displaced"]:
@@ -357,10 +358,13 @@ def agreement(best, plan):
         return "differ"
     notes = []
     full = best["option"].startswith("hiz-full")
-    if full != (plan.get("hi-z", {}).get("choice") == "full"):
+    tight = best["option"].endswith("tight")
+    choice = plan.get("hi-z", {}).get("choice", "")  # "half/paper", "full/tight", ...
+    if full != choice.startswith("full"):
         notes.append("Hi-Z resolution")
-    if best["option"].endswith("tight"):
-        notes.append("lookup: the plan has no tight-lookup choice")
+    if tight != choice.endswith("tight"):
+        notes.append("lookup (the scene form keeps one half-resolution pyramid with the "
+                     "paper's lookup per view; the mesh form chooses both by cost)")
     extra = f", the plan adds back-patch {runs['back-patch']}" if "back-patch" in runs else ""
     return ("agree on Hi-Z" + extra) if not notes else ("agree on Hi-Z, differ in " +
                                                         ", ".join(notes) + extra)
