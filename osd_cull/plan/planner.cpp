@@ -340,6 +340,12 @@ double Planner::scaleFor(const State& s, bool culls) {
   return s.unculledMeasured || !s.culledMeasured ? s.unculledScale : s.culledScale;
 }
 
+double Planner::predictedMs(const State& s, const PlanInput& input, const StageChoice& c,
+                            BoxInView box) const {
+  return scaleFor(s, c.any()) *
+         predict(calibration_, costCase(input, c), c, ratesFor(s, c, box)).totalMs();
+}
+
 Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t frameNumber) {
   State& s = states_[key];
   if (s.current && frameNumber < s.lastFrame)
@@ -351,10 +357,7 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   p.view = input.view;
   p.frame = frameNumber;
   p.box = boxInView(input.objectBounds, input.model, input.camera);
-  auto total = [&](const StageChoice& c) {
-    return scaleFor(s, c.any()) *
-           predict(calibration_, costCase(input, c), c, ratesFor(s, c, p.box)).totalMs();
-  };
+  auto total = [&](const StageChoice& c) { return predictedMs(s, input, c, p.box); };
   const std::vector<StageChoice> all = candidates(input);
   const StageChoice best = *std::min_element(
       all.begin(), all.end(),
@@ -448,10 +451,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
   const double rt = drawMsPerPatch(calibration_, base);
   const double rtBack = std::min(rt, backDrawMsPerPatch(calibration_, base));
   const double rt0 = options_.tessFactorZero ? calibration_.drawZeroMsPerPatch : 0.0;
-  auto total = [&](const StageChoice& c) {
-    return scaleFor(s, c.any()) *
-           predict(calibration_, costCase(input, c), c, ratesFor(s, c, p.box)).totalMs();
-  };
+  auto total = [&](const StageChoice& c) { return predictedMs(s, input, c, p.box); };
   const double now = total(p.stages);
   auto source = [&](const std::string& stage) {
     return s.rates.count(stage) ? "measured" : "prior";

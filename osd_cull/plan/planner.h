@@ -235,6 +235,9 @@ class Planner {
     std::vector<StageChoice> observed;     // the stage choices observed at least once
   };
   static double scaleFor(const State& state, bool culls);
+  /// The frame time of choice `c` predicted for `input`, in this key's measured time.
+  double predictedMs(const State& state, const PlanInput& input, const StageChoice& c,
+                     BoxInView box) const;
   CostCase costCase(const PlanInput& input, const StageChoice& stages) const;
   bool offersOcclusion(const PlanInput& input) const;
   std::string occlusionKernel(const PlanInput& input) const;
