@@ -48,26 +48,14 @@ struct Options {
   std::string csvDir;
 };
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--only")
-      o.only = value();
-    else if (a == "--size")
-      o.size = static_cast<uint32_t>(std::stoul(value()));
-    else if (a == "--frames")
-      o.frames = std::stoi(value());
-    else if (a == "--csv")
-      o.csvDir = value();
-    else
-      throw Error("unknown option '" + a + "'");
-  }
-  return o;
+// The options; false after --help.
+bool parse(int argc, char** argv, Options& o) {
+  return bench::CommandLine("bench-animation", "bench_animation.cpp")
+      .text("--only", o.only)
+      .number("--size", o.size, 1)
+      .integer("--frames", o.frames, 1)
+      .text("--csv", o.csvDir)
+      .parse(argc, argv);
 }
 
 std::filesystem::path dataDir() {
@@ -377,7 +365,8 @@ void rates(vulkan::Context& context, const Options& o) {
 int main(int argc, char** argv) {
   using namespace osd_cull;
   try {
-    const Options o = parse(argc, argv);
+    Options o;
+    if (!parse(argc, argv, o)) return 0;
     vulkan::Context context;
     std::printf("device: %s\n\n", context.info().name.c_str());
     auto want = [&](char c) { return o.only.find(c) != std::string::npos; };

@@ -30,7 +30,6 @@ using namespace osd_cull;
 using bound::DisplacedBox;
 using bound::DisplacedExtension;
 
-using osd_cull::bench::numberList;
 
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
@@ -43,23 +42,14 @@ int main(int argc, char** argv) try {
   std::vector<uint32_t> levels = {2, 3, 4};
   uint32_t views = 10, repeats = 3;
   double scale = 0.64;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) throw Error(a + " needs a value");
-    const std::string v = argv[++i];
-    if (a == "--mesh")
-      mesh = v;
-    else if (a == "--levels")
-      levels = numberList(v);
-    else if (a == "--views")
-      views = std::max(1u, numberList(v).at(0));
-    else if (a == "--repeats")
-      repeats = std::max(1u, numberList(v).at(0));
-    else if (a == "--scale")
-      scale = std::stod(v);
-    else
-      throw Error("unknown option " + a + " (see the top of bench_displaced.cpp)");
-  }
+  if (!bench::CommandLine("bench-displaced", "bench_displaced.cpp")
+           .text("--mesh", mesh)
+           .numbers("--levels", levels)
+           .number("--views", views, 1)
+           .number("--repeats", repeats, 1)
+           .real("--scale", scale, 0.0)
+           .parse(argc, argv))
+    return 0;
   const vulkan::ContextOptions contextOptions;
   vulkan::Context context(contextOptions);
   const bound::DisplacementMap map("procedural", 256, 256, scene::proceduralDisplacementTexels(256),

@@ -20,7 +20,7 @@
 #include "adapters/load_mesh.h"
 #include "bench_support.h"
 #include "osd_cull/error.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "bench-draw: %s not found, using a torus of BigGuy's size\n",
                    o.mesh.c_str());
       // About BigGuy's patch count and Gregory share (5554 patches, 14% Gregory).
-      set = frame::convertToGregory(frame::bsplineTorus({o.nu, o.nv, 1.0, 0.4, {0, 0, 0}, -1}),
+      set = scene::convertToGregory(scene::bsplineTorus({o.nu, o.nv, 1.0, 0.4, {0, 0, 0}, -1}),
                                     [](uint32_t p) { return p % 7 == 3; });
       up = {0, 0, 1};
       from = {0.4, -1.0, 0.8};

@@ -13,6 +13,7 @@
 // Usage: bench-extraction [--mesh FILE] [--levels MAX] [--repeats N] [--write FILE.md]
 // The table goes to stdout (markdown), progress to stderr.
 #include "adapters/load_mesh.h"
+#include "bench_support.h"
 #include "osd_cull/error.h"
 #include "osd_cull/patch/bspline_bezier.h"
 #include "osd_cull/patch/extract_patches.h"
@@ -203,26 +204,20 @@ int main(int argc, char** argv) {
   std::filesystem::path mesh = dataDir / "characters" / "bigguy.obj";
   int maxLevel = 4, repeats = 30;
   std::string writePath;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw Error("bench-extraction: " + arg + " needs a value");
-      return argv[++i];
-    };
-    if (arg == "--mesh")
-      mesh = next();
-    else if (arg == "--levels")
-      maxLevel = std::stoi(next());
-    else if (arg == "--repeats")
-      repeats = std::max(1, std::stoi(next()));
-    else if (arg == "--write")
-      writePath = next();
-    else {
-      std::cerr << "usage: bench-extraction [--mesh FILE] [--levels MAX] [--repeats N] [--write "
-                   "FILE.md]\n";
-      return 2;
-    }
+  std::string meshFile = mesh.string();
+  try {
+    if (!bench::CommandLine("bench-extraction", "bench_extraction.cpp")
+             .text("--mesh", meshFile)
+             .integer("--levels", maxLevel, 0)
+             .integer("--repeats", repeats, 1)
+             .text("--write", writePath)
+             .parse(argc, argv))
+      return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "bench-extraction: " << e.what() << "\n";
+    return 2;
   }
+  mesh = meshFile;
 
   try {
     const CageMesh cage = adapters::loadCage(mesh);

@@ -26,7 +26,7 @@
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"

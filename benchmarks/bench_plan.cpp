@@ -26,7 +26,7 @@
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
-#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/measure/calibrate.h"
 #include "osd_cull/plan/planner.h"
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/scene/loaded_scene.h"
@@ -355,13 +355,13 @@ int main(int argc, char** argv) {
     vulkan::Context context(bench::contextOptions(o.device));
     plan::Calibration calibration;
     try {
-      calibration = plan::deviceCalibration(context, o.calibration);
+      calibration = measure::deviceCalibration(context, o.calibration);
     } catch (const Error& e) {
       if (!o.calibration.empty()) throw;
       bench::progress(std::string(e.what()) + "; measuring one (--quick)");
-      plan::CalibrateOptions co;
+      measure::CalibrateOptions co;
       co.quick = true;
-      calibration = plan::calibrate(context, co);
+      calibration = measure::calibrate(context, co);
       plan::storeCalibration(calibration, plan::calibrationCacheFile(calibration.key));
     }
     plan::PlannerOptions po;

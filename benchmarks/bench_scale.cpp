@@ -67,33 +67,25 @@ struct Options {
   std::string device;
 };
 
-// Options as flag -> what to do with its value (--matrix takes none).
-Options parse(int argc, char** argv) {
-  Options o;
-  auto first = [](const std::string& v) { return bench::numberList(v).at(0); };
-  const std::map<std::string, std::function<void(const std::string&)>> valued = {
-      {"--grids", [&](const std::string& v) { o.grids = bench::numberList(v); }},
-      {"--level", [&](const std::string& v) { o.level = static_cast<int>(first(v)); }},
-      {"--method", [&](const std::string& v) { o.method = v; }},
-      {"--views", [&](const std::string& v) { o.views = std::max(1u, first(v)); }},
-      {"--repeats", [&](const std::string& v) { o.repeats = std::max(1u, first(v)); }},
-      {"--tess", [&](const std::string& v) { o.tess = first(v); }},
-      {"--width", [&](const std::string& v) { o.width = first(v); }},
-      {"--height", [&](const std::string& v) { o.height = first(v); }},
-      {"--device", [&](const std::string& v) { o.device = v; }}};
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--matrix" || a == "--setup-only" || a == "--cones") {
-      (a == "--matrix" ? o.matrix : a == "--cones" ? o.cones : o.setupOnly) = true;
-      continue;
-    }
-    const auto it = valued.find(a);
-    if (it == valued.end())
-      throw Error("unknown option " + a + " (see the comment at the top of bench_scale.cpp)");
-    if (i + 1 >= argc) throw Error(a + " needs a value");
-    it->second(argv[++i]);
-  }
-  return o;
+// The options (the comment at the top); false after --help.
+bool parse(int argc, char** argv, Options& o) {
+  int level = o.level;
+  const bool run = bench::CommandLine("bench-scale", "bench_scale.cpp")
+                       .numbers("--grids", o.grids)
+                       .integer("--level", level, 0)
+                       .text("--method", o.method)
+                       .number("--views", o.views, 1)
+                       .number("--repeats", o.repeats, 1)
+                       .number("--tess", o.tess, 1)
+                       .number("--width", o.width, 1)
+                       .number("--height", o.height, 1)
+                       .text("--device", o.device)
+                       .flag("--matrix", o.matrix)
+                       .flag("--setup-only", o.setupOnly)
+                       .flag("--cones", o.cones)
+                       .parse(argc, argv);
+  o.level = level;
+  return run;
 }
 
 // A field of /proc/self/status in bytes (VmRSS: now, VmHWM: peak).
@@ -236,7 +228,8 @@ void runGrid(const Options& o, uint32_t grid) {
 
 int main(int argc, char** argv) {
   try {
-    const Options o = parse(argc, argv);
+    Options o;
+    if (!parse(argc, argv, o)) return 0;
     std::printf(
         "bench-scale: torus grids at isolation level %d, frustum + %s, %u views x %u repeats, "
         "draw at uniform tess %u in %ux%u, matrix %s\n\n",

@@ -27,10 +27,10 @@
 #include "adapters/scene_file.h"
 #include "bench_support.h"
 #include "osd_cull/error.h"
-#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/measure/calibrate.h"
 #include "osd_cull/plan/planner.h"
 #include "osd_cull/scene/default_scene.h"
-#include "osd_cull/scene/scene_player.h"
+#include "osd_cull/session/scene_player.h"
 #include "osd_cull/vk/context.h"
 
 #include <cstdio>
@@ -103,7 +103,7 @@ int run(const Args& a) {
   options.render.tessellation.uniformLevel = a.tess;
   options.render.cullBackFaces = true;
   options.cull.backPatch = a.backPatch;
-  scene::ScenePlayer player(
+  session::ScenePlayer player(
       context, s, options, a.gpuPoints ? frame::PointUpdatePath::Gpu : frame::PointUpdatePath::Cpu);
   std::printf(
       "scene: %s, %zu instances, %u patches, %zu views, %u frames, tess %u, %s, %s "
@@ -114,13 +114,13 @@ int run(const Args& a) {
   for (const std::string& line : player.describe()) std::printf("  %s\n", line.c_str());
   // --plan: the same scene played by a planned player, like for like.
   std::unique_ptr<plan::Planner> planner;
-  std::unique_ptr<scene::ScenePlayer> planned;
+  std::unique_ptr<session::ScenePlayer> planned;
   if (a.plan) {
-    const plan::Calibration calibration = plan::deviceCalibration(context, a.calibration);
+    const plan::Calibration calibration = measure::deviceCalibration(context, a.calibration);
     std::printf("plan: calibration of %s%s\n", calibration.key.device.c_str(),
                 calibration.quick ? " (quick)" : "");
     planner = std::make_unique<plan::Planner>(calibration);
-    planned = std::make_unique<scene::ScenePlayer>(
+    planned = std::make_unique<session::ScenePlayer>(
         context, s, options,
         a.gpuPoints ? frame::PointUpdatePath::Gpu : frame::PointUpdatePath::Cpu, planner.get());
   }
@@ -152,9 +152,9 @@ int run(const Args& a) {
               "lost", "differing", "TES ratio", "culled ms", "plain ms");
   for (uint32_t f = 0; f < a.frames; ++f) {
     // The planned and the all-stages frame alternate which runs first.
-    std::vector<scene::ViewFrame> plannedViews;
+    std::vector<session::ViewFrame> plannedViews;
     if (planned && f % 2 == 0) plannedViews = planned->render(f);
-    const std::vector<scene::ViewFrame> views = player.render(f);
+    const std::vector<session::ViewFrame> views = player.render(f);
     if (planned && f % 2 == 1) plannedViews = planned->render(f);
     bool failed = false;
     for (size_t v = 0; v < plannedViews.size(); ++v) {
@@ -171,7 +171,7 @@ int run(const Args& a) {
     }
     for (size_t v = 0; v < views.size(); ++v) {
       // Each culled frame is followed by its unculled draw: the two are interleaved.
-      const scene::UnculledComparison u = player.compareWithUnculled(v, *plain[v]);
+      const session::UnculledComparison u = player.compareWithUnculled(v, *plain[v]);
       const frame::ItemComparison& c = u.items;
       const frame::CullFrameStats& st = views[v].stats;
       const double differing = c.differingShare();
@@ -227,7 +227,7 @@ int run(const Args& a) {
         std::printf("planned %s / %s: %s\n", s.description.views[v].name.c_str(),
                     s.description.instances[i].name.c_str(), line.c_str());
       }
-    for (const scene::MeshWork& w : planned->work())
+    for (const session::MeshWork& w : planned->work())
       std::printf("planned mesh '%s': %s, %llu point updates, %llu bounds dispatches\n",
                   w.mesh.c_str(), w.deforms ? "deforms" : "static",
                   static_cast<unsigned long long>(w.pointUpdates),
@@ -236,7 +236,7 @@ int run(const Args& a) {
       std::printf("view %s: %zu CullFrame(s) built for the plan's choices\n",
                   s.description.views[v].name.c_str(), planned->cullFrameCount(v));
   }
-  for (const scene::MeshWork& w : player.work())
+  for (const session::MeshWork& w : player.work())
     std::printf("mesh '%s': %s, %llu point updates, %llu bounds dispatches\n", w.mesh.c_str(),
                 w.deforms ? "deforms" : "static", static_cast<unsigned long long>(w.pointUpdates),
                 static_cast<unsigned long long>(w.boundsDispatches));

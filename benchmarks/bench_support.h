@@ -11,6 +11,8 @@
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/vk/context.h"
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -19,6 +21,7 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -52,131 +55,104 @@ inline std::vector<std::string> nameList(const std::string& text) {
   return out;
 }
 
-/// \brief A benchmark's command line: options are declared with the variable each one sets
-/// (its value before parse() is the default --help shows), then parse() reads argv.
+/// \brief A benchmark's command line, on CLI11 (as the osd-cull program): options are
+/// declared with the variable each one sets (its value before parse() is the default --help
+/// shows), then parse() reads argv. A value out of its range is refused with the option's
+/// name, never clamped.
 class CommandLine {
  public:
   /// \brief `program` ("bench-draw") and `source` ("bench_draw.cpp", whose top comment
   /// describes the options) are named in --help and in errors.
   CommandLine(std::string program, std::string source)
-      : program_(std::move(program)), source_(std::move(source)) {}
+      : app_(std::make_shared<CLI::App>(
+            "What the options do and what " + program + " prints: the comment at the top of "
+            "benchmarks/" + source + ".",
+            program)),
+        source_(std::move(source)) {
+    app_->option_defaults()->always_capture_default();
+    app_->get_formatter()->column_width(36);
+  }
 
   /// \brief `--name TEXT`.
   CommandLine& text(const std::string& name, std::string& value) {
-    return add(
-        name, "TEXT", [&value](const std::string& v) { value = v; }, [&value] { return value; });
+    app_->add_option(name, value)->type_name("TEXT");
+    return *this;
   }
-  /// \brief `--name N`, a whole number; values below `atLeast` become `atLeast`.
+  /// \brief `--name N`, a whole number of at least `atLeast`.
   CommandLine& number(const std::string& name, uint32_t& value, uint32_t atLeast = 0) {
-    return add(
-        name, "N",
-        [&value, atLeast](const std::string& v) {
-          value = std::max(atLeast, static_cast<uint32_t>(std::stoul(v)));
-        },
-        [&value] { return std::to_string(value); });
+    app_->add_option(name, value)->type_name("N")->check(
+        CLI::Range(atLeast, std::numeric_limits<uint32_t>::max()));
+    return *this;
   }
-  /// \brief `--name X`, a real number; values below `atLeast` become `atLeast`.
+  /// \brief `--name N`, a signed whole number of at least `atLeast`.
+  CommandLine& integer(const std::string& name, int& value, int atLeast) {
+    app_->add_option(name, value)->type_name("N")->check(
+        CLI::Range(atLeast, std::numeric_limits<int>::max()));
+    return *this;
+  }
+  /// \brief `--name X`, a real number of at least `atLeast`.
   CommandLine& real(const std::string& name, double& value, double atLeast) {
-    return add(
-        name, "X",
-        [&value, atLeast](const std::string& v) { value = std::max(atLeast, std::stod(v)); },
-        [&value] {
-          std::ostringstream out;
-          out << value;
-          return out.str();
-        });
+    app_->add_option(name, value)->type_name("X")->check(
+        CLI::Range(atLeast, std::numeric_limits<double>::max()));
+    return *this;
   }
-  /// \brief `--name N,N,...` (numberList()).
+  /// \brief `--name N,N,...`.
   CommandLine& numbers(const std::string& name, std::vector<uint32_t>& values) {
-    return add(
-        name, "N,N,...", [&values](const std::string& v) { values = numberList(v); },
-        [&values] {
-          std::string out;
-          for (uint32_t n : values) out += (out.empty() ? "" : ",") + std::to_string(n);
-          return out;
-        });
+    app_->add_option(name, values)->type_name("N,N,...")->delimiter(',');
+    return *this;
   }
-  /// \brief `--name A,B,...` (nameList()).
+  /// \brief `--name A,B,...`.
   CommandLine& names(const std::string& name, std::vector<std::string>& values) {
-    return add(
-        name, "A,B,...", [&values](const std::string& v) { values = nameList(v); },
-        [&values] {
-          std::string out;
-          for (const std::string& n : values) out += (out.empty() ? "" : ",") + n;
-          return out;
-        });
+    app_->add_option(name, values)->type_name("A,B,...")->delimiter(',');
+    return *this;
   }
   /// \brief The options every Vulkan benchmark has: `--width N`, `--height N` (the image),
   /// `--repeats N` (at least 1) and `--device X` (vulkan::ContextOptions::device).
   CommandLine& imageAndDevice(uint32_t& width, uint32_t& height, uint32_t& repeats,
                               std::string& device) {
-    return number("--width", width)
-        .number("--height", height)
+    return number("--width", width, 1)
+        .number("--height", height, 1)
         .number("--repeats", repeats, 1)
         .text("--device", device);
   }
+  /// \brief A positional argument (no option name), e.g. a mesh file.
+  CommandLine& positional(const std::string& name, std::string& value) {
+    app_->add_option(name, value)->type_name("FILE");
+    return *this;
+  }
   /// \brief `--name` without a value: sets `value`.
   CommandLine& flag(const std::string& name, bool& value) {
-    options_.push_back({name, "", [&value](const std::string&) { value = true; },
-                        [&value] { return std::string(value ? "on" : "off"); }});
+    app_->add_flag(name, value);
     return *this;
   }
 
   /// \brief Reads the options of argv into their variables. Returns false after printing
   /// the options for --help (or -h): the caller exits with 0.
-  /// \throws osd_cull::Error "OPTION needs a value" or "unknown option OPTION (see the
-  /// comment at the top of SOURCE)"; std::invalid_argument or std::out_of_range for a
-  /// value that is not a number.
+  /// \throws osd_cull::Error naming the option ("--frames: Value 0 not in range ...",
+  /// "unknown option --x (see the comment at the top of SOURCE)").
   bool parse(int argc, char** argv) const {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      if (a == "--help" || a == "-h") {
-        std::printf("%s", help().c_str());
-        return false;
-      }
-      auto it = std::find_if(options_.begin(), options_.end(),
-                             [&](const Option& o) { return o.name == a; });
-      if (it == options_.end())
-        throw Error("unknown option " + a + " (see the comment at the top of " + source_ + ")");
-      if (it->valueName.empty()) {
-        it->set("");
-        continue;
-      }
-      if (i + 1 >= argc) throw Error(a + " needs a value");
-      it->set(argv[++i]);
+    try {
+      app_->parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+      std::printf("%s", help().c_str());
+      return false;
+    } catch (const CLI::ExtrasError& e) {
+      throw Error(std::string(e.what()) + " (see the comment at the top of " + source_ + ")");
+    } catch (const CLI::ParseError& e) {
+      throw Error(e.what());
     }
     return true;
   }
 
-  /// \brief "usage: PROGRAM [options]", one line an option with its default, and where the
-  /// options are described.
-  std::string help() const {
-    std::string out = "usage: " + program_ + " [options]\n\noptions (default in brackets):\n";
-    for (const Option& o : options_) {
-      std::string line = "  " + o.name + (o.valueName.empty() ? "" : " " + o.valueName);
-      line.resize(std::max<size_t>(line.size() + 1, 32), ' ');
-      out += line + "[" + o.current() + "]\n";
-    }
-    out += "  --help                        this text\n\nWhat they do and what " + program_ +
-           " prints: the comment at the top of benchmarks/" + source_ + ".\n";
-    return out;
-  }
+  /// \brief The usage line, one line an option with its default, and where the options
+  /// are described.
+  std::string help() const { return app_->help(); }
 
  private:
-  struct Option {
-    std::string name, valueName;
-    std::function<void(const std::string&)> set;
-    std::function<std::string()> current;
-  };
-  CommandLine& add(const std::string& name, const std::string& valueName,
-                   std::function<void(const std::string&)> set,
-                   std::function<std::string()> current) {
-    options_.push_back({name, valueName, std::move(set), std::move(current)});
-    return *this;
-  }
-
-  std::string program_, source_;
-  std::vector<Option> options_;
+  // Shared: a CommandLine returned from a function that declares the options is a copy
+  // of the chain. parse() is const; CLI11 records what it parsed.
+  std::shared_ptr<CLI::App> app_;
+  std::string source_;
 };
 
 /// \brief A benchmark's main(): the exit code of `body`, or 1 after "PROGRAM: message" on

@@ -169,19 +169,15 @@ int main(int argc, char** argv) {
     std::filesystem::path mesh = defaultMesh();
     int frames = 50;
     std::vector<int> levels = {1, 2, 3};
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg = argv[i];
-      if (arg == "--frames" && i + 1 < argc)
-        frames = std::max(1, std::stoi(argv[++i]));
-      else if (arg == "--levels" && i + 1 < argc)
-        levels = parseLevels(argv[++i]);
-      else if (!arg.empty() && arg[0] != '-')
-        mesh = arg;
-      else {
-        std::fprintf(stderr, "usage: bench-update [MESH.obj] [--frames N] [--levels 1,2,3]\n");
-        return 2;
-      }
-    }
+    std::string meshFile = mesh.string(), levelList = "1,2,3";
+    if (!osd_cull::bench::CommandLine("bench-update", "bench_update.cpp")
+             .positional("mesh", meshFile)
+             .integer("--frames", frames, 1)
+             .text("--levels", levelList)
+             .parse(argc, argv))
+      return 0;
+    mesh = meshFile;
+    levels = parseLevels(levelList);
     if (!std::filesystem::exists(mesh)) {
       std::fprintf(stderr, "bench-update: %s not found (set OSD_CULL_DATA_DIR or pass a mesh)\n",
                    mesh.string().c_str());

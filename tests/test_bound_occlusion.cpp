@@ -1,7 +1,7 @@
 // Hi-Z pyramid and occlusion test, double-precision references (Niessner & Loop §4.1, §4.1.1).
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/error.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "support/vk_test_images.h"
 #include "test_bound_fixtures.h"
 
@@ -20,7 +20,7 @@ double depthAt(double z) { return (-z - 0.5) / 10.0; }
 
 // A flat patch covering pixels [x, x + w) x [y, y + h) at world depth z.
 std::array<glm::dvec3, 16> square(double x, double y, double w, double h, double z) {
-  return frame::flatBezierPatch({x, -(y + h), z}, {w, 0, 0}, {0, h, 0});
+  return scene::flatBezierPatch({x, -(y + h), z}, {w, 0, 0}, {0, h, 0});
 }
 
 std::vector<float> constantDepth(uint32_t w, uint32_t h, float d) {
@@ -182,13 +182,13 @@ TEST(BoundOcclusion, PointsBehindTheEyeOrOffScreenOrNonFiniteAreNeverTested) {
   const HiZPyramid p = buildHiZPyramid(constantDepth(w, h, 0.0f), w, h, false);  // all near
   const glm::dmat4 persp = glm::perspective(glm::radians(90.0), 1.0, 0.1, 100.0);
   // A patch crossing the eye plane z = 0 (points with w <= 0).
-  const auto crossing = frame::flatBezierPatch({-1, -1, -3}, {2, 0, 0}, {0, 0, 4});
+  const auto crossing = scene::flatBezierPatch({-1, -1, -3}, {2, 0, 0}, {0, 0, 4});
   const OcclusionResult r = hizOcclusionTest(crossing, persp, p);
   EXPECT_FALSE(r.tested);
   EXPECT_FALSE(r.culled);
   // Entirely behind the eye.
   EXPECT_FALSE(
-      hizOcclusionTest(frame::flatBezierPatch({-1, -1, 3}, {2, 0, 0}, {0, 2, 0}), persp, p).tested);
+      hizOcclusionTest(scene::flatBezierPatch({-1, -1, 3}, {2, 0, 0}, {0, 2, 0}), persp, p).tested);
   // Off screen to the right (a frustum cull, not an occlusion decision).
   const glm::dmat4 vp = osd_cull::test::pixelCamera(w, h).viewProjection();
   EXPECT_FALSE(hizOcclusionTest(square(40, 4, 8, 8, -5), vp, p).tested);
@@ -207,7 +207,7 @@ TEST(BoundOcclusion, PatchCrossingTheNearPlaneIsNotCulled) {
   const HiZPyramid p = buildHiZPyramid(constantDepth(w, h, 0.0f), w, h, false);
   const glm::dmat4 persp = glm::perspective(glm::radians(90.0), 1.0, 0.1, 100.0);
   // From z = -0.05 (in front of the near plane, w > 0) to z = -2.
-  const auto crossing = frame::flatBezierPatch({-0.5, -0.5, -0.05}, {1, 0, 0}, {0, 0, -2});
+  const auto crossing = scene::flatBezierPatch({-0.5, -0.5, -0.05}, {1, 0, 0}, {0, 0, -2});
   const OcclusionResult r = hizOcclusionTest(crossing, persp, p);
   EXPECT_TRUE(r.tested);
   EXPECT_LT(r.nearestDepth, 0.0);
@@ -236,7 +236,7 @@ TEST(BoundOcclusion, CulledPatchesHaveNoPixelNearerThanTheDepthImage) {
                     glm::dvec3(0, 1, 0));
     for (int k = 0; k < 300; ++k) {
       test::Bezier b = test::transformed(
-          frame::flatBezierPatch({-0.5, -0.5, 0}, {1, 0, 0}, {0, 1, 0}), rng, rng.uniform(0.1, 2));
+          scene::flatBezierPatch({-0.5, -0.5, 0}, {1, 0, 0}, {0, 1, 0}), rng, rng.uniform(0.1, 2));
       for (auto& q : b) q += glm::dvec3(0, 0, rng.uniform(-12, 2));
       const OcclusionResult r =
           hizOcclusionTest(b, vp, p, k % 2 ? HiZLookup::Tight : HiZLookup::Paper);

@@ -3,7 +3,7 @@
 // bad input, and no work for a static mesh; the displaced output (issue 11) the same way.
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/bounds_pass.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/scene/cage_animation.h"
@@ -30,7 +30,7 @@ using bound::BackPatchMethod;
 // A sphere of Bézier patches (every fifth a Gregory patch), its points moved by a twist, a
 // bend and per-point noise: many differently shaped patches, some with wide cones.
 PatchSet randomDeformedPatches(uint32_t seed, double noise, const glm::dvec3& offset) {
-  PatchSet set = frame::convertToGregory(frame::bezierSphere({0.0, 0.0, 0.0}, 1.0, 8),
+  PatchSet set = scene::convertToGregory(scene::bezierSphere({0.0, 0.0, 0.0}, 1.0, 8),
                                          [](uint32_t p) { return p % 5 == 2; });
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);

@@ -1,6 +1,6 @@
 // `osd-cull render --cull occlusion`: the two-pass frame from the command line, with the
 // per-frame report, JSON statistics, the status debug view and the pyramid levels.
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 #include "support/run_command.h"
 #include "support/test_data.h"
 
@@ -40,11 +40,11 @@ TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyr
     char name[32];
     std::snprintf(name, sizeof(name), "hiz_level_%02d.png", l);
     ASSERT_TRUE(fs::exists(dir / "hiz" / name)) << name;
-    EXPECT_EQ(frame::readPng(dir / "hiz" / name).width, 64u >> l);
+    EXPECT_EQ(adapters::readPng(dir / "hiz" / name).width, 64u >> l);
   }
   EXPECT_FALSE(fs::exists(dir / "hiz" / "hiz_level_07.png"));
   for (const char* f : {"s.png", "s_status.png", "s_status_side.png"})
-    EXPECT_EQ(frame::readPng(dir / f).width, 120u) << f;
+    EXPECT_EQ(adapters::readPng(dir / f).width, 120u) << f;
   std::ifstream in(dir / "s.json");
   const nlohmann::json doc = nlohmann::json::parse(in);
   ASSERT_EQ(doc["frames"].size(), 3u);

@@ -3,7 +3,7 @@
 // and the command-line front ends (`osd-cull render --cull`, `osd-cull verify`).
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/scene/default_scene.h"
 #include "support/run_command.h"
 #include "support/vk_test_context.h"
@@ -65,7 +65,7 @@ TEST_F(CullDrawTest, CulledFrameDrawsTheSameImageWithFewerTessellatedVertices) {
 TEST_F(CullDrawTest, IndirectDrawsOfSurvivorsStayWithinTheBatchLimitsAtHighLevels) {
   // 864 patches at level 24 (transition bound (48+1)^2 vertices): lavapipe would drop runs
   // of patches from a draw of more than 27 of them (shared/PLATFORM.md).
-  const PatchSet set = frame::bezierSphere({0, 0, 0}, 1.0, 12);
+  const PatchSet set = scene::bezierSphere({0, 0, 0}, 1.0, 12);
   frame::GpuPatchSet gpu(context(), set);
   frame::CullSettings settings;  // frustum only: every patch of the sphere survives
   frame::CullPass pass(context(), gpu, set, settings);
@@ -85,7 +85,7 @@ TEST_F(CullDrawTest, IndirectDrawsOfSurvivorsStayWithinTheBatchLimitsAtHighLevel
 }
 
 TEST_F(CullDrawTest, DrawsNeedTheTessellationTheCommandsWereWrittenFor) {
-  const PatchSet set = frame::bezierSphere({0, 0, 0}, 1.0, 6);
+  const PatchSet set = scene::bezierSphere({0, 0, 0}, 1.0, 6);
   frame::GpuPatchSet gpu(context(), set);
   frame::CullPass pass(context(), gpu, set, {});
   frame::Renderer renderer(context());

@@ -4,7 +4,7 @@
 // camera inside the scene, with all cull stages in one kernel, for several meshes and
 // several views sharing them.
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/scene/default_scene.h"
 #include "support/cull_test_meshes.h"
@@ -359,7 +359,7 @@ TEST_F(CullFrameTest, TwoViewsShareTheMeshesWithTheirOwnStatus) {
 TEST_F(CullFrameTest, SeveralMeshesEachWithItsOwnStatusAndItemRange) {
   // The built-in scene and a torus patch set in front of it, as two meshes of one frame;
   // item values are itemBase(m) + p + 1.
-  const PatchSet torus = frame::translated(frame::bsplineTorus({10, 6, 1.2, 0.5, {0, 0, 0}, -1}),
+  const PatchSet torus = scene::translated(scene::bsplineTorus({10, 6, 1.2, 0.5, {0, 0, 0}, -1}),
                                            bounds_.center() + glm::dvec3(0, -4.0, 0));
   frame::GpuPatchSet torusGpu(context(), torus);
   const uint32_t w = 160, h = 120;

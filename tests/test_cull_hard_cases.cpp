@@ -9,7 +9,7 @@
 #include "osd_cull/bound/tangent_plane.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/verify/cull_verification.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/view_sets.h"
 #include "support/cull_test_meshes.h"
 #include "support/test_data.h"
@@ -162,9 +162,9 @@ TEST_F(CullHardCasesTest, CameraInsideTheBoundingBoxCloseToTheSurface) {
 // Near planes through the middle of the object: patches crossing it must be kept, patches
 // wholly in front of it culled by plane Near.
 TEST_F(CullHardCasesTest, PatchesCrossingTheNearPlaneAreKept) {
-  const PatchSet set = frame::concatenate(
-      frame::bezierSphere({0, 0, 0}, 1.0, 6),
-      frame::convertToGregory(frame::bsplineTorus({12, 8, 1.6, 0.3, {0, 0, 0}, -1}),
+  const PatchSet set = scene::concatenate(
+      scene::bezierSphere({0, 0, 0}, 1.0, 6),
+      scene::convertToGregory(scene::bsplineTorus({12, 8, 1.6, 0.3, {0, 0, 0}, -1}),
                               [](uint32_t p) { return p % 3 == 0; }));
   frame::VerifyOptions options;
   options.tessellation.uniformLevel = 4;
@@ -208,9 +208,9 @@ TEST_F(CullHardCasesTest, PatchesCrossingTheNearPlaneAreKept) {
 // The same views of the same shapes at scales 1e-4 and 1e5: every check holds and the
 // decisions stay the same (up to fp32 rounding of the scaled coordinates).
 TEST_F(CullHardCasesTest, CoordinatesScaledBy1eMinus4And1e5KeepDecisions) {
-  const PatchSet unit = frame::concatenate(
-      frame::translated(frame::bezierSphere({0, 0, 0}, 1.0, 4), {0.3, -0.2, 0.1}),
-      frame::convertToGregory(frame::bsplineTorus({10, 6, 1.7, 0.35, {0, 0, 0.2}, 3}),
+  const PatchSet unit = scene::concatenate(
+      scene::translated(scene::bezierSphere({0, 0, 0}, 1.0, 4), {0.3, -0.2, 0.1}),
+      scene::convertToGregory(scene::bsplineTorus({10, 6, 1.7, 0.35, {0, 0, 0.2}, 3}),
                               [](uint32_t p) { return p % 4 == 1; }));
   std::vector<uint64_t> culledAtScale;
   for (double scale : {1.0, 1e-4, 1e5}) {

@@ -4,7 +4,7 @@
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
@@ -32,8 +32,8 @@ const bound::BackPatchValidity kClosed{true, "closed test surface"};
 
 // A closed sphere of Bézier patches, some turned into (equal-surface) Gregory patches.
 PatchSet sphereWithGregory() {
-  PatchSet s = frame::bezierSphere({0.2, -0.1, 0.3}, 1.5, 3);
-  return frame::convertToGregory(s, [](uint32_t p) { return p % 7 == 3; });
+  PatchSet s = scene::bezierSphere({0.2, -0.1, 0.3}, 1.5, 3);
+  return scene::convertToGregory(s, [](uint32_t p) { return p % 7 == 3; });
 }
 
 CullSettings backPatchOnly(const std::string& method) {
@@ -56,7 +56,7 @@ std::map<std::string, uint64_t> expectSubsetOfReference(vulkan::Context& context
                                                         bool enumerate = false,
                                                         uint32_t viewCount = 12) {
   const PatchSet set = drawnTriangles
-                           ? frame::convertToGregory(frame::bezierSphere({0.2, -0.1, 0.3}, 1.5, 8),
+                           ? scene::convertToGregory(scene::bezierSphere({0.2, -0.1, 0.3}, 1.5, 8),
                                                      [](uint32_t p) { return p % 7 == 3; })
                            : sphereWithGregory();
   frame::GpuPatchSet gpu(context, set);
@@ -151,8 +151,8 @@ TEST_F(CullKernelTest, TangentPlaneWithOneAndSixteenThreadsGiveTheSameVerdicts) 
 }
 
 TEST_F(CullKernelTest, SurvivorListAndIndirectCommandsMatchTheResultCodes) {
-  PatchSet set = frame::bezierSphere({0.2, -0.1, 0.3}, 1.5, 8);  // 384 patches
-  set = frame::convertToGregory(set, [](uint32_t p) { return p % 7 == 3; });
+  PatchSet set = scene::bezierSphere({0.2, -0.1, 0.3}, 1.5, 8);  // 384 patches
+  set = scene::convertToGregory(set, [](uint32_t p) { return p % 7 == 3; });
   frame::GpuPatchSet gpu(context(), set);
   CullSettings settings = backPatchOnly("ncone");
   settings.frustum = true;
@@ -254,7 +254,7 @@ TEST_F(CullKernelTest, NonFiniteControlPointsAreKeptByEveryStage) {
 }
 
 TEST_F(CullKernelTest, UnknownOrMisplacedMethodsAreRejected) {
-  const PatchSet set = frame::bezierSphere({0, 0, 0}, 1.0, 1);
+  const PatchSet set = scene::bezierSphere({0, 0, 0}, 1.0, 1);
   frame::GpuPatchSet gpu(context(), set);
   CullSettings s = backPatchOnly("tangent-plane-17");
   try {
@@ -301,7 +301,7 @@ TEST(CullKernel, Fp64MethodsNameTheMissingFeature) {
   vulkan::ContextOptions options = test::validatedContextOptions(log);
   options.adjustDeviceInfo = [](vulkan::DeviceInfo& info) { info.optional.shaderFloat64 = false; };
   vulkan::Context context(options);
-  const PatchSet set = frame::bezierSphere({0, 0, 0}, 1.0, 1);
+  const PatchSet set = scene::bezierSphere({0, 0, 0}, 1.0, 1);
   frame::GpuPatchSet gpu(context, set);
   try {
     CullPass pass(context, gpu, set, backPatchOnly("tcone-fp64"));

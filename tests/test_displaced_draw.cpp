@@ -4,7 +4,7 @@
 #include "osd_cull/bound/displaced_map.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/camera.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/patch/extract_patches.h"
@@ -126,8 +126,8 @@ TEST_F(DisplacedDrawTest, DeviceSamplesStayInTheRangeOfTheirRegion) {
   std::vector<std::array<glm::dvec3, 16>> flat;
   for (int j = 0; j < 8; ++j)
     for (int i = 0; i < 8; ++i)  // du x dv = +z: the normal faces the camera
-      flat.push_back(frame::flatBezierPatch({8.0 * i, -8.0 * (j + 1), -5.0}, {8, 0, 0}, {0, 8, 0}));
-  const PatchSet patches = frame::bezierPatchSet(flat, "flat grid");
+      flat.push_back(scene::flatBezierPatch({8.0 * i, -8.0 * (j + 1), -5.0}, {8, 0, 0}, {0, 8, 0}));
+  const PatchSet patches = scene::bezierPatchSet(flat, "flat grid");
   std::vector<glm::dvec2> corners;
   std::vector<bound::UvRegion> regions;
   for (uint32_t p = 0; p < patches.patchCount(); ++p) {

@@ -4,7 +4,7 @@
 #include "adapters/image_displacement.h"
 #include "osd_cull/bound/displaced_map.h"
 #include "osd_cull/error.h"
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 #include "osd_cull/scene/procedural_displacement.h"
 #include "support/temp_dir.h"
 
@@ -102,14 +102,14 @@ TEST(DisplacementMap, BadInputIsNamed) {
 
 TEST(DisplacementImages, Png16BitGrayIsNormalisedAndFlipped) {
   osd_cull::test::TempDir dir("osd_cull_disp_");
-  osd_cull::frame::PngImage image;
+  osd_cull::adapters::PngImage image;
   image.width = 2;
   image.height = 2;
   image.channels = 1;
   image.bitDepth = 16;
   image.samples16 = {0, 65535, 32768, 1000};  // top row first
   const auto path = dir.path() / "gray16.png";
-  osd_cull::frame::writePng(path, image);
+  osd_cull::adapters::writePng(path, image);
   const auto ch = osd_cull::adapters::detail::readPngChannel(path, 'g');
   ASSERT_EQ(ch.width, 2u);
   EXPECT_EQ(ch.bitDepth, 16);
@@ -122,13 +122,13 @@ TEST(DisplacementImages, Png16BitGrayIsNormalisedAndFlipped) {
 
 TEST(DisplacementImages, PngRgbaChannelIsChosen) {
   osd_cull::test::TempDir dir("osd_cull_disp_");
-  osd_cull::frame::PngImage image;
+  osd_cull::adapters::PngImage image;
   image.width = 1;
   image.height = 1;
   image.channels = 4;
   image.samples8 = {10, 20, 30, 255};
   const auto path = dir.path() / "rgba.png";
-  osd_cull::frame::writePng(path, image);
+  osd_cull::adapters::writePng(path, image);
   osd_cull::adapters::DisplacementOptions options;
   options.source = path.string();
   options.channel = 'b';

@@ -1,6 +1,6 @@
 // Draw splitting against lavapipe's batch overflow, and the host mirror of tess levels.
 #include "osd_cull/frame/camera.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/draw_chunks.h"
 #include "osd_cull/frame/draw/tess_levels.h"
 
@@ -70,9 +70,9 @@ TEST(DrawChunks, MixedBoundsKeepEveryWindowUnderTheLimit) {
 }
 
 TEST(TessLevels, UniformLevelsAreTheLevelAndTransitionEdgesHoldTwo) {
-  frame::TorusOptions o;
+  scene::TorusOptions o;
   o.refinePatch = 9;
-  const PatchSet torus = frame::bsplineTorus(o);
+  const PatchSet torus = scene::bsplineTorus(o);
   frame::TessellationOptions t;
   t.uniformLevel = 5;
   uint32_t transitionEdges = 0;
@@ -88,13 +88,13 @@ TEST(TessLevels, UniformLevelsAreTheLevelAndTransitionEdgesHoldTwo) {
 
 TEST(TessLevels, AdaptiveLevelOfASharedEdgeIsTheSameFromBothSides) {
   // Two patches sharing an edge traversed in opposite directions.
-  auto a = frame::flatBezierPatch({0, 0, -5}, {1, 0, 0}, {0, 1, 0});
+  auto a = scene::flatBezierPatch({0, 0, -5}, {1, 0, 0}, {0, 1, 0});
   a[7].z = -4.5;  // curve the shared edge a little
-  auto b = frame::flatBezierPatch({1, 1, -5}, {0, -1, 0}, {1, 0, 0});
+  auto b = scene::flatBezierPatch({1, 1, -5}, {0, -1, 0}, {1, 0, 0});
   // b's v=0 edge is a's u=1 edge, reversed: the same points, bit for bit.
   for (int i = 0; i < 4; ++i) b[i] = a[4 * (3 - i) + 3];
   const std::array patches{a, b};
-  const PatchSet set = frame::bezierPatchSet(patches, "test:pair");
+  const PatchSet set = scene::bezierPatchSet(patches, "test:pair");
   const auto camera =
       frame::Camera::lookAt({0.3, 0.2, 0}, {0.5, 0.5, -5}, {0, 1, 0}, 50, 200, 100, 0.1, 20);
   frame::TessellationOptions t;

@@ -1,6 +1,6 @@
 // `osd-cull render`: the built-in scene renders with validation on, writes the images and
 // prints a line per frame.
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 #include "support/run_command.h"
 #include "support/test_data.h"
 
@@ -39,15 +39,15 @@ TEST(RenderCommand, DrawsTheBuiltInSceneAndWritesImages) {
   for (const char* f : {"scene.png", "scene_ids.png", "scene_depth.png", "frames/frame_0000.png",
                         "frames/frame_0001.png"}) {
     ASSERT_TRUE(fs::exists(dir / f)) << f;
-    const auto image = frame::readPng(dir / f);
+    const auto image = adapters::readPng(dir / f);
     EXPECT_EQ(image.width, 96u) << f;
     EXPECT_EQ(image.height, 64u) << f;
   }
   // The two frames differ (the camera orbits); the last frame is the one in --out.
-  const auto a = frame::readPng(dir / "frames/frame_0000.png");
-  const auto b = frame::readPng(dir / "frames/frame_0001.png");
+  const auto a = adapters::readPng(dir / "frames/frame_0000.png");
+  const auto b = adapters::readPng(dir / "frames/frame_0001.png");
   EXPECT_NE(a.samples8, b.samples8);
-  EXPECT_EQ(frame::readPng(dir / "scene.png").samples8, b.samples8);
+  EXPECT_EQ(adapters::readPng(dir / "scene.png").samples8, b.samples8);
 }
 
 TEST(RenderCommand, DrawsTheTeapotBezierPatchFile) {
@@ -61,7 +61,7 @@ TEST(RenderCommand, DrawsTheTeapotBezierPatchFile) {
                               " --width 96 --height 64 --adaptive 4 --ids --validate");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("32 Bezier + 0 Gregory"), std::string::npos) << r.output;
-  const auto ids = frame::readPng(dir / "teapot_ids.png");
+  const auto ids = adapters::readPng(dir / "teapot_ids.png");
   std::set<uint32_t> patches;
   for (size_t i = 0; i + 2 < ids.samples8.size(); i += 3) {
     const uint32_t v = ids.samples8[i] | ids.samples8[i + 1] << 8 | ids.samples8[i + 2] << 16;

@@ -1,8 +1,8 @@
 // Crack-free tessellation: closed surfaces drawn from many views show no holes, with
 // uniform and adaptive levels, Bézier/Gregory neighbours and transition edges.
 #include "adapters/load_mesh.h"
-#include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/draw/png_io.h"
+#include "osd_cull/scene/demo_shapes.h"
+#include "adapters/image_png.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/verify/crack_count.h"
 #include "osd_cull/patch/extract_patches.h"
@@ -83,8 +83,8 @@ class CrackTest : public test::VkTest {
           std::replace_if(
               name.begin(), name.end(),
               [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
-          frame::writePng(out / ("crack_" + name + ".png"),
-                          frame::colorImage(size, size, target.readColor(context())));
+          adapters::writePng(out / ("crack_" + name + ".png"),
+                          adapters::colorImage(size, size, target.readColor(context())));
         }
       }
     return worst;
@@ -92,11 +92,11 @@ class CrackTest : public test::VkTest {
 };
 
 TEST_F(CrackTest, ClosedBezierSphereHasNoHolesFromAnyView) {
-  EXPECT_EQ(worstHoles(frame::bezierSphere({0, 0, 0}, 1.0, 2), 128, 12), 0u);
+  EXPECT_EQ(worstHoles(scene::bezierSphere({0, 0, 0}, 1.0, 2), 128, 12), 0u);
 }
 
 TEST_F(CrackTest, SphereOfMixedBezierAndGregoryPatchesHasNoHoles) {
-  const PatchSet mixed = frame::convertToGregory(frame::bezierSphere({0, 0, 0}, 1.0, 2),
+  const PatchSet mixed = scene::convertToGregory(scene::bezierSphere({0, 0, 0}, 1.0, 2),
                                                  [](uint32_t p) { return (p * 7) % 3 == 0; });
   ASSERT_GT(mixed.gregoryCount, 0u);
   ASSERT_GT(mixed.bezierCount, 0u);
@@ -128,10 +128,10 @@ TEST_F(CrackTest, ClosedShapesAndBigGuyExtractedFromOpenSubdivHaveNoHoles) {
 TEST_F(CrackTest, DetectorsFindADeliberateCrack) {
   // Pull one patch's shared edge inward: the gap it opens must be found by both
   // detectors, so the tests above can fail.
-  PatchSet sphere = frame::bezierSphere({0, 0, 0}, 1.0, 2);
+  PatchSet sphere = scene::bezierSphere({0, 0, 0}, 1.0, 2);
   for (uint32_t i : {0u, 1u, 2u, 3u}) sphere.points[i] *= 0.93;  // patch 0, edge v=0
   EXPECT_GT(worstHoles(sphere, 128, 12, true), 0u);
-  PatchSet torus = frame::bsplineTorus({});
+  PatchSet torus = scene::bsplineTorus({});
   for (uint32_t i : {1u, 2u}) torus.points[i] *= 0.97;  // patch 0, edge v=0 (inner points)
   EXPECT_GT(worstHoles(torus, 128, 12, false), 0u);
 }
@@ -140,12 +140,12 @@ TEST_F(CrackTest, TorusWithTransitionEdgesHasNoCracks) {
   // One patch refined into four (depth 1), its neighbours with transition edges; half
   // the patches Gregory. Close-up views of the refined region fill the whole image, so
   // any background pixel is a crack.
-  frame::TorusOptions o;
+  scene::TorusOptions o;
   o.nu = 8;
   o.nv = 6;
   o.refinePatch = 0;  // around theta = 0, phi = 0: the outer equator at (1.4, 0, 0)
   const PatchSet torus =
-      frame::convertToGregory(frame::bsplineTorus(o), [](uint32_t p) { return p % 2 == 1; });
+      scene::convertToGregory(scene::bsplineTorus(o), [](uint32_t p) { return p % 2 == 1; });
   frame::GpuPatchSet gpu(context(), torus);
   frame::RenderTarget target(context(), 96, 96);
   frame::Renderer renderer(context());
@@ -168,9 +168,9 @@ TEST_F(CrackTest, TorusWithTransitionEdgesHasNoCracks) {
       if (histogram.count(0)) {
         const auto out = std::filesystem::path(OSD_CULL_BINARY_DIR) / "test_output";
         std::filesystem::create_directories(out);
-        frame::writePng(out / ("crack_torus_" + std::to_string(int(thetaDeg)) + "_" +
+        adapters::writePng(out / ("crack_torus_" + std::to_string(int(thetaDeg)) + "_" +
                                std::to_string(int(phiDeg)) + ".png"),
-                        frame::colorImage(96, 96, target.readColor(context())));
+                        adapters::colorImage(96, 96, target.readColor(context())));
       }
       EXPECT_EQ(histogram.count(0), 0u)
           << "background pixels (cracks) looking at theta " << thetaDeg << ", phi " << phiDeg;

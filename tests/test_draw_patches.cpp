@@ -1,7 +1,7 @@
 // Drawing tessellated Bézier and Gregory patches: coverage, evaluation, statistics, PNG.
 #include "osd_cull/error.h"
-#include "osd_cull/frame/demo_shapes.h"
-#include "osd_cull/frame/draw/png_io.h"
+#include "osd_cull/scene/demo_shapes.h"
+#include "adapters/image_png.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/transfer.h"
@@ -25,8 +25,8 @@ class DrawTest : public test::VkTest {};
 
 // A flat patch covering pixel columns [16, 48) and rows [8, 40) at depth z = -3.
 PatchSet flatRectangle() {
-  const auto p = frame::flatBezierPatch({16.0, -40.0, -3.0}, {32.0, 0.0, 0.0}, {0.0, 32.0, 0.0});
-  return frame::bezierPatchSet(std::span(&p, 1), "test:flat-rectangle");
+  const auto p = scene::flatBezierPatch({16.0, -40.0, -3.0}, {32.0, 0.0, 0.0}, {0.0, 32.0, 0.0});
+  return scene::bezierPatchSet(std::span(&p, 1), "test:flat-rectangle");
 }
 
 void expectRectangle(const std::vector<uint32_t>& items, uint32_t width, uint32_t height) {
@@ -59,7 +59,7 @@ TEST_F(DrawTest, FlatBezierPatchCoversExactlyItsRectangle) {
 }
 
 TEST_F(DrawTest, FlatGregoryPatchCoversExactlyItsRectangle) {
-  const PatchSet set = frame::convertToGregory(flatRectangle(), [](uint32_t) { return true; });
+  const PatchSet set = scene::convertToGregory(flatRectangle(), [](uint32_t) { return true; });
   ASSERT_EQ(set.gregoryCount, 1u);
   frame::GpuPatchSet gpu(context(), set);
   frame::RenderTarget target(context(), 64, 48);
@@ -94,7 +94,7 @@ TEST_F(DrawTest, PointsCanComeFromAnotherBufferWithAnyStride) {
 }
 
 TEST_F(DrawTest, UniformLevelGivesPatchesTimesLevelPlusOneSquaredEvaluations) {
-  const PatchSet sphere = frame::convertToGregory(frame::bezierSphere({0, 0, 0}, 1.0, 2),
+  const PatchSet sphere = scene::convertToGregory(scene::bezierSphere({0, 0, 0}, 1.0, 2),
                                                   [](uint32_t p) { return p % 3 == 0; });
   ASSERT_EQ(sphere.patchCount(), 24u);
   ASSERT_EQ(sphere.gregoryCount, 8u);
@@ -166,8 +166,8 @@ TEST_F(DrawTest, GregoryPatchBlendsInteriorPointsAsOpenSubdiv) {
 }
 
 TEST_F(DrawTest, GregoryPatchesFromBezierDrawTheSameSurface) {
-  const PatchSet bezier = frame::bezierSphere({0, 0, 0}, 1.0, 1);
-  const PatchSet gregory = frame::convertToGregory(bezier, [](uint32_t) { return true; });
+  const PatchSet bezier = scene::bezierSphere({0, 0, 0}, 1.0, 1);
+  const PatchSet gregory = scene::convertToGregory(bezier, [](uint32_t) { return true; });
   frame::GpuPatchSet gpuB(context(), bezier), gpuG(context(), gregory);
   frame::RenderTarget target(context(), 96, 96);
   frame::Renderer renderer(context());
@@ -195,7 +195,7 @@ TEST_F(DrawTest, GregoryPatchesFromBezierDrawTheSameSurface) {
 }
 
 TEST_F(DrawTest, BackFaceCullingKeepsTheSideFacingTheEye) {
-  const PatchSet sphere = frame::bezierSphere({0, 0, 0}, 1.0, 1);
+  const PatchSet sphere = scene::bezierSphere({0, 0, 0}, 1.0, 1);
   frame::GpuPatchSet gpu(context(), sphere);
   frame::RenderTarget target(context(), 64, 64);
   frame::Renderer renderer(context());
@@ -212,11 +212,11 @@ TEST_F(DrawTest, BackFaceCullingKeepsTheSideFacingTheEye) {
   EXPECT_LT(culled.statistics.fragmentShaderInvocations, all.statistics.fragmentShaderInvocations);
 
   // A single flat patch whose normal (dP/du x dP/dv) points away from the eye vanishes.
-  const auto away = frame::flatBezierPatch({16.0, -48.0, -3.0}, {0.0, 32.0, 0.0}, {32.0, 0.0, 0.0});
+  const auto away = scene::flatBezierPatch({16.0, -48.0, -3.0}, {0.0, 32.0, 0.0}, {32.0, 0.0, 0.0});
   const auto toward =
-      frame::flatBezierPatch({16.0, -48.0, -3.0}, {32.0, 0.0, 0.0}, {0.0, 32.0, 0.0});
+      scene::flatBezierPatch({16.0, -48.0, -3.0}, {32.0, 0.0, 0.0}, {0.0, 32.0, 0.0});
   for (const auto& [patch, visible] : {std::pair{away, false}, std::pair{toward, true}}) {
-    const PatchSet one = frame::bezierPatchSet(std::span(&patch, 1), "test:one");
+    const PatchSet one = scene::bezierPatchSet(std::span(&patch, 1), "test:one");
     frame::GpuPatchSet gpuOne(context(), one);
     renderer.render(target, test::pixelCamera(64, 64), gpuOne, &one, options);
     EXPECT_EQ(test::itemHistogram(target.readItems(context())).count(1), visible ? 1u : 0u);
@@ -226,15 +226,15 @@ TEST_F(DrawTest, BackFaceCullingKeepsTheSideFacingTheEye) {
 TEST_F(DrawTest, DegeneratePatchesDoNotDisturbTheOthers) {
   // Patch 0: NaN point; 1: collapsed to one point; 2: one edge collapsed (like the teapot
   // lid), its normal at the apex comes from slightly inside; 3: an ordinary square.
-  auto nan = frame::flatBezierPatch({2, -14, -3}, {12, 0, 0}, {0, 12, 0});
+  auto nan = scene::flatBezierPatch({2, -14, -3}, {12, 0, 0}, {0, 12, 0});
   nan[5].x = std::numeric_limits<double>::quiet_NaN();
   std::array<glm::dvec3, 16> point;
   point.fill({20.0, -8.0, -3.0});
-  auto lid = frame::flatBezierPatch({34, -30, -3}, {28, 0, 0}, {0, 28, 0});
+  auto lid = scene::flatBezierPatch({34, -30, -3}, {28, 0, 0}, {0, 28, 0});
   for (int i = 0; i < 4; ++i) lid[12 + i] = {48.0, -2.0, -2.0};  // v = 1 edge -> apex
-  const auto square = frame::flatBezierPatch({2, -62, -3}, {24, 0, 0}, {0, 24, 0});
+  const auto square = scene::flatBezierPatch({2, -62, -3}, {24, 0, 0}, {0, 24, 0});
   const std::array patches{nan, point, lid, square};
-  const PatchSet set = frame::bezierPatchSet(patches, "test:degenerate");
+  const PatchSet set = scene::bezierPatchSet(patches, "test:degenerate");
   frame::GpuPatchSet gpu(context(), set);
   frame::RenderTarget target(context(), 64, 64);
   frame::Renderer renderer(context());
@@ -262,8 +262,8 @@ PatchSet patchGrid(uint32_t k, double size) {
   for (uint32_t j = 0; j < k; ++j)
     for (uint32_t i = 0; i < k; ++i)
       patches.push_back(
-          frame::flatBezierPatch({size * i, -size * (j + 1), -3.0}, {size, 0, 0}, {0, size, 0}));
-  return frame::bezierPatchSet(patches, "test:grid");
+          scene::flatBezierPatch({size * i, -size * (j + 1), -3.0}, {size, 0, 0}, {0, size, 0}));
+  return scene::bezierPatchSet(patches, "test:grid");
 }
 
 TEST_F(DrawTest, NoPatchIsMissingAtHighLevelsWhenDrawsAreChunked) {
@@ -273,7 +273,7 @@ TEST_F(DrawTest, NoPatchIsMissingAtHighLevelsWhenDrawsAreChunked) {
   for (bool gregory : {false, true}) {
     SCOPED_TRACE(gregory ? "Gregory" : "Bezier");
     PatchSet grid = patchGrid(16, 8.0);
-    if (gregory) grid = frame::convertToGregory(grid, [](uint32_t) { return true; });
+    if (gregory) grid = scene::convertToGregory(grid, [](uint32_t) { return true; });
     frame::GpuPatchSet gpu(context(), grid);
     frame::RenderTarget target(context(), 128, 128);
     frame::Renderer renderer(context());
@@ -325,7 +325,7 @@ TEST_F(DrawTest, IndirectDrawsOfACulledListDrawExactlyThoseSlots) {
 }
 
 TEST_F(DrawTest, AdaptiveLevelsGrowWithScreenSizeAndMatchTheHostMirror) {
-  const PatchSet sphere = frame::bezierSphere({0, 0, 0}, 1.0, 2);
+  const PatchSet sphere = scene::bezierSphere({0, 0, 0}, 1.0, 2);
   frame::GpuPatchSet gpu(context(), sphere);
   frame::RenderTarget target(context(), 128, 128);
   frame::Renderer renderer(context());
@@ -350,9 +350,9 @@ TEST_F(DrawTest, AdaptiveLevelsGrowWithScreenSizeAndMatchTheHostMirror) {
 }
 
 TEST_F(DrawTest, TransitionEdgesTessellateAsTheHostMirrorPredicts) {
-  frame::TorusOptions o;
+  scene::TorusOptions o;
   o.refinePatch = 10;
-  const PatchSet torus = frame::bsplineTorus(o);
+  const PatchSet torus = scene::bsplineTorus(o);
   frame::GpuPatchSet gpu(context(), torus);
   frame::RenderTarget target(context(), 64, 64);
   frame::Renderer renderer(context());
@@ -379,7 +379,7 @@ TEST_F(DrawTest, TransitionEdgesTessellateAsTheHostMirrorPredicts) {
 }
 
 TEST_F(DrawTest, ImagesRoundTripThroughPng) {
-  const PatchSet sphere = frame::bezierSphere({0, 0, 0}, 1.0, 1);
+  const PatchSet sphere = scene::bezierSphere({0, 0, 0}, 1.0, 1);
   frame::GpuPatchSet gpu(context(), sphere);
   frame::RenderTarget target(context(), 48, 32);
   frame::Renderer renderer(context());
@@ -393,21 +393,21 @@ TEST_F(DrawTest, ImagesRoundTripThroughPng) {
   const auto color = target.readColor(context());
   const auto items = target.readItems(context());
   const auto depth = target.readDepth(context());
-  frame::writePng(dir / "sphere_color.png", frame::colorImage(48, 32, color));
-  frame::writePng(dir / "sphere_items.png", frame::itemImage(48, 32, items));
-  frame::writePng(dir / "sphere_depth.png", frame::depthImage(48, 32, depth));
-  const auto c = frame::readPng(dir / "sphere_color.png");
+  adapters::writePng(dir / "sphere_color.png", adapters::colorImage(48, 32, color));
+  adapters::writePng(dir / "sphere_items.png", adapters::itemImage(48, 32, items));
+  adapters::writePng(dir / "sphere_depth.png", adapters::depthImage(48, 32, depth));
+  const auto c = adapters::readPng(dir / "sphere_color.png");
   EXPECT_EQ(c.samples8, color);
-  const auto it = frame::readPng(dir / "sphere_items.png");
+  const auto it = adapters::readPng(dir / "sphere_items.png");
   ASSERT_EQ(it.channels, 3);
   for (size_t i = 0; i < items.size(); ++i)
     ASSERT_EQ(uint32_t(it.samples8[3 * i]) | uint32_t(it.samples8[3 * i + 1]) << 8 |
                   uint32_t(it.samples8[3 * i + 2]) << 16,
               items[i]);
-  const auto d = frame::readPng(dir / "sphere_depth.png");
+  const auto d = adapters::readPng(dir / "sphere_depth.png");
   ASSERT_EQ(d.bitDepth, 16);
   for (size_t i = 0; i < depth.size(); ++i) ASSERT_EQ(d.samples16[i] == 65535, depth[i] >= 1.0f);
-  EXPECT_THROW(frame::writePng(dir / "no_such_dir" / "x.png", frame::colorImage(48, 32, color)),
+  EXPECT_THROW(adapters::writePng(dir / "no_such_dir" / "x.png", adapters::colorImage(48, 32, color)),
                Error);
 }
 

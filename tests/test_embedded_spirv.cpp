@@ -35,7 +35,7 @@ TEST(EmbeddedSpirv, EveryListedVariantIsEmbeddedOnceAndTheWordsAreIntact) {
   }
   EXPECT_EQ(vulkan::embeddedSpirvWords().size(), words);
   const auto all = vulkan::embeddedSpirvWords();
-  EXPECT_EQ(vulkan::fnv1a64({reinterpret_cast<const char*>(all.data()), all.size_bytes()}),
+  EXPECT_EQ(osd_cull::fnv1a64({reinterpret_cast<const char*>(all.data()), all.size_bytes()}),
             vulkan::embeddedSpirvWordsHash());
   for (const vulkan::ShaderVariant& v : listed) {
     EXPECT_TRUE(descriptions.count(v.describe())) << v.describe();

@@ -4,7 +4,7 @@
 #include "osd_cull/bound/displaced_bounds.h"
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/frame/cull/cull_pass.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/hiz/hiz_cull_stage.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
@@ -120,8 +120,8 @@ TEST_F(HiZOcclusionTest, PatchesBehindAWallAreCulledExactlyWhereTheyShouldBe) {
   std::vector<std::array<glm::dvec3, 16>> row;
   for (int i = 0; i < 4; ++i)
     row.push_back(
-        frame::flatBezierPatch({16.0 * i + 0.1, -(8 + 15.8), -5}, {15.8, 0, 0}, {0, 15.8, 0}));
-  const PatchSet set = frame::bezierPatchSet(row, "test:row");
+        scene::flatBezierPatch({16.0 * i + 0.1, -(8 + 15.8), -5}, {15.8, 0, 0}, {0, 15.8, 0}));
+  const PatchSet set = scene::bezierPatchSet(row, "test:row");
   const frame::TriangleMesh wall =
       frame::quadMesh({-4, 4, -3}, {40, 4, -3}, {40, -40, -3}, {-4, -40, -3});
   for (bool full : {false, true}) {

@@ -6,7 +6,7 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/cull/cull_pass.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/context.h"
@@ -31,8 +31,8 @@ const bound::BackPatchValidity kClosed{true, "closed test surface"};
 
 // A closed sphere of Bezier patches, some of them Gregory.
 PatchSet sphere() {
-  const PatchSet s = frame::bezierSphere({0.2, -0.1, 0.3}, 1.5, 6);
-  return frame::convertToGregory(s, [](uint32_t p) { return p % 5 == 2; });
+  const PatchSet s = scene::bezierSphere({0.2, -0.1, 0.3}, 1.5, 6);
+  return scene::convertToGregory(s, [](uint32_t p) { return p % 5 == 2; });
 }
 
 VkDeviceSize pointBytes(const PatchSet& s) {

@@ -1,6 +1,6 @@
 // The item-buffer oracle: per-patch visible pixel counts, exact on scenes whose visible
 // set is known by construction.
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "support/vk_test_context.h"
 #include "support/vk_test_images.h"
@@ -16,7 +16,7 @@ class OracleTest : public test::VkTest {
  protected:
   // A w x h pixel square whose top-left pixel is (x, y), at depth z (pixelCamera coordinates).
   static std::array<glm::dvec3, 16> square(double x, double y, double w, double h, double z) {
-    return frame::flatBezierPatch({x, -(y + h), z}, {w, 0, 0}, {0, h, 0});
+    return scene::flatBezierPatch({x, -(y + h), z}, {w, 0, 0}, {0, h, 0});
   }
 };
 
@@ -25,7 +25,7 @@ TEST_F(OracleTest, PatchesBehindAnOpaqueWallHaveZeroPixels) {
   // completely and the left half of the third.
   std::vector<std::array<glm::dvec3, 16>> row;
   for (int i = 0; i < 4; ++i) row.push_back(square(16.0 * i, 8, 16, 16, -5));
-  const PatchSet set = frame::bezierPatchSet(row, "test:row");
+  const PatchSet set = scene::bezierPatchSet(row, "test:row");
   frame::GpuPatchSet gpu(context(), set);
   frame::GpuTriangleMesh wall(
       context(), frame::quadMesh({-4, 4, -3}, {40, 4, -3}, {40, -40, -3}, {-4, -40, -3}));
@@ -56,7 +56,7 @@ TEST_F(OracleTest, PatchesOutsideTheViewHaveZeroPixels) {
       square(4, 4, 16, 16, -20),   // beyond the far plane (10.5)
       square(24, 8, 16, 16, -5),   // inside
   };
-  const PatchSet set = frame::bezierPatchSet(patches, "test:outside");
+  const PatchSet set = scene::bezierPatchSet(patches, "test:outside");
   frame::GpuPatchSet gpu(context(), set);
   frame::RenderTarget target(context(), 64, 32);
   frame::Renderer renderer(context());
@@ -75,8 +75,8 @@ TEST_F(OracleTest, PatchSeenExactlyEdgeOnHasZeroPixels) {
   TessellationOptions tess;
   tess.uniformLevel = 8;
   for (double tilt : {0.0, 0.2}) {
-    const auto patch = frame::flatBezierPatch({-1, 0, -2}, {2, 0, 0}, {0, tilt, -2});
-    const PatchSet set = frame::bezierPatchSet(std::span(&patch, 1), "test:edge-on");
+    const auto patch = scene::flatBezierPatch({-1, 0, -2}, {2, 0, 0}, {0, tilt, -2});
+    const PatchSet set = scene::bezierPatchSet(std::span(&patch, 1), "test:edge-on");
     frame::GpuPatchSet gpu(context(), set);
     const auto counts = oracle.query(renderer, target, camera, gpu, &set, {}, tess);
     if (tilt == 0.0)
@@ -88,8 +88,8 @@ TEST_F(OracleTest, PatchSeenExactlyEdgeOnHasZeroPixels) {
 
 TEST_F(OracleTest, FullyVisiblePatchCountsItsRectangleAndItsTiles) {
   const auto patch = square(16, 8, 32, 32, -3);  // columns 16..47, rows 8..39
-  const PatchSet set = frame::convertToGregory(
-      frame::bezierPatchSet(std::span(&patch, 1), "test:rect"), [](uint32_t) { return true; });
+  const PatchSet set = scene::convertToGregory(
+      scene::bezierPatchSet(std::span(&patch, 1), "test:rect"), [](uint32_t) { return true; });
   frame::GpuPatchSet gpu(context(), set);
   frame::RenderTarget target(context(), 64, 64);
   frame::Renderer renderer(context());
@@ -110,11 +110,11 @@ TEST_F(OracleTest, FullyVisiblePatchCountsItsRectangleAndItsTiles) {
 }
 
 TEST_F(OracleTest, CountsEqualTheItemBufferReadBack) {
-  frame::TorusOptions o;
+  scene::TorusOptions o;
   o.refinePatch = 5;
-  const PatchSet scene = frame::concatenate(
-      frame::convertToGregory(frame::bsplineTorus(o), [](uint32_t p) { return p % 4 == 0; }),
-      frame::bezierSphere({0.3, 0.2, 0.6}, 0.5, 2));
+  const PatchSet scene = scene::concatenate(
+      scene::convertToGregory(scene::bsplineTorus(o), [](uint32_t p) { return p % 4 == 0; }),
+      scene::bezierSphere({0.3, 0.2, 0.6}, 0.5, 2));
   frame::GpuPatchSet gpu(context(), scene);
   frame::GpuTriangleMesh wall(context(), frame::boxMesh({-0.4, -2, 1.3}, {0.1, 2, 1.35}));
   const frame::GpuTriangleMesh* occluders[] = {&wall};

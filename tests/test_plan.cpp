@@ -5,7 +5,7 @@
 // errors.
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/plan/calibration.h"
 #include "osd_cull/plan/cost_model.h"
 #include "osd_cull/plan/planner.h"
@@ -367,17 +367,17 @@ TEST(Plan, TangentPlaneOnADeformingMeshPaysItsBoundsPass) {
 }
 
 TEST(SelfOcclusion, ConvexMeshesCannotHideThemselves) {
-  const PatchSet sphere = frame::bezierSphere({0, 0, 0}, 1.0, 6);
+  const PatchSet sphere = scene::bezierSphere({0, 0, 0}, 1.0, 6);
   EXPECT_FALSE(mayHideItself(sphere));
   EXPECT_FALSE(
-      mayHideItself(frame::convertToGregory(sphere, [](uint32_t p) { return p % 3 == 0; })));
-  frame::TorusOptions torus;
+      mayHideItself(scene::convertToGregory(sphere, [](uint32_t p) { return p % 3 == 0; })));
+  scene::TorusOptions torus;
   torus.nu = 12;
   torus.nv = 8;
-  EXPECT_TRUE(mayHideItself(frame::bsplineTorus(torus)));
+  EXPECT_TRUE(mayHideItself(scene::bsplineTorus(torus)));
   // Two convex objects can hide each other.
   EXPECT_TRUE(mayHideItself(
-      frame::concatenate(sphere, frame::translated(sphere, glm::dvec3(3.0, 0.0, 0.0)))));
+      scene::concatenate(sphere, scene::translated(sphere, glm::dvec3(3.0, 0.0, 0.0)))));
   // Too much work to decide: unsure, so offered.
   EXPECT_TRUE(mayHideItself(sphere, 1000));
 }
@@ -438,7 +438,7 @@ TEST_F(PlanDisplacement, UndisplacedMeshCompilesAndBindsNoDisplacementVariant) {
   const frame::CullFrameOptions o = applyPlan(p, {});
   EXPECT_EQ(o.cull.displacementMap, nullptr);
   // The pass built from the plan runs no displaced kernel.
-  const PatchSet patches = frame::bezierSphere({0, 0, 0}, 1.0, 4);
+  const PatchSet patches = scene::bezierSphere({0, 0, 0}, 1.0, 4);
   frame::GpuPatchSet gpu(context(), patches);
   frame::CullSettings settings = o.cull;
   settings.occlusion.clear();  // the occlusion stage needs a pyramid; not this test's point

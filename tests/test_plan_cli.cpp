@@ -1,7 +1,7 @@
 // `osd-cull plan`, `calibrate` and `render --plan`: the printed plan, its reasons and its
 // errors, with a synthetic calibration file (support/plan_calibration.h); ctest runs with
 // the calibration cache off (tests/CMakeLists.txt), so nothing depends on this machine's.
-#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/measure/calibrate.h"
 #include "osd_cull/plan/calibration.h"
 #include "support/plan_calibration.h"
 #include "support/run_command.h"
@@ -137,10 +137,10 @@ TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndMeasuredAgainByRend
   // This device's cache file, written in the previous format (before the displaced kernels).
   test::TempDir cache("osd_cull_plan_cache_");
   setenv("OSD_CULL_CALIBRATION_CACHE", cache.path().c_str(), 1);
-  const fs::path file = plan::calibrationCacheFile(plan::calibrationKey(context()));
+  const fs::path file = plan::calibrationCacheFile(measure::calibrationKey(context()));
   unsetenv("OSD_CULL_CALIBRATION_CACHE");
   plan::Calibration c = test::syntheticCalibration();
-  c.key = plan::calibrationKey(context());
+  c.key = measure::calibrationKey(context());
   std::string text = plan::toText(c);
   text.replace(0, text.find('\n'), "osd_cull-calibration 2");
   plan::storeCalibration(c, file);
@@ -164,7 +164,7 @@ TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndMeasuredAgainByRend
   EXPECT_NE(r.output.find("plan: auto, calibration of "), std::string::npos) << r.output;
   const plan::Calibration stored = plan::loadCalibration(file);
   EXPECT_TRUE(stored.quick);
-  EXPECT_EQ(stored.key, plan::calibrationKey(context()));
+  EXPECT_EQ(stored.key, measure::calibrationKey(context()));
   EXPECT_GT(stored.drawMs(4.0), 0.0);
   // ... and plan now uses the stored one.
   const auto p2 = test::runCommand(program + "plan");

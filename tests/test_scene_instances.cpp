@@ -7,7 +7,7 @@
 //   patch, back-patch orientation included, against the double reference and the oracle;
 // - instances sharing one GpuPatchSet in a CullFrame draw what the unculled frame draws.
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/cull_verification.h"
 #include "osd_cull/frame/verify/item_comparison.h"
 #include "osd_cull/frame/verify/view_sets.h"
@@ -86,7 +86,7 @@ TEST_F(SceneInstancesTest, FarFromTheOriginCullsAsAtTheOrigin) {
     // The instance: object-space points, world cameras composed with the model in double.
     frame::CullVerifier instance(context(), cube.patches, kMethods, cube.validity, options);
     // Today's alternative: the offset baked into the (fp32 on the GPU) control points.
-    const PatchSet baked = frame::translated(cube.patches, at);
+    const PatchSet baked = scene::translated(cube.patches, at);
     frame::CullVerifier world(context(), baked, kMethods, cube.validity, options);
     for (const frame::Camera& c : views) {
       instance.verifyView(frame::instanceCamera(moved(c, at), model));

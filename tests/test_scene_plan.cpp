@@ -1,5 +1,5 @@
 // The effect plan applied to a scene (issue 12, scene form; docs/algorithms/plan.md
-// "Scenes"): scene::ScenePlayer with a planner plans every (view, instance) each frame and
+// "Scenes"): session::ScenePlayer with a planner plans every (view, instance) each frame and
 // applies it. Deterministic through the synthetic calibration (support/plan_calibration.h):
 // a static instance makes no point update and no bounds dispatch while an animated one does;
 // an undisplaced instance builds and binds no displacement variant while a displaced one
@@ -14,7 +14,7 @@
 #include "osd_cull/plan/planner.h"
 #include "osd_cull/plan/scene_inputs.h"
 #include "osd_cull/scene/default_scene.h"
-#include "osd_cull/scene/scene_player.h"
+#include "osd_cull/session/scene_player.h"
 #include "support/plan_calibration.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
@@ -66,17 +66,17 @@ class ScenePlan : public test::VkTest {
  protected:
   // Every view of the player's current frame against the item-buffer oracle of the unculled
   // draw (a culled patch with pixels is a false cull) and against the unculled image.
-  void expectExact(scene::ScenePlayer& player, const std::vector<scene::ViewFrame>& views,
+  void expectExact(session::ScenePlayer& player, const std::vector<session::ViewFrame>& views,
                    uint32_t f);
 };
 
-void ScenePlan::expectExact(scene::ScenePlayer& player, const std::vector<scene::ViewFrame>& views,
+void ScenePlan::expectExact(session::ScenePlayer& player, const std::vector<session::ViewFrame>& views,
                             uint32_t f) {
   frame::VisibilityOracle oracle(context());
   for (size_t v = 0; v < views.size(); ++v) {
     frame::RenderTarget& culled = player.target(v);
     frame::RenderTarget plain(context(), culled.width(), culled.height());
-    const scene::UnculledComparison c = player.compareWithUnculled(v, plain);
+    const session::UnculledComparison c = player.compareWithUnculled(v, plain);
     EXPECT_EQ(c.items.lost, 0u) << views[v].view << " frame " << f;
     EXPECT_LE(c.items.differing, c.items.pixels / 10000) << views[v].view << " frame " << f;
     if (!views[v].culled) continue;
@@ -103,15 +103,15 @@ TEST_F(ScenePlan, StaticInstanceMakesNoPointUpdateAndNoBoundsDispatchAnimatedOne
   s.description.settings.width = 128;
   s.description.settings.height = 96;
   plan::Planner planner(test::syntheticCalibration());
-  scene::ScenePlayer player(context(), s, planOptions(16), frame::PointUpdatePath::Cpu, &planner);
+  session::ScenePlayer player(context(), s, planOptions(16), frame::PointUpdatePath::Cpu, &planner);
   size_t character = player.instanceCount();
   for (size_t i = 0; i < player.instanceCount(); ++i)
     if (player.dynamicMesh(i)) character = i;
   ASSERT_LT(character, player.instanceCount()) << "the built-in scene has a skinned character";
   auto deforming = [&] {
-    for (const scene::MeshWork& w : player.work())
+    for (const session::MeshWork& w : player.work())
       if (w.deforms) return w;
-    return scene::MeshWork{};
+    return session::MeshWork{};
   };
   uint64_t lastUpdates = deforming().pointUpdates, lastBounds = deforming().boundsDispatches;
   bool boundsRan = false;
@@ -119,12 +119,12 @@ TEST_F(ScenePlan, StaticInstanceMakesNoPointUpdateAndNoBoundsDispatchAnimatedOne
   for (size_t k = 0; k < std::size(frames); ++k) {
     const uint32_t f = frames[k];
     const bool repeated = k > 0 && frames[k - 1] == f;
-    const std::vector<scene::ViewFrame> views = player.render(f);
+    const std::vector<session::ViewFrame> views = player.render(f);
     ASSERT_EQ(views[0].plans.size(), player.instanceCount());
     expectExact(player, views, f);
     const plan::Plan& p = views[0].plans[character];
     // A point update for every new frame, none for the same frame again.
-    const scene::MeshWork w = deforming();
+    const session::MeshWork w = deforming();
     EXPECT_EQ(w.pointUpdates, lastUpdates + (repeated ? 0 : 1)) << "frame " << f;
     EXPECT_EQ(p.update.on, !repeated) << describe(views[0].plans);
     if (repeated) {
@@ -136,7 +136,7 @@ TEST_F(ScenePlan, StaticInstanceMakesNoPointUpdateAndNoBoundsDispatchAnimatedOne
     }
     lastUpdates = w.pointUpdates;
     lastBounds = w.boundsDispatches;
-    for (const scene::MeshWork& m : player.work())
+    for (const session::MeshWork& m : player.work())
       if (!m.deforms) {
         EXPECT_EQ(m.pointUpdates, 0u) << m.mesh;
         EXPECT_EQ(m.boundsDispatches, 0u) << m.mesh;
@@ -154,10 +154,10 @@ TEST_F(ScenePlan, UndisplacedInstanceBuildsAndBindsNoDisplacementVariant) {
   OSD_CULL_REQUIRE_DATA();
   scene::LoadedScene s = sceneFromText(test::displacedScene());
   plan::Planner planner(test::syntheticCalibration());
-  scene::ScenePlayer player(context(), s, planOptions(16), frame::PointUpdatePath::Cpu, &planner);
+  session::ScenePlayer player(context(), s, planOptions(16), frame::PointUpdatePath::Cpu, &planner);
   ASSERT_EQ(player.instanceCount(), 2u);
   for (uint32_t f = 0; f < 3; ++f) {
-    const std::vector<scene::ViewFrame> views = player.render(f);
+    const std::vector<session::ViewFrame> views = player.render(f);
     const std::vector<plan::Plan>& plans = views[0].plans;
     expectExact(player, views, f);
     EXPECT_TRUE(plans[0].displacement.on) << describe(plans);
@@ -187,8 +187,8 @@ TEST_F(ScenePlan, FarInstanceGetsCullingOffCloseOneOnInTheSameFrame) {
   OSD_CULL_REQUIRE_DATA();
   scene::LoadedScene s = sceneFromText(nearFarScene());
   plan::Planner planner(test::syntheticCalibration());
-  scene::ScenePlayer player(context(), s, planOptions(2), frame::PointUpdatePath::Cpu, &planner);
-  const std::vector<scene::ViewFrame> views = player.render(0);
+  session::ScenePlayer player(context(), s, planOptions(2), frame::PointUpdatePath::Cpu, &planner);
+  const std::vector<session::ViewFrame> views = player.render(0);
   const std::vector<plan::Plan>& plans = views[0].plans;
   ASSERT_EQ(plans.size(), 2u);
   EXPECT_EQ(plans[0].box, plan::BoxInView::Crossing) << describe(plans);
@@ -218,11 +218,11 @@ TEST_F(ScenePlan, PlanCommandAgreesWithWhatRenderAppliesAtFrameZero) {
         expected.push_back(printed.plan(in.key, in.input, 0));
       // ... and what the player applies.
       plan::Planner applied(test::syntheticCalibration());
-      scene::ScenePlayer player(context(), s, planOptions(tess));
+      session::ScenePlayer player(context(), s, planOptions(tess));
       player.setPlanner(&applied);
-      const std::vector<scene::ViewFrame> views = player.render(0);
+      const std::vector<session::ViewFrame> views = player.render(0);
       std::vector<plan::Plan> got;
-      for (const scene::ViewFrame& v : views) got.insert(got.end(), v.plans.begin(), v.plans.end());
+      for (const session::ViewFrame& v : views) got.insert(got.end(), v.plans.begin(), v.plans.end());
       EXPECT_EQ(plan::planTable(got), plan::planTable(expected))
           << s.description.source << " tess " << tess;
       // Applied: an instance is culled by a pass exactly when its plan culls.
@@ -243,10 +243,10 @@ TEST_F(ScenePlan, RatesAreLearnedAndFramesOfAChoiceAreReused) {
   plan::PlannerOptions options;
   options.reprobeFrames = 3;  // switched-off stages run often: choices change and come back
   plan::Planner planner(test::syntheticCalibration(), options);
-  scene::ScenePlayer player(context(), s, planOptions(8), frame::PointUpdatePath::Cpu, &planner);
+  session::ScenePlayer player(context(), s, planOptions(8), frame::PointUpdatePath::Cpu, &planner);
   std::set<std::string> choices;
   for (uint32_t f = 0; f < 16; ++f) {
-    const std::vector<scene::ViewFrame> views = player.render(f);
+    const std::vector<session::ViewFrame> views = player.render(f);
     std::string key;
     for (const plan::Plan& p : views[0].plans) key += p.stages.describe() + ";";
     if (views[0].culled) choices.insert(key);

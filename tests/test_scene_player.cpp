@@ -1,10 +1,10 @@
-// scene::ScenePlayer: every view of a scene (a main camera on a path and a shadow-map view,
+// session::ScenePlayer: every view of a scene (a main camera on a path and a shadow-map view,
 // a spinning, sliding instance, a mirrored one and the skinned character)
 // keeps its own status over the shared meshes, and each frame's culled image equals the same
 // frame drawn without culling (0 pixels lost, < 0.01% differing).
 #include "adapters/scene_assets.h"
 #include "osd_cull/scene/default_scene.h"
-#include "osd_cull/scene/scene_player.h"
+#include "osd_cull/session/scene_player.h"
 #include "support/test_data.h"
 #include "support/vk_test_context.h"
 
@@ -44,7 +44,7 @@ void ScenePlayerTest::playAndCompare(const std::string& backPatchMethod) {
   options.render.tessellation.uniformLevel = 3;
   options.render.cullBackFaces = true;
   options.cull.backPatch = backPatchMethod;
-  scene::ScenePlayer player(context(), s, options);
+  session::ScenePlayer player(context(), s, options);
   // The skinned character (instance 4) is back-patch culled with the cull data the GPU
   // bounds pass recomputes every frame, for every back-patch method.
   ASSERT_NE(player.cullFrame(0).cullPass(4), nullptr);
@@ -56,7 +56,7 @@ void ScenePlayerTest::playAndCompare(const std::string& backPatchMethod) {
   frame::RenderTarget plain96(context(), 96, 96), plain128(context(), 128, 96);
   uint32_t culled[2] = {0, 0};
   for (uint32_t f = 0; f < 12; f += 3) {
-    const std::vector<scene::ViewFrame> views = player.render(f);
+    const std::vector<session::ViewFrame> views = player.render(f);
     ASSERT_EQ(views.size(), 2u);
     for (size_t v = 0; v < 2; ++v) {
       culled[v] += views[v].stats.culled();
@@ -99,7 +99,7 @@ TEST_F(ScenePlayerTest, OnlyDeformingMeshesUpdateAndOnlyOnFramesTheyMove) {
   options.cull.backPatch = "tcone";
   for (const frame::PointUpdatePath path :
        {frame::PointUpdatePath::Cpu, frame::PointUpdatePath::Gpu}) {
-    scene::ScenePlayer player(context(), s, options, path);
+    session::ScenePlayer player(context(), s, options, path);
     const auto before = player.work();
     ASSERT_EQ(before.size(), 5u);
     for (uint32_t f : {0u, 1u, 1u, 2u, 2u, 3u}) player.render(f);
@@ -159,7 +159,7 @@ TEST_F(ScenePlayerTest, DeformingDisplacedMeshDrawsTheUnculledImage) {
   frame::CullFrameOptions options;
   options.render.tessellation.uniformLevel = 3;
   options.cull.backPatch = "ncone";  // off for displaced meshes: the note says why
-  scene::ScenePlayer player(context(), s, options);
+  session::ScenePlayer player(context(), s, options);
   const frame::CullPass* pass = player.cullFrame(0).cullPass(0);
   ASSERT_NE(pass, nullptr);
   EXPECT_TRUE(pass->displaced());

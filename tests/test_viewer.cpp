@@ -3,7 +3,7 @@
 // appear after "s", fewer patches are drawn after culling is switched on, the HUD is drawn,
 // an animated scene moves while playing and stands still while paused, timed frames come
 // at the chosen interval with non-zero figures, scene files open, validation stays silent).
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 #include "support/test_data.h"
@@ -197,7 +197,7 @@ bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0
 
 struct ViewRun {
   test::CommandResult result;
-  frame::PngImage image;
+  adapters::PngImage image;
 };
 
 // Runs the viewer under Xvfb for `frames` frames with `script`, keeping the last frame.
@@ -212,12 +212,12 @@ ViewRun view(const std::string& name, uint32_t frames, const std::string& script
       "xvfb-run -a -s '-screen 0 800x600x24' " + test::osdCullProgram().string() +
       " view --width 320 --height 240 --tess 2 --validate --frames " + std::to_string(frames) +
       " --screenshot " + shot.string() + " --script '" + script + "' " + extra);
-  if (run.result.exitCode() == 0 && fs::exists(shot)) run.image = frame::readPng(shot);
+  if (run.result.exitCode() == 0 && fs::exists(shot)) run.image = adapters::readPng(shot);
   return run;
 }
 
 // Pixels of the status view's "visible" green (shaded): green clearly above red and blue.
-size_t greenPixels(const frame::PngImage& image) {
+size_t greenPixels(const adapters::PngImage& image) {
   size_t n = 0;
   for (size_t i = 0; i + 3 < image.samples8.size(); i += size_t(image.channels)) {
     const int r = image.samples8[i], g = image.samples8[i + 1], b = image.samples8[i + 2];
@@ -323,7 +323,7 @@ std::vector<FrameClock> frameClocks(const std::string& output) {
 }
 
 // Pixels whose color differs between two images of the same size.
-size_t differingPixels(const frame::PngImage& a, const frame::PngImage& b) {
+size_t differingPixels(const adapters::PngImage& a, const adapters::PngImage& b) {
   EXPECT_EQ(a.samples8.size(), b.samples8.size());
   size_t n = 0;
   const size_t c = size_t(a.channels);
@@ -333,8 +333,8 @@ size_t differingPixels(const frame::PngImage& a, const frame::PngImage& b) {
 }
 
 // The images a view() run's `shot` steps wrote.
-frame::PngImage shotOf(const std::string& run, int frame) {
-  return frame::readPng(fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer" /
+adapters::PngImage shotOf(const std::string& run, int frame) {
+  return adapters::readPng(fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer" /
                         (run + "-frame" + std::to_string(frame) + ".png"));
 }
 
@@ -345,7 +345,7 @@ TEST_F(ViewerWindow, AnimatedSceneMovesWhilePlayingAndStandsStillWhenPaused) {
                            "--no-hud --cull all --time-passes 3 built-in:scene");
   ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;  // 1 on validation messages
   EXPECT_EQ(run.result.output.find("validation"), std::string::npos) << run.result.output;
-  std::vector<frame::PngImage> shots;
+  std::vector<adapters::PngImage> shots;
   for (int f : {2, 3, 5, 6}) shots.push_back(shotOf("anim", f));
   EXPECT_EQ(differingPixels(shots[0], shots[1]), 0u);   // paused: the same image
   EXPECT_GT(differingPixels(shots[2], shots[3]), 50u);  // playing: the character moves

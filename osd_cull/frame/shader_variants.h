@@ -10,13 +10,15 @@
 /// through the kernel's own composer). A request missing from its list fails with an error
 /// naming the variant, in the tests as in a program.
 
+#include "osd_cull/osd/shader_variants.h"
 #include "osd_cull/vk/shader_compiler.h"
 
 #include <vector>
 
 namespace osd_cull::frame {
 
-/// \brief The union of the lists below, each variant once.
+/// \brief The union of the lists below and of the osd layer's (osd/shader_variants.h),
+/// each variant once.
 std::vector<vulkan::ShaderVariant> libraryShaderVariants();
 
 // One list per requesting module.
@@ -28,7 +30,3 @@ std::vector<vulkan::ShaderVariant> visibilityShaderVariants();  // hiz/visibilit
 std::vector<vulkan::ShaderVariant> oracleShaderVariants();      // verify/visibility_oracle.cpp
 
 }  // namespace osd_cull::frame
-
-namespace osd_cull::osd {
-std::vector<vulkan::ShaderVariant> evaluatorShaderVariants();  // osd/compute_evaluator.cpp
-}  // namespace osd_cull::osd

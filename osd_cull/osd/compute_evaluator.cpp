@@ -1,7 +1,7 @@
 #include "osd_cull/osd/compute_evaluator.h"
 
 #include "osd/eval_stencils_layout.h"
-#include "osd_cull/frame/shader_variants.h"
+#include "osd_cull/osd/shader_variants.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/descriptors.h"
 #include "osd_cull/vk/pipeline.h"

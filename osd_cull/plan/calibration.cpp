@@ -1,7 +1,7 @@
 #include "osd_cull/plan/calibration.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/vk/shader_compiler.h"  // fnv1a64
+#include "osd_cull/hash.h"
 
 #include <algorithm>
 #include <cmath>
@@ -277,7 +277,7 @@ fs::path calibrationCacheFile(const CalibrationKey& key) {
   char name[64];
   std::snprintf(name, sizeof name, "%016llx.txt",
                 static_cast<unsigned long long>(
-                    vulkan::fnv1a64(key.device + "\n" + key.driver + "\n" + key.library)));
+                    fnv1a64(key.device + "\n" + key.driver + "\n" + key.library)));
   return dir / name;
 }
 

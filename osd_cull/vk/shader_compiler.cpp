@@ -37,15 +37,6 @@ std::string defineList(std::span<const ShaderDefine> defines) {
 
 }  // namespace
 
-uint64_t fnv1a64(std::string_view bytes, uint64_t seed) {
-  uint64_t h = seed;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
-
 namespace {
 
 // MurmurHash3's finalizer: FNV-1a leaves keys that differ in their last bytes with hashes

@@ -11,6 +11,8 @@
 /// optional component osd_cull_glsl (osd_cull/vk/glsl/runtime_compiler.h), which the tests and
 /// the build-time generator link; the installed package does not ship it.
 
+#include "osd_cull/hash.h"
+
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -86,7 +88,7 @@ struct EmbeddedSpirv {
 std::span<const EmbeddedSpirv> embeddedSpirv();
 /// \brief The SPIR-V words of every embedded variant, back to back.
 std::span<const uint32_t> embeddedSpirvWords();
-/// \brief fnv1a64 of embeddedSpirvWords()' bytes, as written by the generator.
+/// \brief fnv1a64 (osd_cull/hash.h) of embeddedSpirvWords()' bytes, as written by the generator.
 uint64_t embeddedSpirvWordsHash();
 
 /// \brief The two hashes of a key that index embeddedSpirv().
@@ -100,8 +102,5 @@ struct ShaderCacheStats {
   double milliseconds = 0.0;
 };
 ShaderCacheStats shaderCacheStats();
-
-/// \brief 64-bit FNV-1a hash of `bytes` (keys and stamps; not for security).
-uint64_t fnv1a64(std::string_view bytes, uint64_t seed = 0xcbf29ce484222325ull);
 
 }  // namespace osd_cull::vulkan

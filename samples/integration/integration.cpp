@@ -11,7 +11,7 @@
 #include "app_vulkan.h"
 #include "lend.h"
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 #include "osd_cull/osd/gpu_point_update.h"
 #include "osd_cull/osd/mesh.h"
 #include "osd_cull/patch/application_patches.h"
@@ -158,7 +158,7 @@ int run(const Options& options) {
     if (!options.out.empty()) {
       std::vector<uint8_t> image = bgra;
       for (uint32_t p = 0; p < pixels; ++p) std::swap(image[4 * p], image[4 * p + 2]);
-      frame::writePng(options.out, frame::colorImage(options.width, options.height, image));
+      adapters::writePng(options.out, adapters::colorImage(options.width, options.height, image));
       std::printf("wrote %s\n", options.out.c_str());
     }
   }

@@ -9,7 +9,7 @@
 #include "adapters/load_mesh.h"
 #include "osd_cull/frame/camera.h"
 #include "osd_cull/frame/draw/gpu_patch_set.h"
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 #include "osd_cull/frame/draw/render_target.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/patch/extract_patches.h"
@@ -44,7 +44,7 @@ int main(int argc, char** argv) try {
   frame::RenderOptions options;
   options.tessellation.uniformLevel = 6;
   const frame::FrameStats stats = renderer.render(target, camera, gpu, &ex.patches, options);
-  frame::writePng(out, frame::colorImage(width, height, target.readColor(context)));
+  adapters::writePng(out, adapters::colorImage(width, height, target.readColor(context)));
   std::printf("drew %u patches, %llu tessellation-evaluation invocations, %.1f ms; wrote %s\n",
               stats.patchesDrawn,
               static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),

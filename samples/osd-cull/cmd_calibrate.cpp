@@ -1,10 +1,10 @@
 // osd-cull calibrate: measures what the effect plan's cost model needs on this device
-// (osd_cull/plan/calibrate.h) and caches it, keyed by device, driver and library version.
+// (osd_cull/measure/calibrate.h) and caches it, keyed by device, driver and library version.
 #include "command.h"
 #include "device_options.h"
 #include "option_checks.h"
 
-#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/measure/calibrate.h"
 #include "osd_cull/plan/cost_model.h"
 #include "osd_cull/vk/context.h"
 
@@ -109,7 +109,7 @@ void print(const plan::Calibration& c) {
 int run(const CalibrateArgs& args) {
   if (!args.out.empty()) checkOutputFile(args.out, "--out", {".txt"});
   vulkan::Context context(args.device);
-  const plan::CalibrationKey key = plan::calibrationKey(context);
+  const plan::CalibrationKey key = measure::calibrationKey(context);
   const std::filesystem::path cacheFile = plan::calibrationCacheFile(key);
   std::optional<plan::Calibration> c;
   std::string outdated;
@@ -118,11 +118,11 @@ int run(const CalibrateArgs& args) {
   if (c && (!args.quick || c->quick)) {
     std::cout << "cached calibration: " << cacheFile.string() << " (--force measures again)\n";
   } else {
-    plan::CalibrateOptions o;
+    measure::CalibrateOptions o;
     o.quick = args.quick;
     o.repeats = args.repeats;
     o.progress = [](const std::string& line) { std::cerr << "calibrate: " << line << "\n"; };
-    c = plan::calibrate(context, o);
+    c = measure::calibrate(context, o);
     if (!cacheFile.empty()) {
       plan::storeCalibration(*c, cacheFile);
       std::cout << "wrote " << cacheFile.string() << "\n";

@@ -10,7 +10,7 @@
 #include "scene_source.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/measure/calibrate.h"
 #include "osd_cull/plan/planner.h"
 #include "osd_cull/plan/scene_inputs.h"
 #include "osd_cull/vk/context.h"
@@ -72,7 +72,7 @@ int run(const PlanCommandArgs& args) {
   const bool isScene = isSceneArgument(argument);
   if (args.displaced && isScene) throw UsageError("--displaced applies to a MESH, not to a scene");
   vulkan::Context context(args.device);
-  const plan::Calibration calibration = plan::deviceCalibration(context, args.calibration);
+  const plan::Calibration calibration = measure::deviceCalibration(context, args.calibration);
   std::vector<plan::ScenePlanInput> inputs;
   if (isScene) {
     scene::LoadedScene loaded = loadSceneArgument(argument, 0);

@@ -23,9 +23,9 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/shader_compiler.h"
@@ -328,20 +328,20 @@ int run(const RenderArgs& args) {
     }
     const bool last = f + 1 == frames;
     if (args.outDir.empty() && !last) continue;
-    const auto color = frame::colorImage(width, height, target.readColor(context));
+    const auto color = adapters::colorImage(width, height, target.readColor(context));
     if (!args.outDir.empty()) {
       char name[32];
       std::snprintf(name, sizeof(name), "frame_%04u.png", f);
-      frame::writePng(fs::path(args.outDir) / name, color);
+      adapters::writePng(fs::path(args.outDir) / name, color);
     }
     if (last) {
-      frame::writePng(out, color);
+      adapters::writePng(out, color);
       std::cout << "wrote " << out << "\n";
       if (ids) {
-        frame::writePng(sibling(out, "_ids"),
-                        frame::itemImage(width, height, target.readItems(context)));
-        frame::writePng(sibling(out, "_depth"),
-                        frame::depthImage(width, height, target.readDepth(context)));
+        adapters::writePng(sibling(out, "_ids"),
+                        adapters::itemImage(width, height, target.readItems(context)));
+        adapters::writePng(sibling(out, "_depth"),
+                        adapters::depthImage(width, height, target.readDepth(context)));
         std::cout << "wrote " << sibling(out, "_ids").string() << " and "
                   << sibling(out, "_depth").string() << "\n";
       }
@@ -386,8 +386,8 @@ int run(const RenderArgs& args) {
     for (const auto& [statusCamera, suffix] :
          {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
       cullFrame->renderStatusView(viewTarget, statusCamera, occluders);
-      frame::writePng(sibling(out, suffix),
-                      frame::colorImage(width, height, viewTarget.readColor(context)));
+      adapters::writePng(sibling(out, suffix),
+                      adapters::colorImage(width, height, viewTarget.readColor(context)));
       std::cout << "wrote " << sibling(out, suffix).string() << "\n";
     }
   }

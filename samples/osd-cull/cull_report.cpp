@@ -1,6 +1,6 @@
 #include "cull_report.h"
 
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 
 #include <cstdio>
 
@@ -78,8 +78,8 @@ uint32_t writePyramidLevels(const std::filesystem::path& dir, const frame::HiZPy
   for (uint32_t l = 0; l < levels.size(); ++l) {
     char name[32];
     std::snprintf(name, sizeof(name), "hiz_level_%02u.png", l);
-    frame::writePng(dir / name,
-                    frame::depthImage(layout.levelWidth(l), layout.levelHeight(l), levels[l]));
+    adapters::writePng(dir / name,
+                    adapters::depthImage(layout.levelWidth(l), layout.levelHeight(l), levels[l]));
   }
   return static_cast<uint32_t>(levels.size());
 }

@@ -3,7 +3,7 @@
 #include "option_checks.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/measure/calibrate.h"
 #include "osd_cull/plan/calibration.h"
 #include "osd_cull/vk/context.h"
 
@@ -43,7 +43,7 @@ void addPlanOptions(CLI::App& app, PlanArgs& args) {
 
 std::string missingCalibration(const PlanArgs& args, vulkan::Context& context) {
   if (!args.calibration.empty()) return "";
-  const plan::CalibrationKey key = plan::calibrationKey(context);
+  const plan::CalibrationKey key = measure::calibrationKey(context);
   std::string outdated;
   if (plan::loadCachedCalibration(key, &outdated)) return "";
   const std::string why = outdated.empty() ? "no calibration of this device cached" : outdated;
@@ -56,10 +56,10 @@ std::string missingCalibration(const PlanArgs& args, vulkan::Context& context) {
   const std::filesystem::path file = plan::calibrationCacheFile(key);
   std::cerr << "plan: " << why << "; measuring a quick calibration of this device (under 30 s, "
             << "kept in " << file.string() << "; `osd-cull calibrate` measures the full one)\n";
-  plan::CalibrateOptions o;
+  measure::CalibrateOptions o;
   o.quick = true;
   o.progress = [](const std::string& line) { std::cerr << "calibrate: " << line << "\n"; };
-  plan::storeCalibration(plan::calibrate(context, o), file);
+  plan::storeCalibration(measure::calibrate(context, o), file);
   return "";
 }
 
@@ -82,7 +82,7 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context
     out << "plan: off, drawing without culling (" << missing << ")\n";
     return nullptr;
   }
-  const plan::Calibration calibration = plan::deviceCalibration(context, args.calibration);
+  const plan::Calibration calibration = measure::deviceCalibration(context, args.calibration);
   out << "plan: auto, calibration of " << calibration.key.device
       << (calibration.quick ? " (quick)" : "") << "\n";
   plan::PlannerOptions options;

@@ -1,4 +1,4 @@
-// osd-cull render SCENE.json|SEQUENCE: plays a scene frame by frame (scene::ScenePlayer),
+// osd-cull render SCENE.json|SEQUENCE: plays a scene frame by frame (session::ScenePlayer),
 // every view culled by its own two-pass frame, and keeps each frame's image.
 #include "scene_render.h"
 
@@ -9,8 +9,8 @@
 #include "scene_source.h"
 
 #include "osd_cull/error.h"
-#include "osd_cull/frame/draw/png_io.h"
-#include "osd_cull/scene/scene_player.h"
+#include "adapters/image_png.h"
+#include "osd_cull/session/scene_player.h"
 #include "osd_cull/vk/context.h"
 
 #include <nlohmann/json.hpp>
@@ -39,7 +39,7 @@ std::string frameFile(const std::string& view, const char* kind, uint32_t frame)
 
 // Prints each instance's plan of this frame that differs from the one printed last (all
 // of them at the first frame), naming instance and view.
-void printScenePlans(const scene::ViewFrame& vf, std::vector<plan::Plan>& printed) {
+void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& printed) {
   printed.resize(vf.plans.size());
   for (size_t i = 0; i < vf.plans.size(); ++i) {
     const plan::Plan& p = vf.plans[i];
@@ -121,7 +121,7 @@ int renderScene(const RenderArgs& args) {
       calibration && calibration->pointUpdateGpuMsPerPatch < calibration->pointUpdateCpuMsPerPatch
           ? frame::PointUpdatePath::Gpu
           : frame::PointUpdatePath::Cpu;
-  scene::ScenePlayer player(context, loaded, options, pointUpdate, planner.get());
+  session::ScenePlayer player(context, loaded, options, pointUpdate, planner.get());
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << loaded.description.source << ", " << player.instanceCount()
             << " instances, " << player.patchCount() << " patches, " << loaded.occluders.size()
@@ -140,9 +140,9 @@ int renderScene(const RenderArgs& args) {
   std::unique_ptr<frame::RenderTarget> baseline;
   nlohmann::json jsonFrames = nlohmann::json::array();
   for (uint32_t f = settings.frameStart; f < settings.frameStart + frameCount; ++f) {
-    const std::vector<scene::ViewFrame> views = player.render(f);
+    const std::vector<session::ViewFrame> views = player.render(f);
     for (size_t v = 0; v < views.size(); ++v) {
-      const scene::ViewFrame& vf = views[v];
+      const session::ViewFrame& vf = views[v];
       printScenePlans(vf, printed[v]);
       std::printf("view %s %s\n", vf.view.c_str(), cullFrameLine(f, vf.stats).c_str());
       nlohmann::json j = cullFrameJson(f, vf.stats);
@@ -159,9 +159,9 @@ int renderScene(const RenderArgs& args) {
       }
       frame::RenderTarget& target = player.target(v);
       if (outDir)
-        frame::writePng(
+        adapters::writePng(
             fs::path(*outDir) / frameFile(vf.view, "", f),
-            frame::colorImage(target.width(), target.height(), target.readColor(context)));
+            adapters::colorImage(target.width(), target.height(), target.readColor(context)));
       if (compare) {
         if (!baseline || baseline->width() != target.width() ||
             baseline->height() != target.height())
@@ -185,9 +185,9 @@ int renderScene(const RenderArgs& args) {
         const frame::Camera side = frame::orbit(vf.camera, player.bounds().center(),
                                                 loaded.description.views[v].up, 120.0);
         player.cullFrame(v).renderStatusView(statusTarget, side, player.occluders());
-        frame::writePng(
+        adapters::writePng(
             fs::path(*outDir) / frameFile(vf.view, "status_", f),
-            frame::colorImage(target.width(), target.height(), statusTarget.readColor(context)));
+            adapters::colorImage(target.width(), target.height(), statusTarget.readColor(context)));
       }
       jsonFrames.push_back(std::move(j));
     }
@@ -197,8 +197,8 @@ int renderScene(const RenderArgs& args) {
     std::cout << "wrote " << frameCount * player.viewCount() << " frames to " << *outDir << "\n";
   if (out) {
     frame::RenderTarget& target = player.target(0);
-    frame::writePng(*out,
-                    frame::colorImage(target.width(), target.height(), target.readColor(context)));
+    adapters::writePng(*out,
+                    adapters::colorImage(target.width(), target.height(), target.readColor(context)));
     std::cout << "wrote " << *out << "\n";
   }
   if (statsPath) {

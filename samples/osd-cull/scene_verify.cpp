@@ -7,7 +7,7 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/verify/view_sets.h"
-#include "osd_cull/scene/scene_player.h"
+#include "osd_cull/session/scene_player.h"
 #include "osd_cull/vk/context.h"
 
 #include <algorithm>
@@ -64,7 +64,7 @@ int verifyScene(const VerifyArgs& args) {
   options.samplingGrid = sample;
   options.imageCheck = imageCheck;
   options.drawnTriangles = !surfaceExact;
-  scene::ScenePlayer player(context, loaded, {});
+  session::ScenePlayer player(context, loaded, {});
   const scene::SceneDescription& d = loaded.description;
   std::printf(
       "scene: %s, %zu instances, %u patches, %u frames from %u, %zu scene view(s) + %u "

@@ -6,9 +6,9 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/frame/draw/png_io.h"
+#include "adapters/image_png.h"
 #include "osd_cull/frame/draw/renderer.h"
-#include "osd_cull/scene/scene_player.h"
+#include "osd_cull/session/scene_player.h"
 #include "osd_cull/vk/buffer.h"
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/context.h"
@@ -164,7 +164,7 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
   const uint32_t frameCount = std::max(1u, description.settings.frameCount);
   // The player (its CullFrame and target) is made for one window size and one set of cull
   // stages; it is made again when either changes. The status view has its own target.
-  std::unique_ptr<scene::ScenePlayer> player;
+  std::unique_ptr<session::ScenePlayer> player;
   std::unique_ptr<frame::RenderTarget> statusTarget;
   std::string builtCull;                 // the stages the player was made with
   std::optional<uint32_t> shownFrame;    // the animation frame the player was moved to
@@ -253,7 +253,7 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
       fo.cull.frustum = state.frustum;
       fo.cull.backPatch = state.backPatch ? state.backPatchMethod : "";
       fo.cull.occlusion = state.occlusion ? "hiz" : "";
-      player = std::make_unique<scene::ScenePlayer>(context, scene.scene, fo);
+      player = std::make_unique<session::ScenePlayer>(context, scene.scene, fo);
       statusTarget = std::make_unique<frame::RenderTarget>(context, extent.width, extent.height);
       builtCull = state.cullLabel();
       shownFrame.reset();
@@ -446,11 +446,11 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
       if (swapchain.bgr())
         for (size_t i = 0; i + 3 < rgba.size(); i += 4) std::swap(rgba[i], rgba[i + 2]);
       for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;
-      const frame::PngImage png = frame::colorImage(extent.width, extent.height, rgba);
+      const adapters::PngImage png = adapters::colorImage(extent.width, extent.height, rgba);
       for (const std::string& path :
            {shot ? screenshotPath(*options.screenshot, f) : "", last ? *options.screenshot : ""}) {
         if (path.empty()) continue;
-        frame::writePng(path, png);
+        adapters::writePng(path, png);
         std::cout << "wrote " << path << "\n";
       }
     }

@@ -5,7 +5,7 @@
 /// (GLFW; lavapipe presents to X11, so it runs under Xvfb too), with a Dear ImGui HUD.
 /// Scriptable for tests: --frames N --screenshot FILE --script "KEYS".
 ///
-/// Everything it shows is a scene (scene/loaded_scene.h) played by scene::ScenePlayer: a
+/// Everything it shows is a scene (scene/loaded_scene.h) played by session::ScenePlayer: a
 /// scene file or the built-in scene with its animations (deforming meshes, moving
 /// instances, camera paths), or a single mesh wrapped as a one-instance static scene.
 

@@ -10,6 +10,7 @@ BigGuy with the limb skinning rig, the joints turning by up to the x value per f
 import csv
 import sys
 
+import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
 matplotlib.use("Agg")

@@ -7,6 +7,7 @@ The JSON files are `osd-cull verify --displaced-bound all --json` outputs.
 import json
 import sys
 
+import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
 matplotlib.use("Agg")

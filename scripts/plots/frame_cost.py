@@ -12,6 +12,7 @@ break-even line at 1.
 import csv
 import sys
 
+import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
 matplotlib.use("Agg")

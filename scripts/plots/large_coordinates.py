@@ -10,6 +10,7 @@ Reads the CSV of scripts/large_coordinates.sh and writes an SVG with matplotlib:
 import csv
 import sys
 
+import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
 matplotlib.use("Agg")

@@ -12,6 +12,7 @@ patch count (several runs) are reduced to their median.
 import statistics
 import sys
 
+import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
 matplotlib.use("Agg")

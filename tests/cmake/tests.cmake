@@ -39,3 +39,20 @@ if(TARGET osd_cull_viewer AND TARGET test_viewer)
   target_link_libraries(test_viewer PRIVATE osd_cull_viewer)
   target_compile_definitions(test_viewer PRIVATE OSD_CULL_HAVE_VIEWER=1)
 endif()
+
+# The layer order of DESIGN.md: no include runs upward (scripts/check_layers.py), the check
+# fails on a planted upward include, and docs/architecture.md's layer picture is current.
+find_program(OSD_CULL_PYTHON3 python3)
+if(OSD_CULL_PYTHON3)
+  set(_layers ${OSD_CULL_PYTHON3} ${PROJECT_SOURCE_DIR}/scripts/check_layers.py --root ${PROJECT_SOURCE_DIR})
+  add_test(NAME Layers.NoIncludeRunsUpward COMMAND ${_layers})
+  set_tests_properties(Layers.NoIncludeRunsUpward PROPERTIES
+    PASS_REGULAR_EXPRESSION "includes, 0 upward")
+  add_test(NAME Layers.CheckFailsOnAPlantedUpwardInclude
+    COMMAND ${_layers} --plant osd_cull/patch/patch_set.h:osd_cull/frame/cull_frame.h
+                       --plant osd_cull/scene/procedural.h:osd_cull/plan/planner.h)
+  set_tests_properties(Layers.CheckFailsOnAPlantedUpwardInclude PROPERTIES
+    PASS_REGULAR_EXPRESSION "layer 'patch' may not use layer 'frame'.*layer 'scene' may not use layer 'plan'.*2 upward")
+  add_test(NAME Layers.DocIsCurrent COMMAND ${_layers} --check-doc)
+  set_tests_properties(Layers.DocIsCurrent PROPERTIES PASS_REGULAR_EXPRESSION "picture is current")
+endif()

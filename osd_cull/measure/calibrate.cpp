@@ -1,4 +1,4 @@
-#include "osd_cull/plan/calibrate.h"
+#include "osd_cull/measure/calibrate.h"
 
 #include "osd_cull/bound/back_patch.h"
 #include "osd_cull/error.h"
@@ -6,7 +6,7 @@
 #include "osd_cull/frame/cull/cull_methods.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
 #include "osd_cull/frame/dynamic_patch_mesh.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
@@ -25,7 +25,7 @@
 #include <optional>
 #include <span>
 
-namespace osd_cull::plan {
+namespace osd_cull::measure {
 namespace {
 
 double median(std::vector<double> v) {
@@ -89,12 +89,12 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
 
   // The calibration mesh: a closed sphere of Bézier patches filling most of the view, and
   // the same patches as Gregory patches; a six-patch sphere for the fixed dispatch cost.
-  const PatchSet sphere = frame::bezierSphere({0, 0, 0}, 1.0, o.quick ? 10 : 16);
-  const PatchSet gregory = frame::convertToGregory(sphere, [](uint32_t) { return true; });
-  const PatchSet tiny = frame::bezierSphere({0, 0, 0}, 1.0, 1);
+  const PatchSet sphere = scene::bezierSphere({0, 0, 0}, 1.0, o.quick ? 10 : 16);
+  const PatchSet gregory = scene::convertToGregory(sphere, [](uint32_t) { return true; });
+  const PatchSet tiny = scene::bezierSphere({0, 0, 0}, 1.0, 1);
   // Culling costs a fraction of a microsecond per patch: measured on a finer sphere, so
   // that the differences between kernels stand above the submission's noise.
-  const PatchSet many = frame::bezierSphere({0, 0, 0}, 1.0, o.quick ? 24 : 40);
+  const PatchSet many = scene::bezierSphere({0, 0, 0}, 1.0, o.quick ? 24 : 40);
   c.patches = sphere.patchCount();
   const double n = c.patches, nMany = many.patchCount();
   frame::GpuPatchSet gpu(context, sphere), gpuGregory(context, gregory), gpuTiny(context, tiny),
@@ -122,7 +122,7 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
   std::map<std::string, std::unique_ptr<frame::CullPass>> passes, surfacePasses;
   // The listed-triangle test costs per patch about what drawing it costs (it lists the
   // level's triangles): measured on a coarse sphere, against the bound kernel at each level.
-  const PatchSet listedSphere = frame::bezierSphere({0, 0, 0}, 1.0, o.quick ? 6 : 10);
+  const PatchSet listedSphere = scene::bezierSphere({0, 0, 0}, 1.0, o.quick ? 6 : 10);
   frame::GpuPatchSet gpuListed(context, listedSphere);
   const std::vector<uint32_t> listedLevels =
       o.quick ? std::vector<uint32_t>{2, 8, 16} : std::vector<uint32_t>{1, 2, 4, 8, 16, 32};
@@ -355,9 +355,9 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
         {level, plain > 0.0 && displaced > 0.0 ? std::max(1.0, displaced / plain) : 1.0});
   }
 
-  c.hizBuild = {{hizPixels(uint64_t(width / 2) * (height / 2), false), m("hiz build small")},
-                {hizPixels(uint64_t(width) * height, false), m("hiz build")},
-                {hizPixels(uint64_t(width) * height, true), m("hiz build full")}};
+  c.hizBuild = {{plan::hizPixels(uint64_t(width / 2) * (height / 2), false), m("hiz build small")},
+                {plan::hizPixels(uint64_t(width) * height, false), m("hiz build")},
+                {plan::hizPixels(uint64_t(width) * height, true), m("hiz build full")}};
   c.hizTightMsPerPatch = m("hiz tight") / nMany;
   c.pointUpdateCpuMsPerPatch = m("points cpu") / cagePatches;
   c.pointUpdateGpuMsPerPatch = m("points gpu") / cagePatches;
@@ -368,7 +368,7 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
 }
 
 Calibration deviceCalibration(const vulkan::Context& context, const std::string& file) {
-  if (!file.empty()) return loadCalibration(file);
+  if (!file.empty()) return plan::loadCalibration(file);
   const CalibrationKey key = calibrationKey(context);
   if (std::optional<Calibration> cached = loadCachedCalibration(key)) return *cached;
   const std::filesystem::path where = calibrationCacheFile(key);
@@ -379,4 +379,4 @@ Calibration deviceCalibration(const vulkan::Context& context, const std::string&
       ": run `osd-cull calibrate --quick` (under 30 s) or `osd-cull calibrate` first");
 }
 
-}  // namespace osd_cull::plan
+}  // namespace osd_cull::measure

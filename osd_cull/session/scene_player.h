@@ -29,7 +29,13 @@
 #include <string>
 #include <vector>
 
-namespace osd_cull::scene {
+namespace osd_cull::session {
+
+using scene::InstanceDescription;
+using scene::LoadedScene;
+using scene::SceneDescription;
+using scene::SceneMesh;
+using scene::ViewDescription;
 
 /// \brief What one view did in one frame.
 struct ViewFrame {
@@ -168,4 +174,4 @@ class ScenePlayer {
   std::vector<bool> selfOccluding_;  // per instance (plan::meshMayHideItself), with a planner
 };
 
-}  // namespace osd_cull::scene
+}  // namespace osd_cull::session

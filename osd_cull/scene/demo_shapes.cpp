@@ -1,4 +1,4 @@
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 
 #include "osd_cull/error.h"
 
@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-namespace osd_cull::frame {
+namespace osd_cull::scene {
 
 namespace {
 
@@ -239,4 +239,4 @@ PatchSet bsplineTorus(const TorusOptions& o) {
   return result;
 }
 
-}  // namespace osd_cull::frame
+}  // namespace osd_cull::scene

@@ -1,13 +1,15 @@
 #pragma once
-/// \file png_io.h
-/// \brief Writing (and reading back) the renderer's images as PNG files.
+/// \file image_png.h
+/// \brief PNG files: the renderer's images written (and read back), and any PNG libpng
+/// reads decoded to 8 or 16 bits per sample (displacement maps read one channel of it,
+/// image_displacement.h). The one PNG module: the library proper does no file I/O.
 
 #include <cstdint>
 #include <filesystem>
 #include <span>
 #include <vector>
 
-namespace osd_cull::frame {
+namespace osd_cull::adapters {
 
 /// \brief An 8- or 16-bit image with 1 to 4 channels; 16-bit samples are stored as
 /// uint16_t in host order in `samples16`, 8-bit ones in `samples8`.
@@ -18,12 +20,15 @@ struct PngImage {
   int bitDepth = 8;
   std::vector<uint8_t> samples8;
   std::vector<uint16_t> samples16;
+  bool hasAlpha = false;  ///< readPng: the last channel is alpha (2 or 4 channels)
 };
 
 /// \brief Writes an image; rows top to bottom.
 /// \throws osd_cull::Error naming the file when it cannot be written or the sizes disagree.
 void writePng(const std::filesystem::path& path, const PngImage& image);
-/// \brief Reads a PNG written by writePng (8/16-bit gray, gray+alpha, RGB, RGBA).
+/// \brief Reads any PNG libpng decodes, expanded to 8 or 16 bits per sample (palette to RGB,
+/// gray below 8 bits to 8, tRNS to alpha); `hasAlpha` tells whether the last channel is alpha.
+/// \throws osd_cull::Error naming the file when it is missing, not a PNG or corrupt.
 PngImage readPng(const std::filesystem::path& path);
 
 /// \brief RGBA8 color as read from RenderTarget::readColor.
@@ -35,4 +40,4 @@ PngImage depthImage(uint32_t width, uint32_t height, std::span<const float> dept
 /// file decodes back to patch IDs (value - 1; 0 is background, white is an occluder).
 PngImage itemImage(uint32_t width, uint32_t height, std::span<const uint32_t> items);
 
-}  // namespace osd_cull::frame
+}  // namespace osd_cull::adapters

@@ -1,4 +1,4 @@
-#include "osd_cull/scene/scene_player.h"
+#include "osd_cull/session/scene_player.h"
 
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_methods.h"
@@ -11,7 +11,7 @@
 #include <map>
 #include <optional>
 
-namespace osd_cull::scene {
+namespace osd_cull::session {
 
 // The control points one or more instances draw: a mesh's rest pose, or its pose at one
 // time offset when it deforms.
@@ -187,7 +187,7 @@ void ScenePlayer::seek(uint32_t frameIndex) {
     objectBounds.push_back(frame::boundsOf(m.positions));
     models.emplace_back(1.0);
   }
-  bounds_ = worldBounds(objectBounds, models);
+  bounds_ = scene::worldBounds(objectBounds, models);
   for (size_t v = 0; v < views_.size(); ++v) {
     views_[v].camera = viewCamera(d.views[v], d.settings, bounds_, t);
     if (views_[v].frame)
@@ -429,4 +429,4 @@ std::vector<std::string> ScenePlayer::describe() const {
   return lines;
 }
 
-}  // namespace osd_cull::scene
+}  // namespace osd_cull::session

@@ -11,7 +11,7 @@
 #include <functional>
 #include <span>
 
-namespace osd_cull::frame {
+namespace osd_cull::scene {
 
 /// \brief A flat Bézier patch: point (i, j) = origin + du * i/3 + dv * j/3, so the surface
 /// is exactly the parallelogram origin + [0,1] du + [0,1] dv.
@@ -59,4 +59,4 @@ struct TorusOptions {
 /// patches converted from Far::PatchTable).
 PatchSet bsplineTorus(const TorusOptions& options);
 
-}  // namespace osd_cull::frame
+}  // namespace osd_cull::scene

@@ -16,7 +16,10 @@ namespace osd_cull::vulkan {
 class Context;
 }
 
-namespace osd_cull::plan {
+namespace osd_cull::measure {
+
+using plan::Calibration;
+using plan::CalibrationKey;
 
 /// \brief How much to measure.
 struct CalibrateOptions {
@@ -37,4 +40,4 @@ Calibration calibrate(vulkan::Context& context, const CalibrateOptions& options 
 /// \throws osd_cull::Error when there is none, saying how to make one.
 Calibration deviceCalibration(const vulkan::Context& context, const std::string& file = {});
 
-}  // namespace osd_cull::plan
+}  // namespace osd_cull::measure
