@@ -31,9 +31,9 @@ struct Args {
 int run(const Args& a) {
   vulkan::Context context;
   const CageMesh cage = scene::creasedCube();
-  const PatchSet patches = extractPatches(cage, PatchOptions{2}).patches;
-  const bound::BackPatchValidity validity =
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
+  bound::CullablePatches cullable = bound::cullablePatches(cage, PatchOptions{2});
+  const PatchSet patches = std::move(cullable.extraction.patches);
+  const bound::BackPatchValidity validity = std::move(cullable.backPatch);
   frame::GpuPatchSet gpu(context, patches);
   frame::Renderer renderer(context);
   std::printf(

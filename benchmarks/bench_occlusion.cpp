@@ -438,13 +438,13 @@ std::vector<Scene> scenes(const std::string& names) {
       PatchOptions options;
       options.isolationLevel = split ? 0 : name[6] - '0';
       const CageMesh cage = split ? splitOnce(adapters::loadCage(path)) : adapters::loadCage(path);
+      bound::CullablePatches c = bound::cullablePatches(cage, options);
       Scene s{split ? std::string("BigGuy split once, level 0") : "BigGuy level " + name.substr(6),
-              extractPatches(cage, options).patches,
+              std::move(c.extraction.patches),
               {},
               {0, 1, 0},
               {0.3, 0.25, 1.0},
-              bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)),
-                                       bound::signedVolume(cage))};
+              std::move(c.backPatch)};
       out.push_back(std::move(s));
     } else {
       throw Error("--scenes: unknown scene '" + name + "'");

@@ -209,12 +209,10 @@ struct CullMesh {
 
 /// \brief Loads `path` and extracts its patches at isolation `level`.
 inline CullMesh loadCullMesh(const std::filesystem::path& path, uint32_t level) {
-  const CageMesh cage = adapters::loadCage(path);
   PatchOptions options;
   options.isolationLevel = static_cast<int>(level);
-  return {
-      extractPatches(cage, options).patches,
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage))};
+  bound::CullablePatches c = bound::cullablePatches(adapters::loadCage(path), options);
+  return {std::move(c.extraction.patches), std::move(c.backPatch)};
 }
 
 }  // namespace osd_cull::bench

@@ -64,6 +64,29 @@ TEST(BoundValidity, OpenMeshesAreDisabledWithTheReason) {
   EXPECT_TRUE(contains(v.reason, "hole")) << v.reason;
 }
 
+// cullablePatches() decides from the refiner it extracts with (one refiner, not two): the
+// same decision as from a refiner of its own, on closed, open, holed and inward meshes,
+// and the patches equal extractPatches()'.
+TEST(BoundValidity, CullablePatchesDecideLikeASecondRefinerWould) {
+  CageMesh open = scene::cube();
+  open.faceSizes.pop_back();
+  open.faceVertices.resize(open.faceVertices.size() - 4);
+  CageMesh holed = scene::cube();
+  holed.holes = {2};
+  CageMesh moved = scene::cube();
+  for (glm::dvec3& p : moved.positions) p = p * 1e-3 + glm::dvec3(1e6, -2e6, 5e5);
+  for (const CageMesh& m : {scene::cube(), reversed(scene::cube()), open, holed, moved}) {
+    const BackPatchValidity alone = decide(m);
+    const CullablePatches c = cullablePatches(m, PatchOptions{2});
+    EXPECT_EQ(c.backPatch.enabled, alone.enabled) << alone.reason;
+    EXPECT_EQ(c.backPatch.reason, alone.reason);
+    EXPECT_EQ(c.extraction.topology.faces, summarize(*makeTopologyRefiner(m)).faces);
+    const PatchExtraction ex = extractPatches(m, PatchOptions{2});
+    EXPECT_EQ(c.extraction.patches.patchCount(), ex.patches.patchCount());
+    EXPECT_EQ(c.extraction.patches.points, ex.patches.points);
+  }
+}
+
 TEST(BoundValidity, NonManifoldOrInconsistentlyOrientedMeshesAreDisabled) {
   // One face turned over: its four edges are traversed twice in the same direction.
   CageMesh flipped = scene::cube();

@@ -35,10 +35,8 @@ struct Mesh {
 };
 
 Mesh creasedCube() {
-  const CageMesh cage = scene::creasedCube();
-  return {
-      extractPatches(cage, PatchOptions{2}).patches,
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage))};
+  bound::CullablePatches c = bound::cullablePatches(scene::creasedCube(), PatchOptions{2});
+  return {std::move(c.extraction.patches), std::move(c.backPatch)};
 }
 
 // Mirrored, non-uniformly scaled, both, and plain instances side by side.

@@ -33,9 +33,9 @@ test::CullMesh creasedCube(int level = 2) {
   const CageMesh cage = scene::creasedCube();
   test::CullMesh m;
   m.name = cage.source;
-  m.validity =
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
-  m.patches = extractPatches(cage, PatchOptions{level}).patches;
+  bound::CullablePatches c = bound::cullablePatches(cage, PatchOptions{level});
+  m.validity = std::move(c.backPatch);
+  m.patches = std::move(c.extraction.patches);
   return m;
 }
 

@@ -58,4 +58,11 @@ double signedVolume(const CageMesh& mesh) {
   return volume;
 }
 
+CullablePatches cullablePatches(const CageMesh& cage, const PatchOptions& options) {
+  CullablePatches out;
+  out.extraction = extractPatches(cage, options);
+  out.backPatch = backPatchValidity(out.extraction.topology, signedVolume(cage));
+  return out;
+}
+
 }  // namespace osd_cull::bound

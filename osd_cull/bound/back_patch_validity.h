@@ -9,6 +9,7 @@
 /// opening, so back-patch culling is switched off for the whole mesh, with the reason.
 
 #include "osd_cull/patch/cage_mesh.h"
+#include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
 
 #include <optional>
@@ -31,6 +32,18 @@ struct BackPatchValidity {
 /// outward orientation was assumed.
 BackPatchValidity backPatchValidity(const TopologySummary& topology,
                                     std::optional<double> signedVolume = std::nullopt);
+
+/// \brief The patches of a cage and whether back-patch culling may be used on them: what
+/// every program that culls a cage needs first (the CLI, the benchmarks, the tests).
+struct CullablePatches {
+  PatchExtraction extraction;
+  BackPatchValidity backPatch;
+};
+
+/// \brief Extracts the patches of `cage` and decides the back-patch validity from the same
+/// refiner's base level and the cage's signed volume (one refiner, not two).
+/// \throws osd_cull::Error as extractPatches().
+CullablePatches cullablePatches(const CageMesh& cage, const PatchOptions& options = {});
 
 /// \brief The signed volume enclosed by the cage's faces (divergence theorem, each face
 /// fanned from its first vertex): positive when faces are counter-clockwise seen from

@@ -135,13 +135,16 @@ PatchExtraction extractPatches(Far::TopologyRefiner& refiner, std::span<const gl
     throw Error(where + ": " + std::to_string(positions.size()) + " positions for a cage of " +
                 std::to_string(cageVertices) + " vertices");
 
+  const TopologySummary topology = summarize(refiner);
   AdaptivePatches adaptive;
   try {
     adaptive = buildAdaptivePatches(refiner, options);
   } catch (const Error& e) {
     throw Error(where + ": " + e.what());
   }
-  return extractPatches(refiner, adaptive, positions, source, uvs);
+  PatchExtraction out = extractPatches(refiner, adaptive, positions, source, uvs);
+  out.topology = topology;
+  return out;
 }
 
 PatchExtraction extractPatches(const Far::TopologyRefiner& refiner, const AdaptivePatches& adaptive,

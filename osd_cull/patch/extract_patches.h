@@ -12,6 +12,7 @@
 #include "osd_cull/patch/cage_mesh.h"
 #include "osd_cull/patch/patch_set.h"
 #include "osd_cull/patch/point_matrix.h"
+#include "osd_cull/patch/refiner.h"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -56,6 +57,10 @@ struct PatchExtraction {
   /// PatchSet order, bilinear over the patch (face_varying_uv.h); empty when the cage has no
   /// texture coordinates.
   std::vector<glm::dvec2> uvCorners;
+  /// The base level of the refiner the patches came from (summarize()), read before it was
+  /// refined: what bound::backPatchValidity() decides from, without building the refiner a
+  /// second time. Left empty by the composition-only overload.
+  TopologySummary topology;
   ExtractionStats stats;
 };
 

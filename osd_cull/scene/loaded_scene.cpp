@@ -35,9 +35,9 @@ SceneMesh makeSceneMesh(std::string name, CageMesh cage, const PatchOptions& opt
     m.recentreOffset = frame::boundsOf(cage.positions).center();
     for (glm::dvec3& p : cage.positions) p -= m.recentreOffset;
   }
-  m.validity =
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
-  m.extraction = extractPatches(cage, options);
+  bound::CullablePatches patches = bound::cullablePatches(cage, options);
+  m.validity = std::move(patches.backPatch);
+  m.extraction = std::move(patches.extraction);
   m.restCage = cage.positions;
   m.restBounds = frame::boundsOf(m.extraction.patches.points);
   m.animation = std::move(animation);

@@ -17,15 +17,14 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
   }
   const CageMesh& cage = *mesh.cage;
   out.notes = cage.notes;
-  const std::unique_ptr<Far::TopologyRefiner> refiner = makeTopologyRefiner(cage);
-  out.backPatch = bound::backPatchValidity(summarize(*refiner), bound::signedVolume(cage));
   // The commands never move the cage: no cage -> point matrix (a fraction of the time and
   // memory at a million patches).
   PatchOptions pointsOnly = options;
   pointsOnly.pointMatrix = false;
-  PatchExtraction ex = extractPatches(cage, pointsOnly);  // checks the scheme first
-  out.patches = std::move(ex.patches);
-  out.uvCorners = std::move(ex.uvCorners);
+  bound::CullablePatches c = bound::cullablePatches(cage, pointsOnly);  // checks the scheme first
+  out.backPatch = std::move(c.backPatch);
+  out.patches = std::move(c.extraction.patches);
+  out.uvCorners = std::move(c.extraction.uvCorners);
   return out;
 }
 

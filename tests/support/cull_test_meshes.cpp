@@ -9,14 +9,13 @@
 namespace osd_cull::test {
 
 CullMesh loadCullMesh(const std::filesystem::path& path, int level) {
-  const CageMesh cage = adapters::loadCage(path);
   CullMesh m;
   m.name = path.filename().string();
-  m.validity =
-      bound::backPatchValidity(summarize(*makeTopologyRefiner(cage)), bound::signedVolume(cage));
   PatchOptions options;
   options.isolationLevel = level;
-  m.patches = extractPatches(cage, options).patches;
+  bound::CullablePatches c = bound::cullablePatches(adapters::loadCage(path), options);
+  m.validity = std::move(c.backPatch);
+  m.patches = std::move(c.extraction.patches);
   return m;
 }
 
