@@ -214,28 +214,40 @@ CullFrame::Chunks CullFrame::chunks(size_t mesh) const {
 void CullFrame::recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool secondPass) {
   for (size_t m = 0; m < meshes_.size(); ++m) {
     VisibilityBuffer& v = *visibility_[m];
-    const GpuPatchSet& g = *meshes_[m].gpu;
-    PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
-    draw.model = &meshes_[m].model;
-    if (options_.drawMode == CullDrawMode::TessFactorZero) {
-      draw.set = secondPass ? v.secondPassAll() : v.firstPassAll();
-      renderer_.recordSlots(cmd, camera, draw, PatchType::Bezier, 0, g.bezierCount(), {},
-                            options_.render);
-      renderer_.recordSlots(cmd, camera, draw, PatchType::Gregory, g.firstGregorySlot(),
-                            g.gregoryCount(), {}, options_.render);
-      continue;
-    }
-    DrawListBuffers& list = secondPass ? v.secondPass() : v.firstPass();
-    draw.set = list.drawSet;
-    const Chunks c = chunks(m);
-    const uint32_t maxBezier = v.maxDraws(PatchType::Bezier, c.bezier);
-    renderer_.recordIndirect(cmd, camera, draw, PatchType::Bezier, list.commands, 0, list.counters,
-                             4 * shader::kListDrawsBezier, maxBezier, options_.render);
-    renderer_.recordIndirect(cmd, camera, draw, PatchType::Gregory, list.commands,
-                             VkDeviceSize{maxBezier} * sizeof(VkDrawIndirectCommand), list.counters,
-                             4 * shader::kListDrawsGregory,
-                             v.maxDraws(PatchType::Gregory, c.gregory), options_.render);
+    // The second pass draws only where a patch became newly visible: where the device has
+    // conditional rendering, it skips the mesh's draws itself (in the tess-factor-0 variant
+    // they would run the control shader over every patch), read from the count the
+    // status update wrote in this command buffer, with no host round trip.
+    const bool conditional = secondPass && v.beginIfNewlyVisible(cmd);
+    recordMeshDraws(cmd, camera, m, secondPass);
+    if (conditional) v.endCondition(cmd);
   }
+}
+
+void CullFrame::recordMeshDraws(VkCommandBuffer cmd, const Camera& camera, size_t m,
+                                bool secondPass) {
+  VisibilityBuffer& v = *visibility_[m];
+  const GpuPatchSet& g = *meshes_[m].gpu;
+  PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
+  draw.model = &meshes_[m].model;
+  if (options_.drawMode == CullDrawMode::TessFactorZero) {
+    draw.set = secondPass ? v.secondPassAll() : v.firstPassAll();
+    renderer_.recordSlots(cmd, camera, draw, PatchType::Bezier, 0, g.bezierCount(), {},
+                          options_.render);
+    renderer_.recordSlots(cmd, camera, draw, PatchType::Gregory, g.firstGregorySlot(),
+                          g.gregoryCount(), {}, options_.render);
+    return;
+  }
+  DrawListBuffers& list = secondPass ? v.secondPass() : v.firstPass();
+  draw.set = list.drawSet;
+  const Chunks c = chunks(m);
+  const uint32_t maxBezier = v.maxDraws(PatchType::Bezier, c.bezier);
+  renderer_.recordIndirect(cmd, camera, draw, PatchType::Bezier, list.commands, 0, list.counters,
+                           4 * shader::kListDrawsBezier, maxBezier, options_.render);
+  renderer_.recordIndirect(cmd, camera, draw, PatchType::Gregory, list.commands,
+                           VkDeviceSize{maxBezier} * sizeof(VkDrawIndirectCommand), list.counters,
+                           4 * shader::kListDrawsGregory,
+                           v.maxDraws(PatchType::Gregory, c.gregory), options_.render);
 }
 
 CullFrame::StatsSlot& CullFrame::beginFrame(const Camera& camera) {

@@ -247,6 +247,7 @@ class CullFrame {
   struct StatsSlot;
   Chunks chunks(size_t mesh) const;
   void recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool secondPass);
+  void recordMeshDraws(VkCommandBuffer cmd, const Camera& camera, size_t mesh, bool secondPass);
   StatsSlot& beginFrame(const Camera& camera);
   void recordFirstPass(VkCommandBuffer cmd, const Camera& camera,
                        std::span<const GpuTriangleMesh* const> occluders, StatsSlot& slot);
