@@ -416,12 +416,26 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
   l0.width = std::min(layout.levelWidth(0), covered(layout.width, 0));
   l0.height = std::min(layout.levelHeight(0), covered(layout.height, 0));
   l0.texels.assign(size_t{l0.width} * l0.height, 1.0f);
-  for (uint32_t y = 0; y < layout.height; ++y) {
-    const float* row = depth.data() + size_t{y} * layout.width;
-    float* dst = l0.texels.data() + size_t{y >> s} * l0.width;
-    for (uint32_t x = 0; x < layout.width; ++x) {
-      float& t = dst[x >> s];
-      t = (y % n == 0 && x % n == 0) ? row[x] : std::max(t, row[x]);
+  if (s == 1) {
+    // The paper's half resolution: each texel the maximum of a 2x2 pixel block, the inner
+    // loop over whole blocks without branches (the edges below).
+    const uint32_t w = layout.width, fullX = w / 2;
+    for (uint32_t ty = 0; ty < layout.height / 2; ++ty) {
+      const float* r0 = depth.data() + size_t{2 * ty} * w;
+      const float* r1 = r0 + w;
+      float* dst = l0.texels.data() + size_t{ty} * l0.width;
+      for (uint32_t tx = 0; tx < fullX; ++tx)
+        dst[tx] = std::max(std::max(r0[2 * tx], r0[2 * tx + 1]),
+                           std::max(r1[2 * tx], r1[2 * tx + 1]));
+    }
+  } else {
+    for (uint32_t y = 0; y < layout.height; ++y) {
+      const float* row = depth.data() + size_t{y} * layout.width;
+      float* dst = l0.texels.data() + size_t{y >> s} * l0.width;
+      for (uint32_t x = 0; x < layout.width; ++x) {
+        float& t = dst[x >> s];
+        t = (y % n == 0 && x % n == 0) ? row[x] : std::max(t, row[x]);
+      }
     }
   }
   // A footprint cut by the image's right or bottom edge includes far padding.
@@ -444,6 +458,12 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
                                                    : 1.0f;
         };
         const uint32_t sx = 2 * x, sy = 2 * y;
+        if (sx + 1 < src.width && sy + 1 < src.height) {  // inside: all four
+          const float* a = src.texels.data() + size_t{sy} * src.width + sx;
+          dst.texels[size_t{y} * dst.width + x] =
+              std::max(std::max(a[0], a[1]), std::max(a[src.width], a[src.width + 1]));
+          continue;
+        }
         const bool x1 = sx + 1 < layout.levelWidth(l - 1), y1 = sy + 1 < layout.levelHeight(l - 1);
         float m = at(sx, sy);
         if (x1) m = std::max(m, at(sx + 1, sy));
