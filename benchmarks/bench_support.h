@@ -27,6 +27,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 namespace osd_cull::bench {
 
 /// \brief The median (mean of the two middle values for an even count); 0 when empty.
@@ -172,6 +174,25 @@ inline vulkan::ContextOptions contextOptions(const std::string& device) {
   vulkan::ContextOptions o;
   o.device = device;
   return o;
+}
+
+/// \brief "load average A B C, peak RSS N MiB": the three load averages of /proc/loadavg
+/// ("?" where there is none) and this process's peak resident set, printed beside timings
+/// measured on a shared machine.
+inline std::string machineState() {
+  std::string load = "?";
+  if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+    double a = 0, b = 0, c = 0;
+    if (std::fscanf(f, "%lf %lf %lf", &a, &b, &c) == 3) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.2f %.2f %.2f", a, b, c);
+      load = text;
+    }
+    std::fclose(f);
+  }
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);  // ru_maxrss in KiB on Linux
+  return "load average " + load + ", peak RSS " + std::to_string(usage.ru_maxrss / 1024) + " MiB";
 }
 
 /// \brief A progress line on stderr: seconds since the first call, and what runs.

@@ -59,6 +59,18 @@ TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyr
   EXPECT_EQ(survivors + culled, patches);
   EXPECT_GT(f1["pass1"]["tessEvaluationInvocations"].get<uint64_t>(), 0u);
   EXPECT_GT(f1["ms"]["total"].get<double>(), 0.0);
+  // The per-stage GPU times of the one submission, or null with the reason.
+  for (const char* stage : {"pass1", "pyramid", "cull", "pass2", "gpu"}) {
+    ASSERT_TRUE(f1["ms"].contains(stage)) << stage;
+    if (f1["ms"][stage].is_null())
+      EXPECT_TRUE(f1["ms"].contains("note")) << stage;
+    else
+      EXPECT_GE(f1["ms"][stage].get<double>(), 0.0) << stage;
+  }
+  if (!f1["ms"]["gpu"].is_null()) {
+    EXPECT_GT(f1["ms"]["pyramid"].get<double>(), 0.0);
+    EXPECT_LE(f1["ms"]["gpu"].get<double>(), f1["ms"]["total"].get<double>() * 1.01 + 0.05);
+  }
   EXPECT_EQ(doc["options"]["drawMode"], "filtered");
 }
 
@@ -147,6 +159,27 @@ TEST(RenderCullCommand, AllRunsEveryStageOfTheKernelInTheTwoPassFrame) {
                           f1["culled"]["backPatch"].get<uint32_t>() +
                           f1["culled"]["occlusion"].get<uint32_t>();
   EXPECT_EQ(survivors + culled, patches);
+}
+
+TEST(RenderCullCommand, UnculledFramesHaveTheSameMsLayoutAsCulledOnes) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_plain_stats";
+  fs::create_directories(dir);
+  const auto r = runCommand(program().string() + " render --out " + (dir / "p.png").string() +
+                            " --width 64 --height 48 --frames 1 --stats " +
+                            (dir / "p.json").string());
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  std::ifstream in(dir / "p.json");
+  const nlohmann::json ms = nlohmann::json::parse(in)["frames"][0]["ms"];
+  EXPECT_FALSE(ms.contains("wall"));
+  EXPECT_GT(ms["total"].get<double>(), 0.0);
+  for (const char* stage : {"pass1", "pyramid", "cull", "pass2", "gpu"})
+    ASSERT_TRUE(ms.contains(stage)) << stage;
+  if (!ms["gpu"].is_null()) {  // one pass: no pyramid, cull or second pass
+    EXPECT_EQ(ms["pyramid"].get<double>(), 0.0);
+    EXPECT_EQ(ms["pass2"].get<double>(), 0.0);
+    EXPECT_EQ(ms["pass1"].get<double>(), ms["gpu"].get<double>());
+  }
 }
 
 TEST(VerifyCullCommand, HizIsCheckedAgainstItsReferenceTheOracleAndTheImage) {

@@ -5,10 +5,12 @@
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/query.h"
 #include "support/vk_test_context.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <optional>
 
 namespace osd_cull {
@@ -104,6 +106,47 @@ TEST_F(CullFrameRecordTest, ANormalFrameIsOneSubmissionAndTheDiagnosticModeOnePe
   }
 }
 
+TEST_F(CullFrameRecordTest, EveryFrameCarriesPerStageGpuTimesFromItsOneSubmission) {
+  if (!vulkan::TimestampQuery::unavailableReason(context()).empty())
+    GTEST_SKIP() << vulkan::TimestampQuery::unavailableReason(context());
+  frame::RenderTarget target(context(), kW, kH);
+  const frame::CullMesh meshes[] = {{gpu_.get(), &scene_.patches}};
+  for (bool aggressive : {false, true}) {
+    frame::CullFrame cull(context(), *renderer_, target, meshes, options(aggressive));
+    for (int f = 0; f < 3; ++f) {
+      const frame::CullFrameStats s = cull.render(camera(12.0 * f), occluders_);
+      const frame::CullStageTimes& t = s.gpu;
+      ASSERT_TRUE(t.measured()) << s.gpuNote;
+      EXPECT_TRUE(s.gpuNote.empty());
+      EXPECT_GT(t.pass1, 0.0);
+      EXPECT_GT(t.pyramid, 0.0);
+      EXPECT_GT(t.cull, 0.0);
+      EXPECT_GE(t.pass2, 0.0);
+      EXPECT_NEAR(t.pass1 + t.pyramid + t.cull + t.pass2, t.total, 1e-6 * t.total);
+      // The device's clock runs inside the host's: the GPU span of the frame fits in the
+      // wall time of its recording, submission and wait.
+      EXPECT_LE(t.total, s.frameMs * 1.01 + 0.05) << "frame " << f;
+      if (aggressive) {
+        EXPECT_LT(t.pass2, t.pass1) << "no second pass";
+      }
+    }
+  }
+}
+
+TEST_F(CullFrameRecordTest, WithoutTimestampsTheStageTimesAreNaNWithAReason) {
+  frame::RenderTarget target(context(), kW, kH);
+  const frame::CullMesh meshes[] = {{gpu_.get(), &scene_.patches}};
+  frame::CullFrameOptions o = options(false);
+  o.gpuTimes = false;
+  frame::CullFrame cull(context(), *renderer_, target, meshes, o);
+  const frame::CullFrameStats s = cull.render(camera(5.0), occluders_);
+  EXPECT_FALSE(s.gpu.measured());
+  EXPECT_TRUE(std::isnan(s.gpu.pass1) && std::isnan(s.gpu.pyramid) && std::isnan(s.gpu.cull) &&
+              std::isnan(s.gpu.pass2));
+  EXPECT_NE(s.gpuNote.find("gpuTimes"), std::string::npos) << s.gpuNote;
+  EXPECT_GT(s.pass1.tessEvaluationInvocations, 0u);  // the rest of the statistics as always
+}
+
 TEST_F(CullFrameRecordTest, DelayedStatisticsEqualTheImmediateOnes) {
   // Two frames of the same view: one rendered and read at once, one recorded into our
   // command buffers and read two frames later.
@@ -131,6 +174,7 @@ TEST_F(CullFrameRecordTest, DelayedStatisticsEqualTheImmediateOnes) {
         ASSERT_TRUE(late.has_value()) << "frame " << n;
         EXPECT_EQ(late->frame, ids[n]);
         expectEqualStats(*late, now[n], n);
+        EXPECT_EQ(late->gpu.measured(), now[n].gpu.measured()) << late->gpuNote;
       }
     }
     EXPECT_GT(now.back().culledOcclusion + now.back().culledBackPatch, 0u);

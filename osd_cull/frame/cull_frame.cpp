@@ -48,17 +48,30 @@ uint32_t drawStatusOf(uint32_t status) {
 }  // namespace
 
 // One slot of the statistics ring: the frame it holds, its two pipeline-statistics
-// queries (0: first pass, 1: second pass, or in aggressive mode the statistics copy) and
-// the per-mesh counters copied on the GPU (VisibilityBuffer::recordStatsCopy).
+// queries (0: first pass, 1: second pass, or in aggressive mode the statistics copy), the
+// per-mesh counters copied on the GPU (VisibilityBuffer::recordStatsCopy) and, where the
+// queue has them, kStageStamps timestamps: before pass 1, after pass 1, the pyramid, the
+// cull and pass 2.
 struct CullFrame::StatsSlot {
-  StatsSlot(vulkan::Context& context, size_t meshes)
+  static constexpr uint32_t kStageStamps = 5;
+  StatsSlot(vulkan::Context& context, size_t meshes, bool gpuTimes)
       : queries(context, 2),
         counters(context, std::max<size_t>(1, meshes) * VisibilityBuffer::kStatsCopyWords * 4,
-                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, vulkan::MemoryUse::Readback) {}
+                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, vulkan::MemoryUse::Readback) {
+    if (gpuTimes) stamps.emplace(context, kStageStamps);
+  }
+  // The device has finished the frame: its last query and timestamp are written.
+  bool finished() const {
+    return queries.tryResult(1) && (!stamps || stamps->available(kStageStamps - 1));
+  }
+  void stamp(VkCommandBuffer cmd, uint32_t index) {
+    if (stamps) stamps->write(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, index);
+  }
   std::optional<uint64_t> frame;  // none: never used
   bool aggressive = false;
   vulkan::PipelineStatisticsQuery queries;
   vulkan::Buffer counters;
+  std::optional<vulkan::TimestampQuery> stamps;
 };
 
 const char* toString(CullDrawMode mode) {
@@ -77,8 +90,10 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
     throw Error("CullFrame: device '" + context.info().name +
                 "' lacks hostQueryReset (a Vulkan 1.2 feature), needed by the statistics ring");
   if (options.statsSlots == 0) throw Error("CullFrame: CullFrameOptions::statsSlots must be >= 1");
+  gpuNote_ = options.gpuTimes ? vulkan::TimestampQuery::unavailableReason(context)
+                              : "timestamps off (CullFrameOptions::gpuTimes)";
   for (uint32_t i = 0; i < options.statsSlots; ++i)
-    slots_.push_back(std::make_unique<StatsSlot>(context, meshes.size()));
+    slots_.push_back(std::make_unique<StatsSlot>(context, meshes.size(), gpuNote_.empty()));
   const CullSettings& cull = options.cull;
   // Each mesh's stages: its own (CullMesh::stages) or the options'.
   auto stagesOf = [&](const CullMesh& m) {
@@ -199,28 +214,40 @@ CullFrame::Chunks CullFrame::chunks(size_t mesh) const {
 void CullFrame::recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool secondPass) {
   for (size_t m = 0; m < meshes_.size(); ++m) {
     VisibilityBuffer& v = *visibility_[m];
-    const GpuPatchSet& g = *meshes_[m].gpu;
-    PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
-    draw.model = &meshes_[m].model;
-    if (options_.drawMode == CullDrawMode::TessFactorZero) {
-      draw.set = secondPass ? v.secondPassAll() : v.firstPassAll();
-      renderer_.recordSlots(cmd, camera, draw, PatchType::Bezier, 0, g.bezierCount(), {},
-                            options_.render);
-      renderer_.recordSlots(cmd, camera, draw, PatchType::Gregory, g.firstGregorySlot(),
-                            g.gregoryCount(), {}, options_.render);
-      continue;
-    }
-    DrawListBuffers& list = secondPass ? v.secondPass() : v.firstPass();
-    draw.set = list.drawSet;
-    const Chunks c = chunks(m);
-    const uint32_t maxBezier = v.maxDraws(PatchType::Bezier, c.bezier);
-    renderer_.recordIndirect(cmd, camera, draw, PatchType::Bezier, list.commands, 0, list.counters,
-                             4 * shader::kListDrawsBezier, maxBezier, options_.render);
-    renderer_.recordIndirect(cmd, camera, draw, PatchType::Gregory, list.commands,
-                             VkDeviceSize{maxBezier} * sizeof(VkDrawIndirectCommand), list.counters,
-                             4 * shader::kListDrawsGregory,
-                             v.maxDraws(PatchType::Gregory, c.gregory), options_.render);
+    // The second pass draws only where a patch became newly visible: where the device has
+    // conditional rendering, it skips the mesh's draws itself (in the tess-factor-0 variant
+    // they would run the control shader over every patch), read from the count the
+    // status update wrote in this command buffer, with no host round trip.
+    const bool conditional = secondPass && v.beginIfNewlyVisible(cmd);
+    recordMeshDraws(cmd, camera, m, secondPass);
+    if (conditional) v.endCondition(cmd);
   }
+}
+
+void CullFrame::recordMeshDraws(VkCommandBuffer cmd, const Camera& camera, size_t m,
+                                bool secondPass) {
+  VisibilityBuffer& v = *visibility_[m];
+  const GpuPatchSet& g = *meshes_[m].gpu;
+  PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
+  draw.model = &meshes_[m].model;
+  if (options_.drawMode == CullDrawMode::TessFactorZero) {
+    draw.set = secondPass ? v.secondPassAll() : v.firstPassAll();
+    renderer_.recordSlots(cmd, camera, draw, PatchType::Bezier, 0, g.bezierCount(), {},
+                          options_.render);
+    renderer_.recordSlots(cmd, camera, draw, PatchType::Gregory, g.firstGregorySlot(),
+                          g.gregoryCount(), {}, options_.render);
+    return;
+  }
+  DrawListBuffers& list = secondPass ? v.secondPass() : v.firstPass();
+  draw.set = list.drawSet;
+  const Chunks c = chunks(m);
+  const uint32_t maxBezier = v.maxDraws(PatchType::Bezier, c.bezier);
+  renderer_.recordIndirect(cmd, camera, draw, PatchType::Bezier, list.commands, 0, list.counters,
+                           4 * shader::kListDrawsBezier, maxBezier, options_.render);
+  renderer_.recordIndirect(cmd, camera, draw, PatchType::Gregory, list.commands,
+                           VkDeviceSize{maxBezier} * sizeof(VkDrawIndirectCommand), list.counters,
+                           4 * shader::kListDrawsGregory,
+                           v.maxDraws(PatchType::Gregory, c.gregory), options_.render);
 }
 
 CullFrame::StatsSlot& CullFrame::beginFrame(const Camera& camera) {
@@ -230,12 +257,13 @@ CullFrame::StatsSlot& CullFrame::beginFrame(const Camera& camera) {
                 std::to_string(target_.width()) + "x" + std::to_string(target_.height()));
   StatsSlot& slot = *slots_[nextFrame_ % slots_.size()];
   // The slot's last frame must be over before its queries are reset from the host.
-  if (slot.frame && !slot.queries.tryResult(1))
+  if (slot.frame && !slot.finished())
     throw Error("CullFrame::record: frame " + std::to_string(*slot.frame) + ", recorded " +
                 std::to_string(slots_.size()) +
                 " frames ago, has not finished on the device; wait for its submission first "
                 "or use more CullFrameOptions::statsSlots");
   slot.queries.hostReset();
+  if (slot.stamps) slot.stamps->hostReset();
   slot.frame = nextFrame_++;
   slot.aggressive = options_.aggressive;
   return slot;
@@ -244,6 +272,7 @@ CullFrame::StatsSlot& CullFrame::beginFrame(const Camera& camera) {
 void CullFrame::recordFirstPass(VkCommandBuffer cmd, const Camera& camera,
                                 std::span<const GpuTriangleMesh* const> occluders,
                                 StatsSlot& slot) {
+  slot.stamp(cmd, 0);
   if (options_.drawMode == CullDrawMode::Filtered)
     for (size_t m = 0; m < meshes_.size(); ++m) {
       const Chunks c = chunks(m);
@@ -257,6 +286,12 @@ void CullFrame::recordFirstPass(VkCommandBuffer cmd, const Camera& camera,
   recordPatchDraws(cmd, camera, false);
   slot.queries.end(cmd, 0);
   renderer_.endPass(cmd);
+  slot.stamp(cmd, 1);
+}
+
+void CullFrame::recordPyramid(VkCommandBuffer cmd, StatsSlot& slot) {
+  if (pyramid_) pyramid_->record(cmd, target_.depthLayout());
+  slot.stamp(cmd, 2);
 }
 
 void CullFrame::recordBatchCull(VkCommandBuffer cmd, const Camera& camera, Batch& batch) {
@@ -300,6 +335,7 @@ void CullFrame::recordCull(VkCommandBuffer cmd, const Camera& camera, StatsSlot&
                                       VkDeviceSize{m} * VisibilityBuffer::kStatsCopyWords * 4);
     }
   }
+  slot.stamp(cmd, 3);
 }
 
 uint64_t CullFrame::cullDispatches() const {
@@ -314,22 +350,23 @@ void CullFrame::recordSecondPass(VkCommandBuffer cmd, const Camera& camera, Stat
   if (slot.aggressive) {
     slot.queries.begin(cmd, 1);
     slot.queries.end(cmd, 1);
-    return;
+  } else {
+    RenderOptions pass = options_.render;
+    pass.clear = false;
+    renderer_.beginPass(cmd, target_, pass);
+    slot.queries.begin(cmd, 1);
+    recordPatchDraws(cmd, camera, true);
+    slot.queries.end(cmd, 1);
+    renderer_.endPass(cmd);
   }
-  RenderOptions pass = options_.render;
-  pass.clear = false;
-  renderer_.beginPass(cmd, target_, pass);
-  slot.queries.begin(cmd, 1);
-  recordPatchDraws(cmd, camera, true);
-  slot.queries.end(cmd, 1);
-  renderer_.endPass(cmd);
+  slot.stamp(cmd, 4);
 }
 
 uint64_t CullFrame::record(VkCommandBuffer cmd, const Camera& camera,
                            std::span<const GpuTriangleMesh* const> occluders) {
   StatsSlot& slot = beginFrame(camera);
   recordFirstPass(cmd, camera, occluders, slot);
-  if (pyramid_) pyramid_->record(cmd, target_.depthLayout());
+  recordPyramid(cmd, slot);
   recordCull(cmd, camera, slot);
   recordSecondPass(cmd, camera, slot);
   for (auto& v : visibility_) v->advance();
@@ -340,9 +377,19 @@ std::optional<CullFrameStats> CullFrame::stats(uint64_t frame) const {
   const StatsSlot& slot = *slots_[frame % slots_.size()];
   if (slot.frame != frame) return std::nullopt;
   const std::optional<vulkan::PipelineStatistics> last = slot.queries.tryResult(1);
-  if (!last) return std::nullopt;
+  if (!last || !slot.finished()) return std::nullopt;
   CullFrameStats s;
   s.frame = frame;
+  s.gpuNote = gpuNote_;
+  if (slot.stamps) {
+    // All five are written: the last one is, and the device writes them in order.
+    const vulkan::TimestampQuery& t = *slot.stamps;
+    s.gpu.pass1 = *t.tryElapsedMs(0, 1);
+    s.gpu.pyramid = *t.tryElapsedMs(1, 2);
+    s.gpu.cull = *t.tryElapsedMs(2, 3);
+    s.gpu.pass2 = *t.tryElapsedMs(3, 4);
+    s.gpu.total = *t.tryElapsedMs(0, 4);
+  }
   s.pass1 = slot.queries.result(0);  // available: it ended before query 1
   if (!slot.aggressive) s.pass2 = *last;
   const auto words = slot.counters.mappedAs<const uint32_t>();
@@ -375,9 +422,11 @@ CullFrameStats CullFrame::render(const Camera& camera,
     pass1Ms = timedSubmit(
         context_, [&](VkCommandBuffer cmd) { recordFirstPass(cmd, camera, occluders, slot); });
     if (pyramid_)
-      pyramidMs = timedSubmit(
-          context_, [&](VkCommandBuffer cmd) { pyramid_->record(cmd, target_.depthLayout()); });
-    cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) { recordCull(cmd, camera, slot); });
+      pyramidMs = timedSubmit(context_, [&](VkCommandBuffer cmd) { recordPyramid(cmd, slot); });
+    cullMs = timedSubmit(context_, [&](VkCommandBuffer cmd) {
+      if (!pyramid_) recordPyramid(cmd, slot);  // its timestamp only
+      recordCull(cmd, camera, slot);
+    });
     pass2Ms =
         timedSubmit(context_, [&](VkCommandBuffer cmd) { recordSecondPass(cmd, camera, slot); });
     for (auto& v : visibility_) v->advance();

@@ -29,7 +29,9 @@
 #include "osd_cull/frame/hiz/visibility_buffer.h"
 #include "osd_cull/vk/query.h"
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -60,9 +62,13 @@ struct CullFrameOptions {
   HiZOptions hiz;
   /// Diagnostic mode: render() submits each pass on its own, waits for it and times it
   /// with the wall clock (CullFrameStats::pass1Ms, pyramidMs, cullMs, pass2Ms). Off: the
-  /// normal path, one submission per frame. (Timestamps are not used for the split:
-  /// lavapipe's compute timestamps after graphics work are not trustworthy, PLATFORM.md.)
+  /// normal path, one submission per frame, timed per stage by timestamps
+  /// (CullFrameStats::gpu).
   bool timePasses = false;
+  /// Timestamp queries between the stages of every frame (CullFrameStats::gpu), where the
+  /// queue has timestamps. Off, or without them: the times are NaN with the reason in
+  /// CullFrameStats::gpuNote.
+  bool gpuTimes = true;
   /// Instances sharing a patch set (the same GpuPatchSet, host PatchSet, cull data,
   /// back-patch validity and displacement) are culled by one CullPass: one dispatch per
   /// view for all of them (issue 10), each keeping its own status. False: a pass per
@@ -71,6 +77,17 @@ struct CullFrameOptions {
   /// Slots of the statistics ring: the statistics of frame N can be read with stats(N)
   /// until frame N + statsSlots is recorded. At least the application's frames in flight.
   uint32_t statsSlots = 3;
+};
+
+/// \brief GPU time of each stage of one frame (ms), from timestamps written between the
+/// stages in the frame's command buffer: pass 1 (its draw commands and the first render
+/// pass), the pyramid build, the cull (kernels, status update, draw lists, statistics copy),
+/// pass 2. NaN where not measured (see CullFrameStats::gpuNote).
+struct CullStageTimes {
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  double pass1 = kNone, pyramid = kNone, cull = kNone, pass2 = kNone;
+  double total = kNone;  ///< first timestamp to last: the sum of the four
+  bool measured() const { return !std::isnan(total); }
 };
 
 /// \brief What one frame did.
@@ -95,6 +112,10 @@ struct CullFrameStats {
   double cullMs = 0.0;  ///< cull kernel and visibility update
   double pass2Ms = 0.0;
   double totalMs() const { return frameMs; }
+  /// Timestamps of the stages, in the normal path and the diagnostic mode alike (there
+  /// gpu.total includes the host's time between the submissions).
+  CullStageTimes gpu;
+  std::string gpuNote;  ///< empty when `gpu` was measured, else why it was not
 };
 
 /// \brief The three stages of a cull kernel, as CullSettings names them.
@@ -226,9 +247,11 @@ class CullFrame {
   struct StatsSlot;
   Chunks chunks(size_t mesh) const;
   void recordPatchDraws(VkCommandBuffer cmd, const Camera& camera, bool secondPass);
+  void recordMeshDraws(VkCommandBuffer cmd, const Camera& camera, size_t mesh, bool secondPass);
   StatsSlot& beginFrame(const Camera& camera);
   void recordFirstPass(VkCommandBuffer cmd, const Camera& camera,
                        std::span<const GpuTriangleMesh* const> occluders, StatsSlot& slot);
+  void recordPyramid(VkCommandBuffer cmd, StatsSlot& slot);
   void recordCull(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot);
   void recordSecondPass(VkCommandBuffer cmd, const Camera& camera, StatsSlot& slot);
 
@@ -256,6 +279,7 @@ class CullFrame {
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
   std::vector<std::unique_ptr<StatsSlot>> slots_;  // the statistics ring
+  std::string gpuNote_;  // why the slots have no timestamps; empty when they have
   uint64_t nextFrame_ = 0;
   std::vector<vulkan::Buffer> statusLists_;  // debug view lists, made on first use
   std::vector<VkDescriptorSet> statusSets_;

@@ -298,6 +298,14 @@ void Context::pickDevice(const ContextOptions& options) {
                 " (choose another device with --device or OSD_CULL_DEVICE; devices:" +
                 deviceList(candidates) + ")");
   info_.optional = optionalFeaturesOf(findFeatures(f), dynamicExtension);
+  if (hasDeviceExtension(physicalDevice_, VK_EXT_CONDITIONAL_RENDERING_EXTENSION_NAME)) {
+    VkPhysicalDeviceConditionalRenderingFeaturesEXT conditional{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CONDITIONAL_RENDERING_FEATURES_EXT};
+    VkPhysicalDeviceFeatures2 fc{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    fc.pNext = &conditional;
+    vkGetPhysicalDeviceFeatures2(physicalDevice_, &fc);
+    info_.optional.conditionalRendering = conditional.conditionalRendering == VK_TRUE;
+  }
   const std::string line = "osd_cull: Vulkan device " + std::to_string(index) + " '" + info_.name +
                            "' (" + toString(info_.type) + ", " + how + ")";
   if (options.log)
@@ -328,6 +336,13 @@ void Context::createDevice() {
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES};
   dynamic.dynamicRendering = VK_TRUE;
   if (opt.dynamicRendering) f12.pNext = &dynamic;
+  VkPhysicalDeviceConditionalRenderingFeaturesEXT conditional{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CONDITIONAL_RENDERING_FEATURES_EXT};
+  conditional.conditionalRendering = VK_TRUE;
+  if (opt.conditionalRendering) {
+    conditional.pNext = f12.pNext;
+    f12.pNext = &conditional;
+  }
 
   const float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -339,6 +354,10 @@ void Context::createDevice() {
   for (const std::string& e : deviceExtensions_)
     if (e != VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME) extensions.push_back(e.c_str());
   if (opt.dynamicRendering) extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
+  if (opt.conditionalRendering &&
+      std::find(deviceExtensions_.begin(), deviceExtensions_.end(),
+                VK_EXT_CONDITIONAL_RENDERING_EXTENSION_NAME) == deviceExtensions_.end())
+    extensions.push_back(VK_EXT_CONDITIONAL_RENDERING_EXTENSION_NAME);
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &f;
   info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
@@ -363,6 +382,14 @@ void Context::createOwnObjects() {
     }
     if (!beginRendering_ || !endRendering_)
       throw Error("dynamic rendering is enabled but vkCmdBeginRendering is not available");
+  }
+  if (info_.optional.conditionalRendering) {
+    beginConditional_ = reinterpret_cast<PFN_vkCmdBeginConditionalRenderingEXT>(
+        vkGetDeviceProcAddr(device_, "vkCmdBeginConditionalRenderingEXT"));
+    endConditional_ = reinterpret_cast<PFN_vkCmdEndConditionalRenderingEXT>(
+        vkGetDeviceProcAddr(device_, "vkCmdEndConditionalRenderingEXT"));
+    if (!beginConditional_ || !endConditional_)
+      throw Error("conditional rendering is enabled but its commands are not available");
   }
   allocator_ = std::make_unique<MemoryAllocator>(physicalDevice_, device_, blockSize_,
                                                  info_.optional.bufferDeviceAddress);

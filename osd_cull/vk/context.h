@@ -66,6 +66,9 @@ struct OptionalFeatures {
   /// Vulkan 1.3 dynamicRendering or VK_KHR_dynamic_rendering: draws without a VkRenderPass
   /// (Context::cmdBeginRendering()).
   bool dynamicRendering = false;
+  /// VK_EXT_conditional_rendering (our own device only): CullFrame's second pass skips its
+  /// draws on the GPU when no patch became newly visible (Context::cmdBeginConditionalRendering()).
+  bool conditionalRendering = false;
 };
 
 /// \brief Facts about the chosen device.
@@ -134,6 +137,15 @@ class Context {
   PFN_vkCmdBeginRenderingKHR cmdBeginRendering() const { return beginRendering_; }
   /// \brief vkCmdEndRendering, or null without OptionalFeatures::dynamicRendering.
   PFN_vkCmdEndRenderingKHR cmdEndRendering() const { return endRendering_; }
+  /// \brief vkCmdBeginConditionalRenderingEXT, or null without
+  /// OptionalFeatures::conditionalRendering.
+  PFN_vkCmdBeginConditionalRenderingEXT cmdBeginConditionalRendering() const {
+    return beginConditional_;
+  }
+  /// \brief vkCmdEndConditionalRenderingEXT, or null without it.
+  PFN_vkCmdEndConditionalRenderingEXT cmdEndConditionalRendering() const {
+    return endConditional_;
+  }
 
   /// \brief Records commands into a fresh primary command buffer, submits it and waits
   /// for it to finish.
@@ -167,6 +179,8 @@ class Context {
   bool ownsDevice_ = true;
   PFN_vkCmdBeginRenderingKHR beginRendering_ = nullptr;
   PFN_vkCmdEndRenderingKHR endRendering_ = nullptr;
+  PFN_vkCmdBeginConditionalRenderingEXT beginConditional_ = nullptr;
+  PFN_vkCmdEndConditionalRenderingEXT endConditional_ = nullptr;
   uint64_t submissions_ = 0;
   std::vector<std::string> deviceExtensions_;
 };

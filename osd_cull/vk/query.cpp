@@ -112,13 +112,20 @@ std::optional<PipelineStatistics> PipelineStatisticsQuery::tryResult(uint32_t in
 
 void PipelineStatisticsQuery::hostReset() { vkResetQueryPool(device_, pool_.get(), 0, count_); }
 
+std::string TimestampQuery::unavailableReason(const Context& context) {
+  if (context.info().timestampValidBits == 0)
+    return "the queue family of device '" + context.info().name +
+           "' has timestampValidBits 0 (timestamps are optional in Vulkan)";
+  return {};
+}
+
 TimestampQuery::TimestampQuery(Context& context, uint32_t count)
     : device_(context.device()),
       pool_(createPool(context, VK_QUERY_TYPE_TIMESTAMP, count, 0)),
       count_(count),
       periodNs_(context.info().limits.timestampPeriod) {
   const uint32_t bits = context.info().timestampValidBits;
-  if (bits == 0) throw Error("TimestampQuery: the device queue does not support timestamps");
+  if (bits == 0) throw Error("TimestampQuery: " + unavailableReason(context));
   mask_ = bits >= 64 ? ~uint64_t{0} : (uint64_t{1} << bits) - 1;
 }
 
@@ -131,6 +138,32 @@ void TimestampQuery::write(VkCommandBuffer cmd, VkPipelineStageFlagBits stage, u
   vkCmdWriteTimestamp(cmd, stage, pool_.get(), index);
 }
 
+void TimestampQuery::hostReset() { vkResetQueryPool(device_, pool_.get(), 0, count_); }
+
+std::optional<uint64_t> TimestampQuery::tryTicks(uint32_t index) const {
+  checkIndex(index, count_, "TimestampQuery");
+  std::array<uint64_t, 2> v{};  // the timestamp, then the availability word
+  const VkResult r =
+      vkGetQueryPoolResults(device_, pool_.get(), index, 1, sizeof(v), v.data(), sizeof(v),
+                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+  if (r == VK_NOT_READY || v[1] == 0) return std::nullopt;
+  check(r, "vkGetQueryPoolResults (timestamp)");
+  return v[0];
+}
+
+bool TimestampQuery::available(uint32_t index) const { return tryTicks(index).has_value(); }
+
+std::optional<double> TimestampQuery::tryElapsedMs(uint32_t first, uint32_t second) const {
+  const std::optional<uint64_t> a = tryTicks(first), b = tryTicks(second);
+  if (!a || !b) return std::nullopt;
+  return toMs(*a, *b);
+}
+
+double TimestampQuery::toMs(uint64_t first, uint64_t second) const {
+  const uint64_t ticks = ((second & mask_) - (first & mask_)) & mask_;
+  return static_cast<double>(ticks) * periodNs_ * 1e-6;
+}
+
 double TimestampQuery::elapsedMs(uint32_t first, uint32_t second) const {
   checkIndex(first, count_, "TimestampQuery::elapsedMs");
   checkIndex(second, count_, "TimestampQuery::elapsedMs");
@@ -139,8 +172,7 @@ double TimestampQuery::elapsedMs(uint32_t first, uint32_t second) const {
                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   OSD_CULL_VK(vkGetQueryPoolResults(device_, pool_.get(), second, 1, sizeof(b), &b, sizeof(b),
                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  const uint64_t ticks = ((b & mask_) - (a & mask_)) & mask_;
-  return static_cast<double>(ticks) * periodNs_ * 1e-6;
+  return toMs(a, b);
 }
 
 }  // namespace osd_cull::vulkan

@@ -2,6 +2,7 @@
 
 #include "adapters/image_png.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace osd_cull::cli {
@@ -9,6 +10,37 @@ namespace osd_cull::cli {
 namespace {
 
 unsigned long long u64(uint64_t v) { return static_cast<unsigned long long>(v); }
+
+// One "ms" layout for every frame, culled or not: the stages pass1, pyramid, cull and
+// pass2 on the GPU (timestamps in the frame's one submission; null when the device has
+// none, with the reason in "note"), "gpu" their sum, "total" the wall clock of the frame
+// (recording, submission, wait).
+nlohmann::json msJson(const frame::CullStageTimes& t, double wallMs, const std::string& note) {
+  auto value = [](double v) { return std::isnan(v) ? nlohmann::json() : nlohmann::json(v); };
+  nlohmann::json ms{{"pass1", value(t.pass1)}, {"pyramid", value(t.pyramid)},
+                    {"cull", value(t.cull)},   {"pass2", value(t.pass2)},
+                    {"gpu", value(t.total)},   {"total", wallMs}};
+  if (!note.empty()) ms["note"] = note;
+  return ms;
+}
+
+nlohmann::json cullFrameMs(const frame::CullFrameStats& s) {
+  nlohmann::json ms = msJson(s.gpu, s.totalMs(), s.gpuNote);
+  // The diagnostic mode's wall clock of each pass's own submission, when it ran.
+  if (s.pass1Ms + s.pyramidMs + s.cullMs + s.pass2Ms > 0.0)
+    ms["wallPerSubmission"] = {{"pass1", s.pass1Ms},
+                               {"pyramid", s.pyramidMs},
+                               {"cull", s.cullMs},
+                               {"pass2", s.pass2Ms}};
+  return ms;
+}
+
+// An unculled frame is one pass: no pyramid, cull or second pass.
+nlohmann::json plainFrameMs(const frame::FrameStats& s) {
+  frame::CullStageTimes t;
+  if (s.gpuMs > 0.0) t = {s.gpuMs, 0.0, 0.0, 0.0, s.gpuMs};
+  return msJson(t, s.wallMs, s.gpuMs > 0.0 ? "" : "no timestamps on this device");
+}
 
 }  // namespace
 
@@ -23,12 +55,19 @@ std::string cullFrameLine(uint32_t frame, const frame::CullFrameStats& s) {
       s.culledOcclusion, u64(s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations),
       u64(s.pass1.tessEvaluationInvocations), u64(s.pass2.tessEvaluationInvocations),
       u64(s.pass1.fragmentShaderInvocations + s.pass2.fragmentShaderInvocations));
-  char times[160];
-  // The per-pass split exists only in the diagnostic mode (CullFrameOptions::timePasses).
+  char times[200];
+  // The diagnostic mode's split (CullFrameOptions::timePasses) is the wall clock of each
+  // pass's own submission; otherwise the GPU timestamps of the one submission.
   if (s.pass1Ms + s.pyramidMs + s.cullMs + s.pass2Ms > 0.0)
     std::snprintf(times, sizeof(times),
-                  "pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f, total %.2f", s.pass1Ms,
-                  s.pyramidMs, s.cullMs, s.pass2Ms, s.totalMs());
+                  "pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f, total %.2f (a submission "
+                  "per pass)",
+                  s.pass1Ms, s.pyramidMs, s.cullMs, s.pass2Ms, s.totalMs());
+  else if (s.gpu.measured())
+    std::snprintf(times, sizeof(times),
+                  "total %.2f (one submission); GPU: pass 1 %.2f, pyramid %.2f, cull %.2f, "
+                  "pass 2 %.2f",
+                  s.totalMs(), s.gpu.pass1, s.gpu.pyramid, s.gpu.cull, s.gpu.pass2);
   else
     std::snprintf(times, sizeof(times), "total %.2f (one submission)", s.totalMs());
   return std::string(line) + times;
@@ -53,12 +92,7 @@ nlohmann::json cullFrameJson(uint32_t frame, const frame::CullFrameStats& s) {
             {"occlusion", s.culledOcclusion}}},
           {"pass1", pass(s.pass1)},
           {"pass2", pass(s.pass2)},
-          {"ms",
-           {{"pass1", s.pass1Ms},
-            {"pyramid", s.pyramidMs},
-            {"cull", s.cullMs},
-            {"pass2", s.pass2Ms},
-            {"total", s.totalMs()}}}};
+          {"ms", cullFrameMs(s)}};
 }
 
 nlohmann::json plainFrameJson(uint32_t frame, const frame::FrameStats& s) {
@@ -67,7 +101,7 @@ nlohmann::json plainFrameJson(uint32_t frame, const frame::FrameStats& s) {
           {"drawCalls", s.drawCalls},
           {"tessEvaluationInvocations", s.statistics.tessEvaluationInvocations},
           {"fragmentShaderInvocations", s.statistics.fragmentShaderInvocations},
-          {"ms", {{"wall", s.wallMs}, {"gpu", s.gpuMs}}}};
+          {"ms", plainFrameMs(s)}};
 }
 
 uint32_t writePyramidLevels(const std::filesystem::path& dir, const frame::HiZPyramid& pyramid,

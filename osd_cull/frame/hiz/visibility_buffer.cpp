@@ -45,6 +45,10 @@ constexpr vulkan::Scope kListReaders{
     VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT |
         VK_ACCESS_TRANSFER_READ_BIT};
 
+// The second pass's conditional rendering reads the newly-visible count.
+constexpr vulkan::Scope kConditionReader{VK_PIPELINE_STAGE_CONDITIONAL_RENDERING_BIT_EXT,
+                                         VK_ACCESS_CONDITIONAL_RENDERING_READ_BIT_EXT};
+
 const vulkan::ShaderSource kUpdateShader{"hiz/visibility_update.comp", {}};
 const vulkan::ShaderSource kDrawsShader{"hiz/visibility_draws.comp", {}};
 
@@ -85,7 +89,11 @@ VisibilityBuffer::VisibilityBuffer(vulkan::Context& context, const VisibilityPro
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   status_ = vulkan::Buffer(context, size_t{n} * 4, storage);
-  stats_ = vulkan::Buffer(context, kStatCount * 4, storage, vulkan::MemoryUse::Readback);
+  conditional_ = context.info().optional.conditionalRendering;
+  stats_ = vulkan::Buffer(
+      context, kStatCount * 4,
+      conditional_ ? storage | VK_BUFFER_USAGE_CONDITIONAL_RENDERING_BIT_EXT : storage,
+      vulkan::MemoryUse::Readback);
   // Enough commands for one-patch draws of every patch: any chunk size fits.
   const size_t maxCommands = size_t{gpu.bezierCount()} + gpu.gregoryCount() + 2;
   // Sets: per list one draws set, per parity one update set per results buffer (a few).
@@ -191,6 +199,7 @@ void VisibilityBuffer::recordUpdate(VkCommandBuffer cmd, const vulkan::Buffer& r
   DrawListBuffers& next = lists_[parity_ ^ 1u];
   // Earlier readers of the lists being rewritten: last frame's draws, the host.
   vulkan::memoryBarrier(cmd, kListReaders, vulkan::scope::kTransferWrite);
+  if (conditional_) vulkan::memoryBarrier(cmd, kConditionReader, vulkan::scope::kTransferWrite);
   vkCmdFillBuffer(cmd, next.counters.handle(), 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, secondPass_.counters.handle(), 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, stats_.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -206,6 +215,20 @@ void VisibilityBuffer::recordUpdate(VkCommandBuffer cmd, const vulkan::Buffer& r
   programs_.draws().dispatch(cmd, secondPass_.draws, std::as_bytes(std::span(&c, 1)),
                              std::max(1u, vulkan::groupCount(commands, kVisGroupSize)));
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, kListReaders);
+  if (conditional_) vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, kConditionReader);
+}
+
+bool VisibilityBuffer::beginIfNewlyVisible(VkCommandBuffer cmd) const {
+  if (!conditional_) return false;
+  VkConditionalRenderingBeginInfoEXT info{VK_STRUCTURE_TYPE_CONDITIONAL_RENDERING_BEGIN_INFO_EXT};
+  info.buffer = stats_.handle();
+  info.offset = VkDeviceSize{kStatNewlyVisible} * 4;
+  context_.cmdBeginConditionalRendering()(cmd, &info);
+  return true;
+}
+
+void VisibilityBuffer::endCondition(VkCommandBuffer cmd) const {
+  context_.cmdEndConditionalRendering()(cmd);
 }
 
 void VisibilityBuffer::recordStatsCopy(VkCommandBuffer cmd, const vulkan::Buffer& dst,

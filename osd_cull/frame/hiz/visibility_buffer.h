@@ -101,6 +101,13 @@ class VisibilityBuffer {
   /// last recordUpdate() into `dst` at byte `offset` (kStatsCopyWords uints), after the
   /// update in the same command buffer; the copy is made available to the host.
   void recordStatsCopy(VkCommandBuffer cmd, const vulkan::Buffer& dst, VkDeviceSize offset);
+  /// \brief Begins conditional rendering (VK_EXT_conditional_rendering) on the
+  /// newly-visible count of the last recordUpdate(): the draws recorded until
+  /// endCondition() are skipped on the device when no patch became newly visible. Returns
+  /// false and records nothing without OptionalFeatures::conditionalRendering.
+  bool beginIfNewlyVisible(VkCommandBuffer cmd) const;
+  /// \brief Ends what beginIfNewlyVisible() began (only after it returned true).
+  void endCondition(VkCommandBuffer cmd) const;
   /// \brief After the frame: the list built by recordUpdate() becomes the first-pass list.
   void advance() { parity_ ^= 1u; }
 
@@ -123,6 +130,7 @@ class VisibilityBuffer {
   const VisibilityPrograms& programs_;
   GpuPatchSet& gpu_;
   uint32_t parity_ = 0;
+  bool conditional_ = false;  // the second pass's draws are conditional on stats_
   vulkan::Buffer status_;
   vulkan::Buffer stats_;
   std::array<DrawListBuffers, 2> lists_;  // first-pass lists: current and next
