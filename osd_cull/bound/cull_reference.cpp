@@ -143,9 +143,16 @@ uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullVie
                           const CullTests& tests) {
   const uint32_t v =
       boundVerdict(patches, patch, view, method, cones, tests.drawnShapes, tests.snapPerDistance);
-  if (v != uint32_t(BackPatchVerdict::DrawnTriangles) || !tests.drawnEnumerate || !view.eye ||
+  if (v != uint32_t(BackPatchVerdict::DrawnTriangles) || !view.eye ||
       !tests.drawnShapes[patch].exactLevels)
     return v;
+  const QuadTessLevels& levels = tests.drawnShapes[patch].levels;
+  double maxOuter = 0.0;
+  for (int e = 0; e < 4; ++e)
+    maxOuter = std::max(maxOuter, std::max(1.0, std::ceil(levels.lo[e])) +
+                                      (levels.hi[e] > 0.0 ? std::max(1.0, std::ceil(levels.hi[e]))
+                                                          : 0.0));
+  if (!tests.drawnEnumerate && !(maxOuter <= double(tests.drawnListLevel))) return v;
   return drawnTrianglesFaceAway(patches.controlPoints(patch), tests.drawnShapes[patch].levels,
                                 *view.eye, tests.snapPerDistance)
              ? uint32_t(BackPatchVerdict::BackFacing)

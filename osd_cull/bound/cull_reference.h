@@ -75,6 +75,10 @@ struct CullTests {
   /// drawn_triangle_set.h lists faces away (the tightened test, CullSettings::
   /// drawnEnumerate).
   bool drawnEnumerate = false;
+  /// With drawnShapes: without drawnEnumerate, the listed test still runs on patches with
+  /// exact levels whose outer levels are all at most this (kDrawnListLowLevel as the kernel
+  /// lists them; 0: never).
+  uint32_t drawnListLevel = 0;
 };
 
 /// \brief The result code (shaders/shared/cull_layout.h) of one patch. `cones` is

@@ -102,6 +102,13 @@ inline constexpr double kGregoryEvalUlps = 16.0;
 /// coordinates; G from bezierDerivativeBounds() or gregoryDerivativeBound()).
 /// `snapPerDistance` as for tangentPlaneDrawnMargin().
 /// \throws osd_cull::Error if `points` holds neither 16 nor 20 points.
+/// \brief The largest outer level at which the back-patch test lists the drawn triangles
+/// even without CullSettings::drawnEnumerate (CullTests::drawnListLevel): at most 8 ring and
+/// 16 grid triangles, where the worst-case bound of drawn_triangles.h is loosest (one
+/// triangle spans a quarter of the patch) and the listing costs little
+/// (docs/algorithms/drawn-triangles.md, "Listing at low levels").
+inline constexpr uint32_t kDrawnListLowLevel = 2;
+
 bool drawnTrianglesFaceAway(std::span<const glm::dvec3> points, const QuadTessLevels& levels,
                             const glm::dvec3& eye, double snapPerDistance);
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 
 namespace osd_cull::frame {
 
@@ -110,6 +111,12 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
   }
   bool unculled = false;  // a mesh without any stage draws from survivedResults_
   uint32_t base = 0;
+  // Each mesh reads its adaptive levels from its own slot of its set's tessLevels()
+  // (TessLevelsPass), reserved before any descriptor set of the set is written.
+  std::map<GpuPatchSet*, uint32_t> levelSlots;
+  for (const CullMesh& m : meshes_)
+    levelSlotOf_.push_back(m.gpu ? levelSlots[m.gpu]++ : 0u);
+  for (const auto& [gpu, slots] : levelSlots) gpu->reserveTessLevelSlots(context, slots);
   for (size_t i = 0; i < meshes_.size(); ++i) {
     const CullMesh& m = meshes_[i];
     if (!m.gpu || !m.host) throw Error("CullFrame: a mesh without GpuPatchSet or PatchSet");
@@ -167,6 +174,11 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
       b.pass = m.cullData
                    ? std::make_unique<CullPass>(context, *m.gpu, *m.host, settings, *m.cullData)
                    : std::make_unique<CullPass>(context, *m.gpu, *m.host, settings);
+    if (b.pass) {
+      std::vector<uint32_t> slots;
+      for (size_t k : b.members) slots.push_back(levelSlotOf_[k]);
+      b.pass->setTessLevelSlots(std::move(slots));
+    }
     if (anyStage && b.members.size() > 1)
       for (size_t k = 0; k < b.members.size(); ++k)
         b.results.emplace_back(
@@ -230,6 +242,7 @@ void CullFrame::recordMeshDraws(VkCommandBuffer cmd, const Camera& camera, size_
   const GpuPatchSet& g = *meshes_[m].gpu;
   PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
   draw.model = &meshes_[m].model;
+  draw.tessLevelSlot = levelSlotOf_[m];  // recorded by recordFirstPass when it applies
   if (options_.drawMode == CullDrawMode::TessFactorZero) {
     draw.set = secondPass ? v.secondPassAll() : v.firstPassAll();
     renderer_.recordSlots(cmd, camera, draw, PatchType::Bezier, 0, g.bezierCount(), {},
@@ -278,6 +291,14 @@ void CullFrame::recordFirstPass(VkCommandBuffer cmd, const Camera& camera,
       const Chunks c = chunks(m);
       visibility_[m]->recordFirstPassCommands(cmd, c.bezier, c.gregory);
     }
+  // This view's adaptive levels, read by both passes and the cull kernel.
+  for (size_t m = 0; m < meshes_.size(); ++m) {
+    PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
+    draw.model = &meshes_[m].model;
+    renderer_.recordTessLevels(cmd, camera, draw, levelSlotOf_[m], options_.render);
+  }
+  for (Batch& b : batches_)
+    if (b.pass) b.pass->useRecordedTessLevels();
   RenderOptions pass = options_.render;
   pass.clear = true;
   renderer_.beginPass(cmd, target_, pass);

@@ -59,7 +59,10 @@ std::vector<std::string> allMethods() {
 }
 
 int run(const VerifyArgs& args) {
-  if (args.source.path && isSceneArgument(*args.source.path)) return verifyScene(args);
+  if (args.source.path && isSceneArgument(*args.source.path)) {
+    if (args.adaptive > 0.0) throw UsageError("--adaptive applies to the mesh form (verify MESH)");
+    return verifyScene(args);
+  }
   if (args.frames) throw UsageError("--frames applies to the scene form (verify SCENE)");
   const uint32_t views = args.views.value_or(100);
   const uint64_t seed = args.seed;
@@ -93,6 +96,11 @@ int run(const VerifyArgs& args) {
 
   frame::VerifyOptions options;
   options.tessellation.uniformLevel = tess;
+  if (args.adaptive > 0.0) {
+    // The oracle, the image check and the cull kernel all read the levels pass's levels.
+    options.tessellation.mode = frame::TessellationOptions::Mode::Adaptive;
+    options.tessellation.pixelsPerSegment = args.adaptive;
+  }
   options.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
   options.oracle = !args.noOracle;
   options.referenceStride = args.referenceEvery;
@@ -123,9 +131,12 @@ int run(const VerifyArgs& args) {
               patches.patchCount(), patches.bezierCount, patches.gregoryCount,
               patchOptions.isolationLevel);
   for (const std::string& note : mesh.notes) std::printf("note: %s\n", note.c_str());
-  std::printf("views: %u %s (seed %llu), %ux%u, fov %.1f, tess %u, device %s\n", views,
+  const std::string tessText = args.adaptive > 0.0
+                                   ? "adaptive " + std::to_string(args.adaptive) + " px/segment"
+                                   : "tess " + std::to_string(tess);
+  std::printf("views: %u %s (seed %llu), %ux%u, fov %.1f, %s, device %s\n", views,
               frame::toString(viewSet), static_cast<unsigned long long>(seed), width, height, fov,
-              tess, context.info().name.c_str());
+              tessText.c_str(), context.info().name.c_str());
   if (displacementMap) {
     const bound::DisplacementRange r = displacementMap->displacementRange();
     std::printf(
@@ -188,6 +199,7 @@ int run(const VerifyArgs& args) {
     out["height"] = height;
     out["fov"] = fov;
     out["tess"] = tess;
+    out["adaptive_pixels"] = args.adaptive;
     out["device"] = context.info().name;
     out["back_patch"] = {{"enabled", mesh.backPatch.enabled},
                          {"reason", mesh.backPatch.reason},
@@ -252,6 +264,11 @@ Runner setup(CLI::App& app) {
   app.add_option("--tess", args->tess, "uniform tessellation level of the oracle draws (default 4)")
       ->type_name("N")
       ->check(integerIn(1, 64));
+  app.add_option("--adaptive", args->adaptive,
+                 "screen-space adaptive tessellation of every draw (oracle, image check,\n"
+                 "cull kernel: the same precomputed levels), PIXELS per segment; the mesh form")
+      ->type_name("PIXELS")
+      ->check(numberIn(0.01, 1e6));
   addSizeOptions(app, args->width, args->height, 1, "256 x 256; a scene: 128 x 128");
   app.add_option("--fov", args->fov, "vertical field of view in degrees (default 40)")
       ->type_name("DEG")

@@ -26,6 +26,7 @@ struct VerifyArgs {
   std::string viewSet = "sphere";
   std::string methods;  ///< empty: the form's default list
   uint32_t tess = 4;
+  double adaptive = 0.0;  ///< > 0: adaptive tessellation, PIXELS per segment (the mesh form)
   std::optional<uint32_t> width;   ///< mesh: 256; scene: 128
   std::optional<uint32_t> height;  ///< mesh: 256; scene: 128
   double fov = 40.0;

@@ -17,7 +17,8 @@
 //   CULL_DRAWN        1: back-patch culls respect the drawn triangles (drawn_triangles.glsl)
 //   CULL_DRAWN_ENUMERATE 1 (with CULL_DRAWN): a patch the worst-case bound keeps is culled
 //                     when every triangle the tessellator can draw for it faces away
-//                     (drawn_triangle_set.glsl, uniform tessellation only)
+//                     (drawn_triangle_set.glsl, exact levels only: uniform or precomputed),
+//                     for patches whose outer levels are at most CULL_DRAWN_LIST_LEVEL
 // and includes the stage files before this one.
 #include "frustum.glsl"
 #if CULL_DRAWN && CULL_DRAWN_ENUMERATE

@@ -1,6 +1,6 @@
 // The tightened drawn-triangle test: fp32 mirror of bound/drawn_triangle_set.h
 // (docs/algorithms/drawn-triangles.md, "Enumerated triangles"). With uniform tessellation
-// the levels are integers, so instead of bounding the worst chord triangle from the
+// (or precomputed adaptive) levels are integers, so instead of bounding the worst chord triangle from the
 // patch-wide derivative bounds, every triangle the tessellator can draw is evaluated from
 // the control points and tested: both diagonals of each inner-grid cell, and per outer edge
 // every ring triangle whose apex lies within ringApexOffset of its base. The patch is
@@ -174,7 +174,7 @@ float drawnTessellatorPointError(float level) {
 // Whether every triangle the tessellator can draw for this patch (Bezier or Gregory) faces
 // away.
 bool drawnTrianglesFaceAway(uint patchIndex) {
-  if (tessMode() != kTessUniform || pc.eye.w == 0.0) return false;
+  if (!drawnLevelsExact() || pc.eye.w == 0.0) return false;
   vec4 levelLo, levelHi;
   drawnEdgeLevels(patchIndex, levelLo, levelHi);
   float lo[4], hi[4], outer[4];
@@ -183,7 +183,9 @@ bool drawnTrianglesFaceAway(uint patchIndex) {
     lo[e] = max(1.0, ceil(levelLo[e]));
     hi[e] = levelHi[e] > 0.0 ? max(1.0, ceil(levelHi[e])) : 0.0;
     outer[e] = lo[e] + hi[e];
-    if (!(outer[e] <= 64.0)) return false;
+    // Listed up to CULL_DRAWN_LIST_LEVEL (64 with CullSettings::drawnEnumerate, else
+    // bound::kDrawnListLowLevel: where the listing is cheap and the bound loose).
+    if (!(outer[e] <= float(CULL_DRAWN_LIST_LEVEL))) return false;
     allOnes = allOnes && outer[e] == 1.0;
   }
   uint first = firstPoint(patchIndex);

@@ -4,9 +4,11 @@
 // kernel computes each patch's tessellation levels with the draw shaders' own code
 // (patch/tess_levels.glsl), bounds the shape of the worst triangle, and from the patch's
 // derivative bounds G and H the largest deviation of a triangle normal from a surface normal.
-// Every quantity is rounded up by kDrawnSafety, far more than its fp32 error, and adaptive
-// levels get a slack of 2 (the draw shader's fp32 levels may differ from these by one; the
-// double reference allows one), so every GPU cull is a cull of the reference.
+// Every quantity is rounded up by kDrawnSafety, far more than its fp32 error. Adaptive levels
+// precomputed by the levels pass (gExactLevels: patch/tess_levels.comp, read by the draws too)
+// are the drawn integers themselves; computed here instead, they get a slack of 2 (the draw
+// shader's fp32 levels may differ from these by one; the double reference allows one). So
+// every GPU cull is a cull of the reference.
 // Included when CULL_DRAWN is 1.
 #ifndef OSD_CULL_CULL_DRAWN_TRIANGLES_GLSL
 #define OSD_CULL_CULL_DRAWN_TRIANGLES_GLSL
@@ -24,6 +26,13 @@ float tessMaxLevel() { return pc.viewport.w; }
 uint tessMode() { return pc.tessPixelsPerSegment > 0.0 ? kTessAdaptive : kTessUniform; }
 #include "patch/tess_levels.glsl"
 
+layout(std430, set = 0, binding = kCullBindingTessLevels) readonly buffer TessLevels {
+  uvec2 tessLevels[];
+};
+
+// Whether the levels below are the drawn integers: uniform, or precomputed for the draws.
+bool drawnLevelsExact() { return tessMode() == kTessUniform || gExactLevels; }
+
 const float kDrawnSafety = 1.001;
 
 vec2 drawnLevelRange(float level, float slack) {
@@ -38,6 +47,10 @@ vec2 drawnInnerRange(vec2 a, vec2 b) {
 // The Lo and Hi outer levels the draw shaders set for a patch (Bezier or Gregory) in this
 // view.
 void drawnEdgeLevels(uint patchIndex, out vec4 levelLo, out vec4 levelHi) {
+  if (tessMode() == kTessAdaptive && gExactLevels) {
+    unpackTessLevels(tessLevels[gLevelBase + patchIndex], levelLo, levelHi);
+    return;
+  }
   uint first = firstPoint(patchIndex);
   bool bezier = isBezier(patchIndex);
   vec3 curves[16];
@@ -50,7 +63,7 @@ void drawnEdgeLevels(uint patchIndex, out vec4 levelLo, out vec4 levelHi) {
 vec3 drawnShape(uint patchIndex) {
   vec4 levelLo, levelHi;
   drawnEdgeLevels(patchIndex, levelLo, levelHi);
-  const float slack = tessMode() == kTessUniform ? 0.0 : 2.0;
+  const float slack = drawnLevelsExact() ? 0.0 : 2.0;
   vec2 lo[4], hi[4], outer[4];
   bool allOnes = slack == 0.0;
   for (int e = 0; e < 4; ++e) {

@@ -1,5 +1,8 @@
 #version 450
-// Passes the control points through and sets the tessellation levels (tess_levels.glsl).
+// Passes the control points through and sets the tessellation levels (tess_levels.glsl), or
+// with kFlagTessLevelsFromBuffer the levels the levels pass wrote for this view
+// (tess_levels.comp: the same function of each edge's curve, computed once per patch and
+// read by the draws and the cull kernel alike).
 // A draw-list entry flagged kDrawListCulled gets levels 0: the patch is discarded before
 // evaluation and its levels are never computed (Niessner & Loop §5).
 // The displaced variant (PATCH_DISPLACED) adds the displacement's variation along each
@@ -119,7 +122,10 @@ void main() {
       displacementOffsets(patchIndex, transition, offsetLo, offsetHi);
 #endif
     vec4 lo, hi;
-    edgeLevels(cp, transition, offsetLo, offsetHi, lo, hi);
+    if ((pc.flags & kFlagTessLevelsFromBuffer) != 0u)
+      unpackTessLevels(tessLevels[pc.levelBase + patchIndex], lo, hi);
+    else
+      edgeLevels(cp, transition, offsetLo, offsetHi, lo, hi);
     vec4 outer = lo + hi;
     gl_TessLevelOuter[0] = outer[0];
     gl_TessLevelOuter[1] = outer[1];

@@ -21,6 +21,9 @@ uint tessMode() { return pc.mode; }
 #include "../common/control_points.glsl"
 layout(std430, set = 0, binding = 1) readonly buffer Params { uint params[]; };
 layout(std430, set = 0, binding = 2) readonly buffer DrawList { uint drawList[]; };
+layout(std430, set = 0, binding = kBindingTessLevels) readonly buffer TessLevels {
+  uvec2 tessLevels[];
+};
 
 // Index of the first control point of a patch (PatchSet layout: Bezier first, then Gregory).
 uint firstPoint(uint patchIndex) {

@@ -91,6 +91,19 @@ void curveEdgeLevels(vec3 curves[16], uint transition, out vec4 lo, out vec4 hi)
   curveEdgeLevels(curves, transition, vec4(0.0), vec4(0.0), lo, hi);
 }
 
+// The levels as the levels pass stores them (tess_levels.comp): Lo and Hi of the four edges,
+// one byte each (integers in [0, 64]: exact).
+uvec2 packTessLevels(vec4 lo, vec4 hi) {
+  uvec4 l = uvec4(lo), h = uvec4(hi);
+  return uvec2(l.x | (l.y << 8u) | (l.z << 16u) | (l.w << 24u),
+               h.x | (h.y << 8u) | (h.z << 16u) | (h.w << 24u));
+}
+void unpackTessLevels(uvec2 packed, out vec4 lo, out vec4 hi) {
+  uvec4 shifts = uvec4(0u, 8u, 16u, 24u);
+  lo = vec4((uvec4(packed.x) >> shifts) & 0xFFu);
+  hi = vec4((uvec4(packed.y) >> shifts) & 0xFFu);
+}
+
 #if defined(PATCH_POINTS)
 void edgeLevels(vec3 cp[PATCH_POINTS], uint transition, vec4 offsetLo, vec4 offsetHi,
                 out vec4 lo, out vec4 hi) {

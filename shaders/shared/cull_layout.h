@@ -23,6 +23,7 @@ OSD_CULL_CONST uint kCullBindingDisplacedView = 8u;  // DisplacedView: per-view 
 OSD_CULL_CONST uint kCullBindingInstances = 9u;      // CullInstances: the instances culled in
                                                      // one dispatch (their view · model)
 OSD_CULL_CONST uint kCullBindingTable = 6u;          // uvec2 table[]: the method's constant table
+OSD_CULL_CONST uint kCullBindingTessLevels = 10u;    // uvec2 tessLevels[]: GpuPatchSet::tessLevels()
 // (CullMethod::table). The tangent-plane table: per term (target | j << 8 | k << 16 | l << 24,
 // floatBitsToUint(weight)). A buffer, not GLSL constants: lavapipe's LLVM backend needs
 // 150-190 s to compile the kernel with 516-entry constant arrays, 0.4 s with this buffer.
@@ -136,8 +137,11 @@ struct CullInstance {
   mat4 viewProjection;    // object to clip space (CullConstants.viewProjection)
   vec4 eye;               // CullConstants.eye in object space
   float snapPerDistance;  // CullConstants.snapPerDistance
-  float pad0;
-  float pad1;
+  // 1: this view's adaptive levels are precomputed (the levels pass, frame::TessLevelsPass):
+  // patch p's drawn levels are tessLevels[levelSlot * patchCount + p] (kCullBindingTessLevels),
+  // exact, and the draws of this instance read the same entries.
+  uint exactLevels;
+  uint levelSlot;  // with exactLevels: the instance's slot of tessLevels[] (of patchCount entries)
   float pad2;
 };
 

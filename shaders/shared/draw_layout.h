@@ -10,6 +10,9 @@ OSD_CULL_SHARED_BEGIN
 OSD_CULL_CONST uint kBindingPoints = 0;  // control points: common/control_points.glsl
 OSD_CULL_CONST uint kBindingParams = 1;  // uint params[]: Far::PatchParam field0, field1 per patch
 OSD_CULL_CONST uint kBindingDrawList = 2;  // uint drawList[]: patch index per draw slot
+// uvec2 tessLevels[]: the adaptive levels of every patch, per level slot (GpuPatchSet::
+// tessLevels(), written by patch/tess_levels.comp, packed by packTessLevels).
+OSD_CULL_CONST uint kBindingTessLevels = 3;
 
 // DrawConstants.mode
 OSD_CULL_CONST uint kTessUniform = 0u;
@@ -28,6 +31,11 @@ OSD_CULL_CONST uint kFlagNoDepthClamp = 16u;
 // kFlagTessPerPatchDisplacement adds the patch's largest to every edge (cracks: tests).
 OSD_CULL_CONST uint kFlagTessIgnoreDisplacement = 32u;
 OSD_CULL_CONST uint kFlagTessPerPatchDisplacement = 64u;
+// Adaptive levels are read from tessLevels[levelBase + patch] (written for this view by the
+// levels pass, frame::TessLevelsPass) instead of computed by the control shader: the cull
+// kernel's drawn-triangle test then knows the drawn levels exactly
+// (docs/algorithms/drawn-triangles.md, "Exact adaptive levels").
+OSD_CULL_CONST uint kFlagTessLevelsFromBuffer = 128u;
 
 // A draw-list entry: the patch index in the low 28 bits, a status for the debug view in
 // bits 28-30 (kDrawStatus*) and, in bit 31, "culled": the control shader sets every
@@ -59,8 +67,8 @@ struct DrawConstants {
   uint pointOffset;     // float index of control point 0
   uint flags;           // kFlag* bits
   uint itemBase;        // added to the item-buffer value (triangles: the value written)
-  uint pad0;
-  uint pad1;
+  uint levelBase;       // kFlagTessLevelsFromBuffer: patch 0's entry in tessLevels[]
+  uint levelCount;      // the levels pass (tess_levels.comp): patches to level; draws: 0
 };
 
 OSD_CULL_SHARED_END

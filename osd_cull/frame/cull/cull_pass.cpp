@@ -3,7 +3,9 @@
 #include "osd_cull/bound/clip_space.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
+#include "osd_cull/bound/drawn_triangle_set.h"
 #include "osd_cull/frame/draw/draw_chunks.h"
+#include "osd_cull/frame/draw/tess_levels_pass.h"
 #include "osd_cull/frame/shader_variants.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
@@ -39,7 +41,8 @@ const vulkan::DescriptorBinding kBindings[] = {
     {sh::kCullBindingTable, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingDisplacedView, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-    {sh::kCullBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    {sh::kCullBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingTessLevels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
 
 // What the outputs are read by after the pass: indirect draws, the patch draw shaders (draw
 // list) and the host (results, counters).
@@ -118,9 +121,13 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   text += std::string("#define CULL_DRAWN ") +
           (drawnTriangles && has(CullStage::BackPatch) ? "1" : "0") + "\n";
   // The listing only refines the drawn-triangle back-patch test; elsewhere it is off, so the
-  // kernel text (and its build-time SPIR-V) does not depend on it.
-  const bool enumerate = drawnEnumerate && drawnTriangles && has(CullStage::BackPatch);
-  text += std::string("#define CULL_DRAWN_ENUMERATE ") + (enumerate ? "1" : "0") + "\n";
+  // kernel text (and its build-time SPIR-V) does not depend on it. With the bound it always
+  // runs at low levels (bound::kDrawnListLowLevel), at every level with drawnEnumerate.
+  const bool drawn = drawnTriangles && has(CullStage::BackPatch);
+  text += std::string("#define CULL_DRAWN_ENUMERATE ") + (drawn ? "1" : "0") + "\n";
+  if (drawn)
+    text += "#define CULL_DRAWN_LIST_LEVEL " +
+            std::to_string(drawnEnumerate ? 64u : bound::kDrawnListLowLevel) + "\n";
   text += std::string("#define CULL_DISPLACED ") + (displaced ? "1" : "0") + "\n";
   if (displaced)
     text += "#define DISPLACED_BOX " + std::to_string(static_cast<uint32_t>(displaced->box)) + "\n";
@@ -283,6 +290,10 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
                              indirect);
   std::fill_n(results_.mappedAs<uint32_t>().begin(), codes, sh::kResultInitial);
   std::fill_n(counters_.mappedAs<uint32_t>().begin(), instances * sh::kCounterCount, 0u);
+  // Instance i reads its precomputed adaptive levels from slot i unless told otherwise
+  // (setTessLevelSlots); reserved before the kernel's set is written.
+  gpu.reserveTessLevelSlots(context, settings.instanceCount);
+  for (uint32_t i = 0; i < settings.instanceCount; ++i) levelSlots_.push_back(i);
   buildPipelines(context);
 }
 
@@ -393,7 +404,9 @@ void CullPass::buildPipelines(vulkan::Context& context) {
       .buffer(sh::kCullBindingParams, gpu_.params())
       .buffer(sh::kCullBindingDisplacedView, displacedView_)
       .buffer(sh::kCullBindingInstances, instances_)
+      .buffer(sh::kCullBindingTessLevels, gpu_.tessLevels())
       .update(context.device(), set_);
+  boundTessLevels_ = gpu_.tessLevels().handle();
 }
 
 bool CullPass::backPatchEnabled() const {
@@ -415,10 +428,15 @@ bound::CullTests CullPass::referenceTests(const Camera& camera,
   bound::CullTests t = referenceTests();
   shapes.clear();
   if (drawnTriangles()) {
-    shapes = drawnTriangleShapes(host_, camera.viewProjection(),
-                                 glm::dvec2(camera.width, camera.height), tessellation);
+    if (usesExactLevels(tessellation) && exactLevels_)
+      // The levels the kernel and the draws read (slot 0: the reference checks instance 0).
+      shapes = drawnTriangleShapes(readTessLevels(context_, gpu_, levelSlots_[0]));
+    else
+      shapes = drawnTriangleShapes(host_, camera.viewProjection(),
+                                   glm::dvec2(camera.width, camera.height), tessellation);
     t.drawnShapes = shapes;
     t.drawnEnumerate = settings_.drawnEnumerate;
+    t.drawnListLevel = bound::kDrawnListLowLevel;
     t.snapPerDistance = bound::snapPerDistance(camera.viewProjection(), camera.width, camera.height,
                                                context_.info().limits.subPixelPrecisionBits);
   }
@@ -488,11 +506,24 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   const uint32_t header[4] = {uint32_t(cameras.size()), 0u, 0u, 0u};
   std::memcpy(instanceData.data(), header, sizeof(header));
   for (size_t i = 0; i < cameras.size(); ++i) {
-    const sh::CullInstance v = instanceValues(cameras[i]);
+    sh::CullInstance v = instanceValues(cameras[i]);
+    v.exactLevels = exactLevels_ ? 1u : 0u;
+    v.levelSlot = levelSlots_[i];
     std::memcpy(instanceData.data() + 16 + i * sizeof(v), &v, sizeof(v));
   }
   chunkBezier_ = c.drawChunkBezier;
   chunkGregory_ = c.drawChunkGregory;
+  // Exact adaptive levels: the levels pass for every instance (unless the caller recorded it
+  // for this frame, recordTessLevels()), read by the kernel and by the survivors' draws.
+  exactLevels_ = usesExactLevels(tessellation);
+  if (exactLevels_ && !levelsRecorded_) recordTessLevels(cmd, cameras, tessellation);
+  levelsRecorded_ = false;
+  if (gpu_.tessLevels().handle() != boundTessLevels_) {  // reserveTessLevelSlots() moved it
+    vulkan::DescriptorWriter()
+        .buffer(sh::kCullBindingTessLevels, gpu_.tessLevels())
+        .update(context_.device(), set_);
+    boundTessLevels_ = gpu_.tessLevels().handle();
+  }
   // Earlier readers of the outputs (draws, host) and writers of the points come first.
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
   vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
@@ -526,6 +557,34 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
                               settings_.instanceCount, "CullPass: the draw-command dispatch");
   vkCmdDispatch(cmd, rows.x, rows.y, 1);
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeWrite, kAfterCull);
+}
+
+bool CullPass::usesExactLevels(const TessellationOptions& tessellation) const {
+  return drawnTriangles() && usesTessLevelsPass(gpu_, tessellation);
+}
+
+void CullPass::recordTessLevels(VkCommandBuffer cmd, std::span<const Camera> cameras,
+                                const TessellationOptions& tessellation) {
+  if (!usesExactLevels(tessellation)) return;
+  if (cameras.size() != settings_.instanceCount)
+    throw Error("CullPass::recordTessLevels: " + std::to_string(cameras.size()) +
+                " cameras for " + std::to_string(settings_.instanceCount) + " instances of " +
+                host_.source);
+  if (!tessLevels_) tessLevels_ = std::make_unique<TessLevelsPass>(context_);
+  for (uint32_t i = 0; i < cameras.size(); ++i)
+    tessLevels_->record(cmd, cameras[i], nullptr, gpu_, levelSlots_[i], tessellation);
+  levelsRecorded_ = true;
+}
+
+void CullPass::setTessLevelSlots(std::vector<uint32_t> slots) {
+  if (slots.size() != settings_.instanceCount)
+    throw Error("CullPass::setTessLevelSlots: " + std::to_string(slots.size()) + " slots for " +
+                std::to_string(settings_.instanceCount) + " instances of " + host_.source);
+  for (uint32_t s : slots)
+    if (s >= gpu_.tessLevelSlots())
+      throw Error("CullPass::setTessLevelSlots: slot " + std::to_string(s) + " of a set with " +
+                  std::to_string(gpu_.tessLevelSlots()) + " (GpuPatchSet::reserveTessLevelSlots)");
+  levelSlots_ = std::move(slots);
 }
 
 double CullPass::run(const Camera& camera, const TessellationOptions& tessellation,
@@ -577,7 +636,8 @@ uint32_t CullPass::recordDraws(VkCommandBuffer cmd, Renderer& renderer, const Ca
                 " patches per draw, these tessellation options need " + std::to_string(chunkB) +
                 "/" + std::to_string(chunkG) + "; pass the same options to record()");
   if (drawSet_ == VK_NULL_HANDLE) drawSet_ = gpu_.descriptorSetWithDrawList(context_, drawList_);
-  const PatchDraw draw{&gpu_, &host_, itemBase, drawSet_};
+  PatchDraw draw{&gpu_, &host_, itemBase, drawSet_};
+  if (exactLevels_) draw.tessLevelSlot = levelSlots_[0];
   const uint32_t maxB = gpu_.bezierCount() ? maxDraws(gpu_.bezierCount(), chunkB) : 0;
   const uint32_t maxG = gpu_.gregoryCount() ? maxDraws(gpu_.gregoryCount(), chunkG) : 0;
   renderer.recordIndirect(cmd, camera, draw, PatchType::Bezier, commands_, 0, counters_,

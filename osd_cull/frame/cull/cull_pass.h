@@ -150,6 +150,28 @@ class CullPass {
   /// \throws osd_cull::Error when cameras.size() differs from instanceCount().
   void record(VkCommandBuffer cmd, std::span<const Camera> cameras,
               const TessellationOptions& tessellation, VkDescriptorSet stageSet = VK_NULL_HANDLE);
+  /// \brief Whether this pass's back-patch test reads exact adaptive levels under
+  /// `tessellation` (drawnTriangles() of an undisplaced set, adaptive levels): record()
+  /// then runs the levels pass (TessLevelsPass) into slot i of GpuPatchSet::tessLevels() for
+  /// instance i, and every draw of the survivors must read those levels
+  /// (PatchDraw::tessLevelSlot = i; recordDraws() does): a draw computing its own levels may
+  /// differ by one level from what the test checked (docs/algorithms/drawn-triangles.md,
+  /// "Exact adaptive levels").
+  bool usesExactLevels(const TessellationOptions& tessellation) const;
+  /// \brief Records the levels pass for these cameras now (e.g. before a frame's first
+  /// pass, whose draws read them too); the next record() then does not record it again.
+  /// Nothing when !usesExactLevels(tessellation).
+  void recordTessLevels(VkCommandBuffer cmd, std::span<const Camera> cameras,
+                        const TessellationOptions& tessellation);
+  /// \brief The caller recorded the levels of this frame's cameras into tessLevelSlots()
+  /// itself (Renderer::recordTessLevels, before its first pass): the next record() reads
+  /// them and does not record them again.
+  void useRecordedTessLevels() { levelsRecorded_ = true; }
+  /// \brief The slot of GpuPatchSet::tessLevels() each instance reads (default: instance i
+  /// slot i), for callers whose passes share a patch set (CullFrame).
+  /// \throws osd_cull::Error for a wrong count or a slot the set does not have.
+  void setTessLevelSlots(std::vector<uint32_t> slots);
+  const std::vector<uint32_t>& tessLevelSlots() const { return levelSlots_; }
   /// \brief record() in its own submission; waits and returns the wall time in ms
   /// (timestamps are not trusted for compute after graphics on lavapipe, PLATFORM.md).
   double run(const Camera& camera, const TessellationOptions& tessellation = {},
@@ -218,7 +240,12 @@ class CullPass {
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkDescriptorSet drawSet_ = VK_NULL_HANDLE;  // gpu_'s set with drawList_, made on first draw
-  uint32_t chunkBezier_ = 1;                  // of the last record()
+  std::unique_ptr<TessLevelsPass> tessLevels_;  // made on first use
+  VkBuffer boundTessLevels_ = VK_NULL_HANDLE;   // the tessLevels() set_ holds
+  bool exactLevels_ = false;                    // of the last record()
+  bool levelsRecorded_ = false;                 // recordTessLevels() since the last record()
+  std::vector<uint32_t> levelSlots_;            // per instance
+  uint32_t chunkBezier_ = 1;                    // of the last record()
   uint32_t chunkGregory_ = 1;
 };
 

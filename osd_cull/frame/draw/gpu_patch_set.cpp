@@ -17,7 +17,8 @@ std::span<const vulkan::DescriptorBinding> patchSetBindings() {
   static const vulkan::DescriptorBinding bindings[] = {
       {0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL},
       {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL}};
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL},
+      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_ALL}};
   return bindings;
 }
 
@@ -77,6 +78,8 @@ GpuPatchSet::GpuPatchSet(vulkan::Context& context, const PatchSet& patches)
   points_ = vulkan::Buffer(context, pointBytes, storage);
   params_ = vulkan::Buffer(context, std::max<size_t>(8, size_t{n} * 8), storage);
   drawList_ = vulkan::Buffer(context, std::max<size_t>(4, size_t{n} * 4), storage);
+  tessLevels_ = vulkan::Buffer(context, std::max<size_t>(8, size_t{n} * 8), storage);
+  tessLevelSlots_ = 1;
   if (pointsByAddress_) {
     pointRecord_ =
         vulkan::Buffer(context, sizeof(shader::PointSource), storage, vulkan::MemoryUse::Upload);
@@ -107,8 +110,22 @@ VkDescriptorSet GpuPatchSet::descriptorSetWithDrawList(vulkan::Context& context,
                 " draw-list descriptor sets requested");
   const VkDescriptorSet set = pool_->allocate(setLayout_.get());
   ++extraSets_;
+  extraSetLists_.emplace_back(set, &drawList);
   writeDescriptorSet(context.device(), set, drawList);
   return set;
+}
+
+void GpuPatchSet::reserveTessLevelSlots(vulkan::Context& context, uint32_t slots) {
+  if (slots <= tessLevelSlots_) return;
+  const size_t bytes = size_t{slots} * patchCount() * 8;
+  vulkan::checkStorageBufferRange(context, bytes,
+                                  "GpuPatchSet: the tessellation levels of " +
+                                      std::to_string(slots) + " instances");
+  tessLevels_ =
+      vulkan::Buffer(context, std::max<size_t>(8, bytes), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  tessLevelSlots_ = slots;
+  writeDescriptorSet(context.device(), set_, drawList_);
+  for (const auto& [set, list] : extraSetLists_) writeDescriptorSet(context.device(), set, *list);
 }
 
 void GpuPatchSet::readPointsFrom(vulkan::Context& context, const vulkan::Buffer& points,
@@ -143,6 +160,7 @@ void GpuPatchSet::writeDescriptorSet(VkDevice device, VkDescriptorSet set,
       .buffer(0, pointBinding())
       .buffer(1, params_)
       .buffer(2, drawList)
+      .buffer(3, tessLevels_)
       .update(device, set);
 }
 

@@ -9,6 +9,8 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <utility>
+#include <vector>
 #include <memory>
 #include <span>
 
@@ -92,9 +94,20 @@ class GpuPatchSet {
   VkDescriptorSet descriptorSetWithDrawList(vulkan::Context& context,
                                             const vulkan::Buffer& drawList);
   static constexpr uint32_t kMaxDrawListSets = 15;
+  /// \brief Adaptive levels of every patch, `tessLevelSlots()` views (instances) of them:
+  /// slot s, patch p at uvec2 entry s * patchCount() + p (shaders/shared/draw_layout.h
+  /// kBindingTessLevels; written by TessLevelsPass, read by draws with
+  /// PatchDraw::tessLevelSlot and by the cull kernel).
+  const vulkan::Buffer& tessLevels() const { return tessLevels_; }
+  uint32_t tessLevelSlots() const { return tessLevelSlots_; }
+  /// \brief Grows tessLevels() to at least `slots` slots (one when constructed) and
+  /// rewrites the descriptor sets the set made; a set written by writeDescriptorSet() before
+  /// must be written again. Call between frames.
+  void reserveTessLevelSlots(vulkan::Context& context, uint32_t slots);
   /// \brief Floats per point in the set's own buffer (x, y, z).
   static constexpr uint32_t kOwnPointStride = 3;
-  /// \brief Writes points (the current source, see readPointsFrom()), params and `drawList`
+  /// \brief Writes points (the current source, see readPointsFrom()), params, `drawList` and
+  /// tessLevels()
   /// into `set`, a set the caller allocated with a layout of patchSetBindings() (for
   /// callers that own their sets and pools).
   void writeDescriptorSet(VkDevice device, VkDescriptorSet set,
@@ -119,10 +132,13 @@ class GpuPatchSet {
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   uint32_t extraSets_ = 0;
+  std::vector<std::pair<VkDescriptorSet, const vulkan::Buffer*>> extraSetLists_;
+  vulkan::Buffer tessLevels_;
+  uint32_t tessLevelSlots_ = 0;
   const GpuDisplacement* displacement_ = nullptr;
 };
 
-/// \brief The descriptor bindings of a patch set (points, params, draw list), visible
+/// \brief The descriptor bindings of a patch set (points, params, draw list, levels), visible
 /// to every stage.
 std::span<const vulkan::DescriptorBinding> patchSetBindings();
 

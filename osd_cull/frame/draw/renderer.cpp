@@ -21,13 +21,8 @@ constexpr VkShaderStageFlags kGraphicsStages = VK_SHADER_STAGE_ALL_GRAPHICS;
 
 shader::DrawConstants drawConstants(const Camera& camera, const RenderOptions& options) {
   shader::DrawConstants c{};
-  c.viewProjection = glm::mat4(camera.viewProjection());
   const auto& t = options.tessellation;
-  c.eye = glm::vec4(glm::vec3(camera.eye()), float(t.pixelsPerSegment));
-  c.viewport = glm::vec4(float(camera.width), float(camera.height), float(t.uniformLevel),
-                         float(t.maxLevel));
-  c.mode =
-      t.mode == TessellationOptions::Mode::Uniform ? shader::kTessUniform : shader::kTessAdaptive;
+  writeTessConstants(c, camera, t);
   c.flags = (options.debugColors ? shader::kFlagDebugColors : 0u) |
             (options.statusColors ? shader::kFlagStatusColors : 0u) |
             (options.frontFacesWinTies ? shader::kFlagFrontWinsTies : 0u) |
@@ -95,6 +90,7 @@ std::vector<vulkan::ShaderVariant> rendererShaderVariants() {
     for (const vulkan::ShaderSource& s : triangleShaders(items))
       v.push_back(vulkan::ShaderVariant::file(s));
   }
+  for (vulkan::ShaderVariant& s : tessLevelsPassShaderVariants()) v.push_back(std::move(s));
   return v;
 }
 
@@ -254,6 +250,13 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
   c.pointStride = gpu.pointStride();
   c.pointOffset = gpu.pointOffset();
   c.itemBase = draw.itemBase;
+  if (draw.tessLevelSlot && usesTessLevelsPass(gpu, options.tessellation)) {
+    if (*draw.tessLevelSlot >= gpu.tessLevelSlots())
+      throw Error("Renderer: PatchDraw::tessLevelSlot " + std::to_string(*draw.tessLevelSlot) +
+                  " of a set with " + std::to_string(gpu.tessLevelSlots()) + " level slots");
+    c.flags |= shader::kFlagTessLevelsFromBuffer;
+    c.levelBase = *draw.tessLevelSlot * gpu.patchCount();
+  }
   vkCmdPushConstants(cmd, layout, kGraphicsStages, 0, sizeof(c), &c);
 }
 
@@ -294,6 +297,14 @@ uint32_t Renderer::recordSlots(VkCommandBuffer cmd, const Camera& camera, const 
   return static_cast<uint32_t>(chunks.size());
 }
 
+void Renderer::recordTessLevels(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                                uint32_t slot, const RenderOptions& options) {
+  if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
+  if (!usesTessLevelsPass(*draw.gpu, options.tessellation)) return;
+  if (!tessLevels_) tessLevels_ = std::make_unique<TessLevelsPass>(context_);
+  tessLevels_->record(cmd, camera, draw.model, *draw.gpu, slot, options.tessellation);
+}
+
 uint32_t Renderer::recordPatches(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
                                  const RenderOptions& options) {
   if (!draw.gpu) throw Error("Renderer: PatchDraw without a GpuPatchSet");
@@ -324,15 +335,29 @@ FrameStats Renderer::render(RenderTarget& target, const Camera& camera,
                             std::span<const GpuTriangleMesh* const> occluders,
                             const RenderOptions& options) {
   uint32_t patchesDrawn = 0;
+  // Adaptive levels of undisplaced sets come from the levels pass: the given slot, else the
+  // next free slot of the set (a set drawn more often than it has slots computes the rest
+  // in its control shader).
+  std::vector<PatchDraw> draws(patches.begin(), patches.end());
+  std::map<const GpuPatchSet*, uint32_t> used;
+  for (PatchDraw& d : draws) {
+    if (!d.gpu || !usesTessLevelsPass(*d.gpu, options.tessellation)) continue;
+    const uint32_t next = used[d.gpu]++;
+    if (!d.tessLevelSlot && next < d.gpu->tessLevelSlots()) d.tessLevelSlot = next;
+  }
   FrameStats stats = renderWith(
-      target, camera, occluders, options, [](VkCommandBuffer) {},
+      target, camera, occluders, options,
       [&](VkCommandBuffer cmd) {
-        uint32_t draws = 0;
-        for (const PatchDraw& d : patches) {
-          draws += recordPatches(cmd, camera, d, options);
+        for (const PatchDraw& d : draws)
+          if (d.tessLevelSlot) recordTessLevels(cmd, camera, d, *d.tessLevelSlot, options);
+      },
+      [&](VkCommandBuffer cmd) {
+        uint32_t calls = 0;
+        for (const PatchDraw& d : draws) {
+          calls += recordPatches(cmd, camera, d, options);
           patchesDrawn += d.gpu->patchCount();
         }
-        return draws;
+        return calls;
       });
   stats.patchesDrawn = patchesDrawn;
   return stats;

@@ -8,6 +8,7 @@
 #include "osd_cull/frame/draw/gpu_patch_set.h"
 #include "osd_cull/frame/draw/render_target.h"
 #include "osd_cull/frame/draw/tess_levels.h"
+#include "osd_cull/frame/draw/tess_levels_pass.h"
 #include "osd_cull/frame/draw/triangle_mesh.h"
 #include "osd_cull/vk/pipeline.h"
 #include "osd_cull/vk/query.h"
@@ -16,6 +17,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <tuple>
@@ -70,6 +72,12 @@ struct PatchDraw {
   /// Object → world matrix of this draw (an instance, scene/scene_eval.h); null: identity.
   /// The draw uses instanceCamera(camera, *model), composed in double.
   const glm::dmat4* model = nullptr;
+  /// With adaptive tessellation of an undisplaced set: the draw reads its levels from this
+  /// slot of GpuPatchSet::tessLevels(), written for the same camera by a TessLevelsPass
+  /// earlier in the command buffer (Renderer::recordTessLevels; render() records it
+  /// itself). Unset: the control shader computes the levels (docs/algorithms/
+  /// drawn-triangles.md, "Exact adaptive levels": a culled frame then has to draw so too).
+  std::optional<uint32_t> tessLevelSlot;
 };
 
 /// \brief What one frame did.
@@ -118,6 +126,11 @@ class Renderer {
   /// the application's render pass): the record* functions use pipelines for `format`
   /// until the next beginPass(). Default: an own RenderTarget's default formats.
   void setDrawFormat(const TargetFormat& format) const { drawFormat_ = format; }
+  /// \brief Records the levels pass of `draw` for `camera` into slot `slot` (outside a
+  /// pass); draws then read them with PatchDraw::tessLevelSlot = slot. Nothing is recorded
+  /// when the options or the set do not use it (usesTessLevelsPass()).
+  void recordTessLevels(VkCommandBuffer cmd, const Camera& camera, const PatchDraw& draw,
+                        uint32_t slot, const RenderOptions& options);
   /// \brief Records triangle occluder draws (inside a pass).
   void recordOccluders(VkCommandBuffer cmd, const Camera& camera,
                        std::span<const GpuTriangleMesh* const> occluders);
@@ -166,6 +179,7 @@ class Renderer {
   std::map<TargetFormat, vulkan::UniquePipeline> trianglePipelines_;
   vulkan::PipelineStatisticsQuery statistics_;
   std::optional<vulkan::TimestampQuery> timestamps_;  // absent when the queue has no timestamps
+  std::unique_ptr<TessLevelsPass> tessLevels_;        // made on first use
 };
 
 }  // namespace osd_cull::frame

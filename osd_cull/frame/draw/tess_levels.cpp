@@ -230,4 +230,11 @@ std::vector<bound::TriangleShape> drawnTriangleShapes(const PatchSet& patches,
   return shapes;
 }
 
+std::vector<bound::TriangleShape> drawnTriangleShapes(std::span<const PatchTessLevels> levels) {
+  std::vector<bound::TriangleShape> shapes(levels.size());
+  for (size_t p = 0; p < levels.size(); ++p)
+    shapes[p] = bound::triangleShape({levels[p].lo, levels[p].hi}, 0.0);
+  return shapes;
+}
+
 }  // namespace osd_cull::frame

@@ -130,4 +130,8 @@ std::vector<bound::TriangleShape> drawnTriangleShapes(const PatchSet& patches,
                                                       const glm::dvec2& viewport,
                                                       const TessellationOptions& options);
 
+/// \brief drawnTriangleShapes() for levels known exactly (one per patch: the levels pass's,
+/// readTessLevels()): no slack, so the listed test can run on them too.
+std::vector<bound::TriangleShape> drawnTriangleShapes(std::span<const PatchTessLevels> levels);
+
 }  // namespace osd_cull::frame
