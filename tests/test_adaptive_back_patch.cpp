@@ -6,7 +6,7 @@
 // double mirror, fp32), the same whichever path computes them, and culling under them is
 // conservative against the oracle and the double reference while keeping most of what the
 // surface-exact tests cull.
-#include "osd_cull/frame/demo_shapes.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/draw/tess_levels_pass.h"
 #include "osd_cull/frame/verify/cull_verification.h"
@@ -46,8 +46,8 @@ frame::TessellationOptions adaptive(double pixels) {
 
 // A sphere of Bezier patches with every fifth patch Gregory, far from the origin.
 PatchSet testSphere() {
-  const PatchSet bezier = frame::bezierSphere(glm::dvec3(250.0, -40.0, 600.0), 3.0, 6);
-  return frame::convertToGregory(bezier, [](uint32_t p) { return p % 5 == 0; });
+  const PatchSet bezier = scene::bezierSphere(glm::dvec3(250.0, -40.0, 600.0), 3.0, 6);
+  return scene::convertToGregory(bezier, [](uint32_t p) { return p % 5 == 0; });
 }
 
 TEST_F(AdaptiveBackPatchTest, LevelsPassFollowsTheControlShadersRuleAndIsRepeatable) {

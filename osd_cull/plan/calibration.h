@@ -1,7 +1,7 @@
 #pragma once
 /// \file calibration.h
 /// \brief What the effect plan's cost model needs to know about a device, measured once by
-/// `osd-cull calibrate` (plan/calibrate.h) and cached on disk, keyed by device, driver and
+/// `osd-cull calibrate` (measure/calibrate.h) and cached on disk, keyed by device, driver and
 /// library version.
 ///
 /// The figures are the terms of Niessner & Loop §6.3 (RT(tf): render time of a patch at

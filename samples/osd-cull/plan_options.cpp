@@ -48,7 +48,7 @@ std::string missingCalibration(const PlanArgs& args, vulkan::Context& context) {
   if (plan::loadCachedCalibration(key, &outdated)) return "";
   const std::string why = outdated.empty() ? "no calibration of this device cached" : outdated;
   // With a cache to keep it in, the first planned render measures a quick calibration
-  // (under 30 s, plan/calibrate.h) instead of giving up the plan: a user who never ran
+  // (under 30 s, measure/calibrate.h) instead of giving up the plan: a user who never ran
   // `osd-cull calibrate` still gets culling that pays. Without a cache
   // (OSD_CULL_CALIBRATION_CACHE=off, as in the tests) it would be measured on every run.
   if (plan::calibrationCacheDirectory().empty())
