@@ -9,6 +9,8 @@
 // the planner's predicted frame time against the measured one and whether it is within 25%.
 //
 //   bench-plan [--cases builtin,bigguy,animated,displaced] [--tess 1,2,4,8,16,32] [--frames 4]
+//              [--adaptive 8,...] (screen-space adaptive levels, PIXELS per segment, after --tess)
+//              [--mesh FILE,...] [--level 2] (held-out meshes: OBJ cages, cases of their own)
 //              [--warmup 4] [--width 1280] [--height 720] [--calibration FILE] [--csv FILE]
 //              [--device X]   (--repeats is accepted and unused: --frames sets the medians)
 //
@@ -31,11 +33,15 @@
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/scene/loaded_scene.h"
 #include "osd_cull/scene/procedural_displacement.h"
+#include "osd_cull/session/mesh_session.h"
 #include "osd_cull/vk/context.h"
+
+#include <sys/resource.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -51,6 +57,9 @@ using bench::median;
 struct Options {
   std::vector<std::string> cases = {"builtin", "bigguy", "animated", "displaced"};
   std::vector<uint32_t> tess = {1, 2, 4, 8, 16, 32};
+  std::vector<uint32_t> adaptive;   // pixels per segment
+  std::vector<std::string> meshes;  // OBJ files
+  uint32_t level = 2;
   uint32_t frames = 4, warmup = 4, width = 1280, height = 720, repeats = 1;
   std::string calibration, csv, device;
 };
@@ -59,6 +68,9 @@ bench::CommandLine commandLine(Options& o) {
   return bench::CommandLine("bench-plan", "bench_plan.cpp")
       .names("--cases", o.cases)
       .numbers("--tess", o.tess)
+      .numbers("--adaptive", o.adaptive)
+      .names("--mesh", o.meshes)
+      .number("--level", o.level, 1)
       .number("--frames", o.frames, 1)
       .number("--warmup", o.warmup)
       .imageAndDevice(o.width, o.height, o.repeats, o.device)
@@ -94,6 +106,18 @@ Case builtIn() {
 }
 
 Case bigGuy(vulkan::Context& context, bool animated);
+
+// A held-out mesh: an OBJ cage at `level`, y up.
+Case meshFile(const std::string& file, uint32_t level) {
+  bench::CullMesh m = bench::loadCullMesh(file, level);
+  Case c;
+  c.name = std::filesystem::path(file).filename().string() + " level " + std::to_string(level);
+  c.up = {0, 1, 0};
+  c.viewDirection = {0.3, 0.25, 1.0};
+  c.validity = m.validity;
+  c.patches = std::move(m.patches);
+  return c;
+}
 
 // BigGuy level 2 with the procedural map (bench-displaced's scale: |D| up to 2% of its radius).
 Case displacedBigGuy(vulkan::Context& context) {
@@ -134,20 +158,10 @@ Case bigGuy(vulkan::Context& context, bool animated) {
   return c;
 }
 
-// The frames of one stage choice on one case.
-struct Executor {
-  std::unique_ptr<frame::CullFrame> frame;  // with occlusion
-  std::unique_ptr<frame::CullPass> pass;    // without
-};
-
-struct Measured {
-  double ms = 0;
-  uint32_t frustum = 0, backPatch = 0, occlusion = 0;
-};
-
 struct Row {
   std::vector<double> none, all, planned, predicted;
   std::map<std::string, int> choices;
+  int changes = 0;  // plan changes after the first measured frame
 };
 
 // Levels of a case and how many met the two marks.
@@ -220,10 +234,24 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
     return &c.dynamic->cullData(frame::cullMethod(method).reference);
   };
   uint64_t frameNumber = 0;
+  // The uniform levels, then the adaptive ones (label "aN": N pixels per segment).
+  std::vector<std::pair<std::string, frame::TessellationOptions>> levels;
   for (uint32_t tess : o.tess) {
-    bench::progress(c.name + ": tess " + std::to_string(tess));
+    frame::TessellationOptions t;
+    t.uniformLevel = tess;
+    levels.push_back({std::to_string(tess), t});
+  }
+  for (uint32_t pixels : o.adaptive) {
+    frame::TessellationOptions t;
+    t.mode = frame::TessellationOptions::Mode::Adaptive;
+    t.pixelsPerSegment = pixels;
+    t.maxLevel = context.info().limits.maxTessellationGenerationLevel;
+    levels.push_back({"a" + std::to_string(pixels), t});
+  }
+  for (const auto& [label, tessellation] : levels) {
+    bench::progress(c.name + ": tess " + label);
     frame::CullFrameOptions base;
-    base.render.tessellation.uniformLevel = tess;
+    base.render.tessellation = tessellation;
     base.render.cullBackFaces = c.validity.enabled;
     base.cull.backPatchValidity = c.validity;
     base.cull.displacementMap = c.map.get();
@@ -238,39 +266,17 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
     const frame::CullMesh allMesh[] = {
         {gpu, &c.host(), cullData(c.dynamic ? coneMethod : ""), glm::dmat4(1.0), c.validity}};
     frame::CullFrame all(context, renderer, target, allMesh, allOptions);
-    std::map<std::string, Executor> executors;
-    auto planned = [&](const plan::Plan& p, const frame::Camera& cam) {
-      Measured m;
-      const frame::RenderOptions& ro = base.render;
-      if (!p.culls()) {
-        const frame::PatchDraw draw{gpu, &c.host(), 0};
-        m.ms = renderer.render(target, cam, {&draw, 1}, occluders, ro).wallMs;
-        return m;
-      }
-      const frame::CullFrameOptions fo = plan::applyPlan(p, base);
-      Executor& e = executors[p.stages.describe()];
-      if (!p.stages.occlusion.empty()) {
-        if (!e.frame) {
-          const frame::CullMesh mesh[] = {
-              {gpu, &c.host(), cullData(p.stages.backPatch), glm::dmat4(1.0), c.validity}};
-          e.frame = std::make_unique<frame::CullFrame>(context, renderer, target, mesh, fo);
-        }
-        const frame::CullFrameStats s = e.frame->render(cam, occluders);
-        return Measured{s.frameMs, s.culledFrustum, s.culledBackPatch, s.culledOcclusion};
-      }
-      if (!e.pass) {
-        const vulkan::Buffer* data = cullData(p.stages.backPatch);
-        e.pass = data ? std::make_unique<frame::CullPass>(context, *gpu, c.host(), fo.cull, *data)
-                      : std::make_unique<frame::CullPass>(context, *gpu, c.host(), fo.cull);
-      }
-      m.ms = frame::renderCulled(renderer, target, cam, *e.pass, occluders, ro).wallMs;
-      for (uint32_t code : e.pass->results()) {
-        const uint32_t stage = bound::CullCode{code}.stage();
-        m.frustum += stage == shader::kStageFrustum;
-        m.backPatch += stage == shader::kStageBackPatch;
-      }
-      return m;
-    };
+    // The planned side: the library's session (session/mesh_session.h), which keeps the
+    // pass or frame of every choice with its visibility status.
+    session::MeshSessionOptions so;
+    so.name = c.name;
+    so.view = "orbit/tess " + label;
+    so.frame = base;
+    so.occluders = !occluders.empty();
+    so.deforming = c.dynamic != nullptr;
+    so.cullData = cullData;
+    session::MeshSession planned(context, renderer, target, *gpu, c.host(), occluders, so,
+                                 &planner);
     Row row;
     const int first = -int(o.warmup);
     for (int f = first; f < int(o.frames); ++f, ++frameNumber) {
@@ -282,29 +288,15 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
         c.dynamic->setCagePositions(cage);
         c.dynamic->update();
       }
-      plan::PlanInput in;
-      in.mesh = c.name;
-      in.view = "orbit";
-      in.bezier = c.host().bezierCount;
-      in.gregory = c.host().gregoryCount;
-      in.tess = tess;
-      in.objectBounds = frame::boundsOf(c.host().points);
-      in.camera = cam;
-      in.deforming = in.cageMoved = c.dynamic != nullptr;
-      in.backPatchValidity = c.validity;
-      in.occluders = !occluders.empty();
-      in.selfOccluding = selfOccluding;
-      in.displaced = c.map != nullptr;
       const frame::PatchDraw draw{gpu, &c.host(), 0};
-      const plan::Plan p = planner.plan(c.name, in, frameNumber);
       // The three sides back to back.
       double none = 0.0, allMs = 0.0;
-      Measured m;
+      session::SessionFrame m;
       const std::function<void()> sides[] = {
           [&] {
             none = renderer.render(target, cam, {&draw, 1}, occluders, base.render).wallMs;
           },
-          [&] { allMs = all.render(cam, occluders).frameMs; }, [&] { m = planned(p, cam); }};
+          [&] { allMs = all.render(cam, occluders).frameMs; }, [&] { m = planned.render(cam); }};
       // All six orders in turn: each side runs first, in the middle and last, and after
       // each other side, equally often over six frames (a frame after the heavy all-culling
       // frame runs slower on lavapipe, so a plain rotation, where one side follows it twice
@@ -312,13 +304,14 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
       static constexpr int kOrders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
                                             {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
       for (int k : kOrders[(f - first) % 6]) sides[k]();
-      planner.observe(c.name, p, m.frustum, m.backPatch, m.occlusion, c.host().patchCount(), m.ms);
+      const plan::Plan& p = *m.plan;
       if (f < 0) continue;
       row.none.push_back(none);
       row.all.push_back(allMs);
-      row.planned.push_back(m.ms);
+      row.planned.push_back(m.stats.frameMs);
       row.predicted.push_back(p.predicted.totalMs() - p.predicted.updateMs);
       ++row.choices[p.stages.describe() + (p.probe ? " [probe]" : "")];
+      row.changes += m.planChanged && f > 0;
     }
     const double none = median(row.none), allMs = median(row.all), plannedMs = median(row.planned),
                  predicted = median(row.predicted);
@@ -326,18 +319,20 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
     std::string choices;
     for (const auto& [name, count] : row.choices)
       choices += (choices.empty() ? "" : "; ") + name + " (" + std::to_string(count) + ")";
+    choices += "; " + std::to_string(row.changes) + " plan changes";
     const bool within5 = plannedMs <= 1.05 * best,
                within25 = std::abs(predicted / plannedMs - 1.0) <= 0.25;
     ++tally.levels;
     tally.within5 += within5;
     tally.within25 += within25;
-    std::printf("| %u | %.1f | %.1f | %.1f | %s | %.2f | %s | %.1f | %.2f | %s |\n", tess, none,
-                allMs, plannedMs, choices.c_str(), plannedMs / best, within5 ? "yes" : "**no**",
-                predicted, predicted / plannedMs, within25 ? "yes" : "**no**");
+    std::printf("| %s | %.1f | %.1f | %.1f | %s | %.2f | %s | %.1f | %.2f | %s |\n", label.c_str(),
+                none, allMs, plannedMs, choices.c_str(), plannedMs / best,
+                within5 ? "yes" : "**no**", predicted, predicted / plannedMs,
+                within25 ? "yes" : "**no**");
     std::fflush(stdout);
     if (csv) {
-      std::fprintf(csv, "\"%s\",%u,%.4f,%.4f,%.4f,%.4f,\"%s\"\n", c.name.c_str(), tess, none, allMs,
-                   plannedMs, predicted, choices.c_str());
+      std::fprintf(csv, "\"%s\",%s,%.4f,%.4f,%.4f,%.4f,\"%s\"\n", c.name.c_str(), label.c_str(),
+                   none, allMs, plannedMs, predicted, choices.c_str());
       std::fflush(csv);
     }
   }
@@ -380,6 +375,12 @@ int main(int argc, char** argv) {
       if (name != "builtin" && name != "bigguy" && name != "animated" && name != "displaced")
         throw Error("--cases: unknown case '" + name + "' (builtin, bigguy, animated, displaced)");
     Tally total;
+    // --mesh without --cases: the held-out meshes only.
+    if (!o.meshes.empty() && o.cases == Options{}.cases) o.cases.clear();
+    for (const std::string& file : o.meshes) {
+      Case c = meshFile(file, o.level);
+      total.add(runCase(context, c, planner, o, csv.get()));
+    }
     for (const std::string& name : o.cases) {
       Case c = name == "builtin"    ? builtIn()
                : name == "bigguy"   ? bigGuy(context, false)
@@ -387,8 +388,10 @@ int main(int argc, char** argv) {
                                     : displacedBigGuy(context);
       total.add(runCase(context, c, planner, o, csv.get()));
     }
-    std::printf("\n**All cases:** %s (load average %s at the end).\n", total.text().c_str(),
-                loadAverage().c_str());
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    std::printf("\n**All cases:** %s (load average %s at the end; peak RSS %.1f MB).\n",
+                total.text().c_str(), loadAverage().c_str(), usage.ru_maxrss / 1024.0);
     bench::progress("done");
     return 0;
   });

@@ -5,10 +5,10 @@
 // errors.
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
-#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/plan/calibration.h"
 #include "osd_cull/plan/cost_model.h"
 #include "osd_cull/plan/planner.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "support/plan_calibration.h"
 #include "support/temp_dir.h"
 #include "support/vk_test_context.h"
@@ -280,6 +280,9 @@ TEST(PlanHiZ, ResolutionAndLookupByCostLearnedPerVariant) {
     EXPECT_EQ(o.hiz.lookup, bound::HiZLookup::Tight);
     EXPECT_FALSE(o.hiz.fullResolution);
     // The tight variant's rate is learned on its own key; the paper's stays its prior.
+    // The choice's first frame ran on a status that had not seen the stage: not learned.
+    planner.observe("main/ball", p, 0, 0, 25, 500);
+    EXPECT_NEAR(planner.rate("main/ball", "hiz/tight"), 0.1 * 1.13, 1e-12);
     planner.observe("main/ball", p, 0, 0, 25, 500);
     EXPECT_NEAR(planner.rate("main/ball", "hiz/tight"), 0.05, 1e-12);
     EXPECT_DOUBLE_EQ(planner.rate("main/ball", "hiz"), PlannerOptions{}.priorRates.at("hiz"));
@@ -595,8 +598,9 @@ TEST(Plan, SwitchedOffMeshIsReprobedAndTurnedOnWhenItPays) {
     }
     planner.observe("k", p, 0, 0, 0, 2000);  // the probes find nothing to cull
   }
-  // The first probe after firstProbeFrames (2: the rate is only a prior), then every 16.
-  EXPECT_EQ(probes, (std::vector<uint64_t>{2, 18, 34}));
+  // The first probe after firstProbeFrames (2: the rate is only a prior), then 16 later,
+  // then 32 (each probe of a measured kind doubles its interval).
+  EXPECT_EQ(probes, (std::vector<uint64_t>{2, 18}));
   // A probe that finds most patches culled switches culling on.
   Plan p = planner.plan("k", in, 50);
   ASSERT_TRUE(p.probe);
@@ -606,57 +610,111 @@ TEST(Plan, SwitchedOffMeshIsReprobedAndTurnedOnWhenItPays) {
   EXPECT_TRUE(p.backPatch.on) << planTable({&p, 1});
 }
 
-TEST(Plan, TheUnculledFrameIsMeasuredTooAndChosenWhereItIsCheaper) {
+// The counts of a frame that culled at exactly the plan's predicted rates.
+Observation atPredictedRates(const Plan& p, uint32_t total, double ms, double cullMs) {
+  Observation o;
+  o.total = total;
+  o.culledFrustum = uint32_t(std::lround(p.rates.frustum * total));
+  o.culledBackPatch =
+      p.stages.backPatch.empty() ? 0 : uint32_t(std::lround(p.rates.backPatch * total));
+  o.culledOcclusion =
+      p.stages.occlusion.empty() ? 0 : uint32_t(std::lround(p.rates.occlusion * total));
+  o.ms = ms;
+  o.cullMs = cullMs;
+  return o;
+}
+
+TEST(Plan, TheUnculledFrameIsPredictedFromTheCulledFramesOwnDrawTime) {
   // The calibration's draw cost can be off for one mesh by another factor than its cull
-  // cost. A planner that culls and sees its frame times runs one frame without culling
-  // (after firstProbeFrames + 1) to measure it, and learns the two scales apart.
+  // cost. Culled frames that time their cull work apart tell the two apart: the planner
+  // learns that the draw costs a tenth of the model and the cull work ten times, predicts
+  // the unculled frame from that, and switches culling off without ever drawing an
+  // unculled frame to measure it (issue 18: such a probe threw the visibility status away).
   PlannerOptions options;
   options.holdFrames = 1;
   Planner planner(syntheticCalibration(), options);
   const PlanInput in = meshAt(1.6, 16.0);
-  std::vector<uint64_t> unculledProbes;
   Plan p;
+  std::optional<uint64_t> firstUnculled;
   for (uint64_t f = 0; f < 12; ++f) {
     p = planner.plan("k", in, f);
     if (f == 0) {
       ASSERT_TRUE(p.culls()) << planTable({&p, 1});
     }
-    if (p.probe && !p.culls()) unculledProbes.push_back(f);
-    // Culled frames take what the model says; the unculled frame a third of it.
-    const double ms =
-        p.culls() ? p.predicted.totalMs() - p.predicted.updateMs : p.predicted.totalMs() / 3.0;
-    planner.observe("k", p, 0, p.culls() ? 500 : 0, 0, 2000, ms);
+    if (!p.culls() && !firstUnculled) {
+      firstUnculled = f;
+      EXPECT_FALSE(p.probe) << "chosen, not probed";
+    }
+    if (firstUnculled) {
+      EXPECT_FALSE(p.culls()) << "frame " << f << ": stays off";
+    }
+    // Ten times the model's cull work, and a tenth of its draw work.
+    const Prediction model = predict(planner.calibration(), p.cost, p.stages, p.rates);
+    const double cull = 10.0 * (model.cullMs + model.hizMs);
+    const double draw = (model.drawMs + model.fixedMs) / 10.0;
+    planner.observe("k", p, atPredictedRates(p, 2000, draw + cull, p.culls() ? cull : NAN));
   }
-  EXPECT_EQ(unculledProbes, (std::vector<uint64_t>{3})) << "one probe, then none is chosen";
-  EXPECT_FALSE(p.culls()) << planTable({&p, 1});
-  EXPECT_LT(p.timeScale, 0.5);
-  // Without frame times (observe without measuredMs) there is nothing to learn: no probe.
-  Planner untimed(syntheticCalibration(), options);
-  for (uint64_t f = 0; f < 12; ++f) {
-    const Plan q = untimed.plan("k", in, f);
-    EXPECT_TRUE(q.culls()) << "frame " << f;
-    untimed.observe("k", q, 0, 500, 0, 2000);
-  }
+  ASSERT_TRUE(firstUnculled) << planTable({&p, 1});
+  EXPECT_LE(*firstUnculled, 3u) << "one frame not timed, one measured, then the switch";
+  EXPECT_NEAR(p.drawScale, 0.1, 0.02);
+  EXPECT_GT(p.cullScale, 4.0);
 }
 
 TEST(Plan, PredictionFollowsTheMeasuredFrameTime) {
   Planner planner(syntheticCalibration());
   const PlanInput in = meshAt(1.6, 16.0);
   const Plan first = planner.plan("k", in, 0);
-  EXPECT_EQ(first.timeScale, 1.0);
-  // The frame took twice the prediction (a loaded machine): the next prediction moves
-  // halfway there (learnWeight 0.5); the choice, made on relative costs, stays.
+  EXPECT_EQ(first.drawScale, 1.0);
+  EXPECT_EQ(first.cullScale, 1.0);
+  // The frame took twice the prediction (a loaded machine): the first measurement replaces
+  // the calibration's figure, later ones move it halfway (learnWeight 0.5); the choice,
+  // made on relative costs, stays.
   // The first frame of a choice runs its passes for the first time: not timed into the scale.
-  planner.observe("k", first, 600, 300, 0, 2000, 5.0 * first.predicted.totalMs());
+  const double unscaled = first.predicted.totalMs() - first.predicted.updateMs;
+  planner.observe("k", first, atPredictedRates(first, 2000, 5.0 * unscaled, NAN));
   const Plan warm = planner.plan("k", in, 1);
-  EXPECT_EQ(warm.timeScale, 1.0);
+  EXPECT_EQ(warm.drawScale, 1.0);
   ASSERT_TRUE(warm.stages == first.stages);
-  planner.observe("k", warm, 600, 300, 0, 2000, 2.0 * warm.predicted.totalMs());
+  // Without the cull work timed apart, both scales move together.
+  planner.observe("k", warm, atPredictedRates(warm, 2000, 2.0 * unscaled, NAN));
   const Plan second = planner.plan("k", in, 2);
-  EXPECT_NEAR(second.timeScale, 1.5, 1e-12);
+  EXPECT_NEAR(second.drawScale, 2.0, 1e-9);
+  EXPECT_NEAR(second.cullScale, 2.0, 1e-9);
   EXPECT_TRUE(second.stages == first.stages);
-  const Plan unscaled = Planner(syntheticCalibration()).plan("k", in, 0);
-  EXPECT_NEAR(second.predictedUnculled.totalMs(), 1.5 * unscaled.predictedUnculled.totalMs(), 1e-9);
+  const Plan fresh = Planner(syntheticCalibration()).plan("k", in, 0);
+  EXPECT_NEAR(second.predictedUnculled.totalMs(), 2.0 * fresh.predictedUnculled.totalMs(), 1e-9);
+  // With the cull work timed apart: the draw took as predicted, the cull work 3x.
+  const Prediction model = predict(planner.calibration(), second.cost, second.stages, second.rates);
+  const double cull = model.cullMs + model.hizMs, draw = model.drawMs + model.fixedMs;
+  planner.observe("k", second, atPredictedRates(second, 2000, draw + 3.0 * cull, 3.0 * cull));
+  const Plan third = planner.plan("k", in, 3);
+  EXPECT_NEAR(third.drawScale, 0.5 * 2.0 + 0.5 * 1.0, 1e-9);
+  EXPECT_NEAR(third.cullScale, 0.5 * 2.0 + 0.5 * 3.0, 1e-9);
+}
+
+TEST(Plan, ASteadyViewConvergesAndProbesEverMoreRarely) {
+  // A steady view whose measured rates keep culling off: the back-patch re-probes come at
+  // 2 (its rate a prior), then 16, 32, 64, 128, 128 frames apart (each doubles the
+  // interval, up to maxReprobeFrames), and start over when an input changes (the
+  // tessellation level at frame 400: probed at once, then 32, 64 apart).
+  PlannerOptions options;
+  options.reprobeFrames = 16;
+  options.maxReprobeFrames = 128;
+  Planner planner(syntheticCalibration(), options);
+  PlanInput in = meshAt(60.0, 2.0);
+  std::vector<uint64_t> probes;
+  uint32_t changes = 0;
+  std::optional<StageChoice> last;
+  for (uint64_t f = 0; f < 500; ++f) {
+    if (f == 400) in.tess = 4.0;
+    const Plan p = planner.plan("k", in, f);
+    if (p.probe) probes.push_back(f);
+    if (last && !(*last == p.stages)) ++changes;
+    last = p.stages;
+    planner.observe("k", p, 0, 0, 0, 2000);  // nothing to cull
+  }
+  EXPECT_EQ(probes, (std::vector<uint64_t>{2, 18, 50, 114, 242, 370, 400, 432, 496}));
+  EXPECT_EQ(changes, 2 * probes.size());
 }
 
 TEST(Calibration, TextRoundTripAndCacheKey) {

@@ -4,6 +4,7 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/cull/cull_methods.h"
+#include "osd_cull/frame/draw/tess_levels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,13 +19,25 @@ const char* const kBackPatch = "back-patch";
 const char* const kOcclusion = "occlusion";
 const char* const kFrustum = "frustum";
 
-Prediction scaled(Prediction p, double scale) {
-  p.drawMs *= scale;
-  p.cullMs *= scale;
-  p.hizMs *= scale;
-  p.updateMs *= scale;
-  p.fixedMs *= scale;
+// The draw work (patch draws, submission, point update) times `draw`, the cull work
+// (kernels, pyramid, status) times `cull`.
+Prediction scaled(Prediction p, double draw, double cull) {
+  p.drawMs *= draw;
+  p.fixedMs *= draw;
+  p.updateMs *= draw;
+  p.cullMs *= cull;
+  p.hizMs *= cull;
   return p;
+}
+
+// What the plan's choice depends on besides the view: a change starts the re-probes over.
+// The level in steps of a quarter octave (an adaptive level drifts with the camera).
+std::string inputsSignature(const PlanInput& in) {
+  const long level = std::lround(4.0 * std::log2(std::max(in.tess, 1.0)));
+  return std::to_string(level) + "/" + std::to_string(in.camera.width) + "x" +
+         std::to_string(in.camera.height) + "/" + std::to_string(in.deforming) +
+         std::to_string(in.displaced) + std::to_string(in.occluders) +
+         std::to_string(in.backPatchValidity.enabled);
 }
 
 // A back-patch method whose per-patch cull data the bounds pass recomputes from moved
@@ -115,6 +128,24 @@ bool mayHideItself(const PatchSet& patches, uint64_t maxWork) {
     }
   }
   return !anyPlane;
+}
+
+double equivalentUniformLevel(const PatchSet& patches, const frame::Camera& camera,
+                              const glm::dmat4& model,
+                              const frame::TessellationOptions& tessellation, uint32_t samples) {
+  const frame::TessellationOptions o =
+      frame::effectiveOptions(tessellation, frame::hasTransitionEdges(patches));
+  if (o.mode != frame::TessellationOptions::Mode::Adaptive) return o.uniformLevel;
+  const uint32_t n = patches.patchCount();
+  if (n == 0) return 1.0;
+  const uint32_t step = std::max(1u, n / std::max(1u, samples));
+  const glm::dmat4 viewProjection = camera.viewProjection() * model;
+  const glm::dvec2 viewport(camera.width, camera.height);
+  double vertices = 0.0;
+  uint32_t count = 0;
+  for (uint32_t p = 0; p < n; p += step, ++count)
+    vertices += frame::patchTessLevels(patches, p, viewProjection, viewport, o).vertexCount();
+  return std::max(1.0, std::sqrt(vertices / count) - 1.0);
 }
 
 std::vector<std::pair<const char*, const Effect*>> Plan::effects() const {
@@ -250,7 +281,10 @@ std::vector<StageChoice> Planner::candidates(const PlanInput& input) const {
   std::vector<std::pair<std::string, Accuracy>> backPatch = {{"", Accuracy::Bound}};
   if (input.backPatchValidity.enabled && !input.displaced)
     for (const std::string& m : frame::cullMethodNames(frame::CullStage::BackPatch))
-      if (calibration_.cullMsPerPatch.count(m) && (!input.deforming || hasBoundsPass(m)))
+      if (calibration_.cullMsPerPatch.count(m) && (!input.deforming || hasBoundsPass(m)) &&
+          (options_.backPatchMethods.empty() ||
+           std::find(options_.backPatchMethods.begin(), options_.backPatchMethods.end(), m) !=
+               options_.backPatchMethods.end()))
         for (Accuracy a : accuracies(input, m)) backPatch.push_back({m, a});
   std::vector<std::string> occlusion = {""};
   if (offersOcclusion(input))
@@ -335,15 +369,11 @@ double Planner::rate(const std::string& key, const std::string& stage) const {
   return stageRate(it == states_.end() ? empty : it->second, stage);
 }
 
-double Planner::scaleFor(const State& s, bool culls) {
-  if (culls) return s.culledMeasured || !s.unculledMeasured ? s.culledScale : s.unculledScale;
-  return s.unculledMeasured || !s.culledMeasured ? s.unculledScale : s.culledScale;
-}
-
 double Planner::predictedMs(const State& s, const PlanInput& input, const StageChoice& c,
                             BoxInView box) const {
-  return scaleFor(s, c.any()) *
-         predict(calibration_, costCase(input, c), c, ratesFor(s, c, box)).totalMs();
+  return scaled(predict(calibration_, costCase(input, c), c, ratesFor(s, c, box)), s.drawScaleNow(),
+                s.cullScaleNow())
+      .totalMs();
 }
 
 Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t frameNumber) {
@@ -352,6 +382,13 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
     throw Error("planner: frame " + std::to_string(frameNumber) + " of '" + key +
                 "' comes after frame " + std::to_string(s.lastFrame));
   s.lastFrame = frameNumber;
+  // New inputs (another level, image size, motion): the re-probes start over.
+  if (const std::string inputs = inputsSignature(input); inputs != s.inputs) {
+    s.inputs = inputs;
+    s.probeInterval.clear();
+  }
+  while (!s.switches.empty() && frameNumber - s.switches.front() >= options_.oscillationWindow)
+    s.switches.pop_front();
   Plan p;
   p.mesh = input.mesh;
   p.view = input.view;
@@ -363,33 +400,31 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
       all.begin(), all.end(),
       [&](const StageChoice& a, const StageChoice& b) { return total(a) < total(b); });
   const bool valid = s.current && std::find(all.begin(), all.end(), *s.current) != all.end();
+  // Hysteresis: the margin grows with each change of the last window, so two choices
+  // predicted alike (within the rates' noise) cannot take turns.
+  const double margin = std::min(0.5, options_.margin * (1.0 + double(s.switches.size())));
   if (!valid) {
     s.current = best;
     s.since = frameNumber;
   } else if (!(best == *s.current) && frameNumber - s.since >= options_.holdFrames &&
-             total(best) < (1.0 - options_.margin) * total(*s.current)) {
+             total(best) < (1.0 - margin) * total(*s.current)) {
     s.current = best;
     s.since = frameNumber;
+    s.switches.push_back(frameNumber);
   }
   p.stages = *s.current;
 
   // Re-probe one switched-off stage now and then: its rate is learned only while it runs.
-  // While the plan culls, a frame without culling now and then measures what the unculled
-  // frame of this mesh really costs (Plan::timeScale); not for a box outside the view,
-  // which the frustum stage culls whole.
+  // The unculled frame is never probed: observe() learns its cost from the culled frames'
+  // own draw time (Plan::drawScale), so the visibility status is never thrown away.
   for (const char* kind : {kFrustum, kBackPatch, kOcclusion})
     if (!s.lastRun.count(kind)) s.lastRun[kind] = frameNumber;
-  if (!s.lastUnculled) s.lastUnculled = frameNumber;
-  const bool unculledDue =
-      options_.reprobeFrames > 0 && p.stages.any() && p.box != BoxInView::Outside &&
-      s.culledMeasured &&  // only where frame times are observed (observe's measuredMs)
-      frameNumber - *s.lastUnculled >=
-          (s.unculledMeasured || options_.firstProbeFrames == 0
-               ? options_.reprobeFrames
-               : std::min(options_.firstProbeFrames + 1, options_.reprobeFrames));
-  if (unculledDue) {
-    p.stages = StageChoice{};
+  if (s.hold) {
+    // An occlusion probe's second frame: its first ran on a status that had not seen the
+    // stage (the rate it counted is not learned), this one measures it.
+    p.stages = *s.hold;
     p.probe = true;
+    s.hold.reset();
   } else if (options_.reprobeFrames > 0) {
     std::string probeBackPatch;
     Accuracy probeAccuracy = Accuracy::Bound;
@@ -400,18 +435,28 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
         probeBackPatch = c.backPatch;
         probeAccuracy = c.accuracy;
       }
-    auto due = [&](const char* kind) {
+    auto interval = [&](const char* kind) {
       const bool prior = !s.measured.count(kind) && options_.firstProbeFrames > 0;
-      return frameNumber - s.lastRun[kind] >=
-             (prior ? std::min(options_.firstProbeFrames, options_.reprobeFrames)
-                    : options_.reprobeFrames);
+      if (prior) return std::min(options_.firstProbeFrames, options_.reprobeFrames);
+      const auto it = s.probeInterval.find(kind);
+      return it == s.probeInterval.end() ? options_.reprobeFrames : it->second;
+    };
+    auto due = [&](const char* kind) { return frameNumber - s.lastRun[kind] >= interval(kind); };
+    // A probe doubles the kind's interval (up to maxReprobeFrames): a steady view probes
+    // ever more rarely, until its inputs change.
+    auto probed = [&](const char* kind) {
+      if (s.measured.count(kind))
+        s.probeInterval[kind] = std::min(
+            std::max(options_.maxReprobeFrames, options_.reprobeFrames), 2 * interval(kind));
+      p.probe = true;
     };
     if (!p.stages.frustum && p.box == BoxInView::Crossing && due(kFrustum)) {
-      p.stages.frustum = p.probe = true;
+      p.stages.frustum = true;
+      probed(kFrustum);
     } else if (p.stages.backPatch.empty() && !probeBackPatch.empty() && due(kBackPatch)) {
       p.stages.backPatch = probeBackPatch;
       p.stages.accuracy = probeAccuracy;
-      p.probe = true;
+      probed(kBackPatch);
     } else if (p.stages.occlusion.empty() && offersOcclusion(input) && due(kOcclusion)) {
       // The occlusion kernel and pyramid predicted cheapest with the other stages as planned
       // (so the probe measures what would be switched on).
@@ -426,21 +471,21 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
       } else {
         p.stages.occlusion = occlusionKernel(input);
       }
-      p.probe = true;
+      probed(kOcclusion);
+      s.hold = p.stages;
     }
   }
   if (p.stages.frustum) s.lastRun[kFrustum] = frameNumber;
   if (!p.stages.backPatch.empty()) s.lastRun[kBackPatch] = frameNumber;
   if (!p.stages.occlusion.empty()) s.lastRun[kOcclusion] = frameNumber;
 
-  if (!p.stages.any()) s.lastUnculled = frameNumber;
-
   p.rates = ratesFor(s, p.stages, p.box);
-  p.timeScale = scaleFor(s, p.stages.any());
-  p.predicted =
-      scaled(predict(calibration_, costCase(input, p.stages), p.stages, p.rates), p.timeScale);
+  p.drawScale = s.drawScaleNow();
+  p.cullScale = s.cullScaleNow();
+  p.cost = costCase(input, p.stages);
+  p.predicted = scaled(predict(calibration_, p.cost, p.stages, p.rates), p.drawScale, p.cullScale);
   p.predictedUnculled =
-      scaled(predict(calibration_, costCase(input, {}), {}, p.rates), scaleFor(s, false));
+      scaled(predict(calibration_, costCase(input, {}), {}, p.rates), p.drawScale, p.cullScale);
   explain(p, input, s);
   return p;
 }
@@ -474,7 +519,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
            std::to_string(int(input.tess));
   };
   const char* probe = "re-probe: runs once to measure its rate; ";
-  const double k = p.timeScale;  // the effects' ms in this machine's measured time
+  const double k = p.drawScale;  // the effects' ms in this machine's measured time
 
   // Frustum.
   {
@@ -732,42 +777,80 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
 void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
                       uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
                       double measuredMs) {
-  if (total == 0) return;
+  Observation o;
+  o.culledFrustum = culledFrustum;
+  o.culledBackPatch = culledBackPatch;
+  o.culledOcclusion = culledOcclusion;
+  o.total = total;
+  o.ms = measuredMs;
+  observe(key, plan, o);
+}
+
+void Planner::observe(const std::string& key, const Plan& plan, const Observation& o) {
+  if (o.total == 0) return;
   State& s = states_[key];
-  const double predicted = (plan.predicted.totalMs() - plan.predicted.updateMs) / plan.timeScale;
-  // The first frame of a stage choice is not timed into the scale: it is the first run of
+  // The first frame of a stage choice is not timed into the scales: it is the first run of
   // its passes (pipelines, descriptor sets and buffers first touched), which on lavapipe
   // costs several frames' time. A frame without culling has no pass of its own.
   const bool culls = plan.stages.any();
   const bool warm =
       !culls || std::find(s.observed.begin(), s.observed.end(), plan.stages) != s.observed.end();
   if (!warm) s.observed.push_back(plan.stages);
-  if (warm && measuredMs > 0.0 && predicted > 0.0 && std::isfinite(measuredMs)) {
-    const double ratio = std::clamp(measuredMs / predicted, 0.05, 20.0);
-    double& scale = culls ? s.culledScale : s.unculledScale;
-    bool& measured = culls ? s.culledMeasured : s.unculledMeasured;
-    // The first measurement of a kind starts from the scale it borrowed until then.
-    if (!measured) scale = scaleFor(s, culls);
-    scale = (1.0 - options_.learnWeight) * scale + options_.learnWeight * ratio;
-    measured = true;
+  // The frame re-predicted at the rates it measured: what the model says it should have
+  // cost, to compare with what it did.
+  CullRates measured = plan.rates;
+  measured.frustum = double(o.culledFrustum) / o.total;
+  measured.backPatch = double(o.culledBackPatch) / o.total;
+  measured.occlusion = double(o.culledOcclusion) / o.total;
+  const Prediction model = predict(calibration_, plan.cost, plan.stages, measured);
+  const double drawModel = model.drawMs + model.fixedMs, cullModel = model.cullMs + model.hizMs;
+  // The first measurement replaces the calibration's figure (as a measured rate replaces
+  // its prior); later ones move the scale by learnWeight.
+  auto learnScale = [&](double& scale, bool& known, double ratio) {
+    if (!std::isfinite(ratio)) return;
+    ratio = std::clamp(ratio, 0.05, 20.0);
+    scale = known ? (1.0 - options_.learnWeight) * scale + options_.learnWeight * ratio : ratio;
+    known = true;
+  };
+  if (warm && o.ms > 0.0 && std::isfinite(o.ms) && drawModel > 0.0) {
+    if (!culls) {
+      learnScale(s.drawScale, s.drawMeasured, o.ms / drawModel);
+    } else if (std::isfinite(o.cullMs) && o.cullMs >= 0.0 && o.cullMs < o.ms) {
+      learnScale(s.drawScale, s.drawMeasured, (o.ms - o.cullMs) / drawModel);
+      if (cullModel > 0.0) learnScale(s.cullScale, s.cullMeasured, o.cullMs / cullModel);
+    } else if (s.drawMeasured && cullModel > 0.0) {
+      // Only the total: the draw scale as learned, the rest is the cull work's.
+      learnScale(s.cullScale, s.cullMeasured, (o.ms - s.drawScale * drawModel) / cullModel);
+    } else {
+      const double ratio = o.ms / (drawModel + cullModel);
+      learnScale(s.drawScale, s.drawMeasured, ratio);
+      learnScale(s.cullScale, s.cullMeasured, ratio);
+    }
   }
   auto learn = [&](const std::string& stage, uint32_t culled) {
-    const double measured = double(culled) / double(total);
+    const double rate = double(culled) / double(o.total);
     const auto it = s.rates.find(stage);
-    s.rates[stage] = it == s.rates.end() ? measured
-                                         : (1.0 - options_.learnWeight) * it->second +
-                                               options_.learnWeight * measured;
+    s.rates[stage] = it == s.rates.end()
+                         ? rate
+                         : (1.0 - options_.learnWeight) * it->second + options_.learnWeight * rate;
   };
   // The frustum's rate is learned only where the pre-test leaves it open.
   if (plan.stages.frustum && plan.box == BoxInView::Crossing) {
-    learn(kFrustum, culledFrustum);
+    learn(kFrustum, o.culledFrustum);
     s.measured.insert(kFrustum);
   }
-  if (!plan.stages.backPatch.empty()) s.measured.insert(kBackPatch);
-  if (!plan.stages.occlusion.empty()) s.measured.insert(kOcclusion);
-  if (!plan.stages.backPatch.empty())
-    learn(rateKey(plan.stages.backPatch, plan.stages.accuracy), culledBackPatch);
-  if (!plan.stages.occlusion.empty()) learn(occlusionRateKey(plan.stages), culledOcclusion);
+  if (!plan.stages.backPatch.empty()) {
+    s.measured.insert(kBackPatch);
+    learn(rateKey(plan.stages.backPatch, plan.stages.accuracy), o.culledBackPatch);
+  }
+  // The occlusion rate of a choice's first frame is not learned: its visibility status has
+  // not seen the stage yet (a new frame starts with nothing visible, or from a status some
+  // frames old), so what it culled says little of what the stage culls (the probe's
+  // second frame measures it).
+  if (!plan.stages.occlusion.empty() && warm) {
+    s.measured.insert(kOcclusion);
+    learn(occlusionRateKey(plan.stages), o.culledOcclusion);
+  }
 }
 
 frame::CullFrameOptions applyPlan(const Plan& plan, frame::CullFrameOptions base) {

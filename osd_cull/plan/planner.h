@@ -17,8 +17,15 @@
 ///  3. keeps the current choice unless the new one is predicted cheaper by a margin and the
 ///     current one has been held for some frames (hysteresis: no flipping every frame);
 ///  4. now and then runs a stage that is switched off for one frame (a re-probe), because a
-///     rate can only be learned while its stage runs.
-/// observe() feeds the frame's measured per-stage cull counts back (a moving average).
+///     rate can only be learned while its stage runs; each re-probe of a stage kind doubles
+///     its interval until the inputs change (tessellation, image size, motion), so a steady
+///     view converges on one choice.
+/// observe() feeds the frame's measured per-stage cull counts back (a moving average) and
+/// its measured time, split into the draw and the cull work where the frame measured both
+/// (CullFrameStats::gpu): the model's draw cost and its cull cost are corrected apart, from
+/// culled frames too, so the unculled frame is predicted from the culled one's own draw time
+/// and never has to be drawn to be measured (issue 18: an unculled re-probe threw away the
+/// visibility status and drew everything on the frames after it).
 ///
 /// The planner never touches the device: applyPlan() turns a plan into the options that
 /// the frame pipeline already takes (frame::CullFrameOptions, frame::CullSettings).
@@ -30,6 +37,8 @@
 #include "osd_cull/plan/cost_model.h"
 
 #include <cstdint>
+#include <deque>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -88,6 +97,16 @@ struct PlanInput {
 /// one set fail the test (they can hide each other): true.
 bool mayHideItself(const PatchSet& patches, uint64_t maxWork = 100'000'000);
 
+/// \brief The uniform level that costs what `tessellation` draws of `patches` from `camera`
+/// (object → world by `model`): sqrt of the mean tessellated vertex count over the patches
+/// (PatchTessLevels::vertexCount, (L + 1)^2 at uniform level L) less one, from at most
+/// `samples` patches spread over the set. A uniform tessellation returns its level; the
+/// planner's cost model, calibrated at uniform levels, plans an adaptive one with this.
+double equivalentUniformLevel(const PatchSet& patches, const frame::Camera& camera,
+                              const glm::dmat4& model,
+                              const frame::TessellationOptions& tessellation,
+                              uint32_t samples = 2048);
+
 /// \brief One effect of a plan: on or off, the choice made (a method, "cpu"), why, and
 /// the predicted change of the frame time it makes (negative: it saves time).
 struct Effect {
@@ -106,11 +125,14 @@ struct Plan {
   Effect frustum, backPatch, accuracy, occlusion, passes, hiz, update, bounds, displacement;
   bool probe = false;  ///< a re-probe frame (a switched-off stage runs once)
   CullRates rates;     ///< the rates the prediction used
-  /// Measured / predicted frame time learned on this key's recent frames (1 before the
-  /// first): the calibration's relative costs, scaled to what this machine does now.
-  double timeScale = 1.0;
-  Prediction predicted;          ///< this plan
-  Prediction predictedUnculled;  ///< no stage at all
+  /// Measured / predicted time of the draw work (patch draws, submission, point update) and
+  /// of the cull work (kernels, pyramid, status) learned on this key's recent frames (1
+  /// before the first): the calibration's costs scaled to what this mesh costs on this
+  /// machine now.
+  double drawScale = 1.0, cullScale = 1.0;
+  CostCase cost;                 ///< what the prediction was made for (observe re-predicts)
+  Prediction predicted;          ///< this plan, scaled
+  Prediction predictedUnculled;  ///< no stage at all, scaled
   /// \brief Whether anything is culled (else the mesh is drawn by the plain renderer).
   bool culls() const { return stages.any(); }
   /// \brief The effects with their names, in print order.
@@ -125,8 +147,17 @@ struct PlannerOptions {
   /// ... and the current one has run for at least this many frames.
   uint32_t holdFrames = 8;
   /// A stage switched off runs for one frame after this many frames, to re-measure its
-  /// rate (0: never).
+  /// rate (0: never). Each re-probe of a kind doubles its interval, up to
+  /// maxReprobeFrames, until the inputs change (PlanInput: tessellation, image size,
+  /// deforming, displaced, occluders): a steady view stops probing.
   uint32_t reprobeFrames = 48;
+  uint32_t maxReprobeFrames = 768;
+  /// A choice changed this many times within the last 64 frames raises the hysteresis
+  /// margin by `margin` each (at most 0.5): two choices predicted alike cannot alternate.
+  uint32_t oscillationWindow = 64;
+  /// The back-patch methods the plan may choose (empty: every calibrated one); e.g. the
+  /// user's --backpatch-method given with --plan auto.
+  std::vector<std::string> backPatchMethods;
   /// A stage kind (frustum, back-patch, occlusion) never measured for a key, whose rate is
   /// only a prior (a figure of other meshes), runs for one frame after this many frames
   /// instead (0: like the others). Without it a stage whose prior lies below its break-even
@@ -192,6 +223,19 @@ std::string rateKey(const std::string& method, Accuracy accuracy);
 /// pyramid (half resolution, paper lookup), else "hiz/full", "hiz/tight", "hiz/full/tight".
 std::string occlusionRateKey(const StageChoice& stages);
 
+/// \brief What a frame that ran a plan measured.
+struct Observation {
+  /// Patches culled by each stage (a patch counts for the first that culls it; as
+  /// CullFrameStats counts them) of `total`.
+  uint32_t culledFrustum = 0, culledBackPatch = 0, culledOcclusion = 0, total = 0;
+  /// The frame's time without point update and bounds pass (0: not timed).
+  double ms = 0.0;
+  /// Of `ms`, the cull work: the kernels, the pyramid build and the status update
+  /// (CullFrameStats::gpu.pyramid + gpu.cull). NaN where the frame did not time it apart
+  /// (one-pass culling): then `ms` corrects the two scales together.
+  double cullMs = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// \brief The planner. One per program; it keeps a state per key (instance and view).
 class Planner {
  public:
@@ -202,11 +246,11 @@ class Planner {
   /// \throws osd_cull::Error when the calibration lacks a stage's cost.
   Plan plan(const std::string& key, const PlanInput& input, uint64_t frame);
 
-  /// \brief Learns from a frame that ran `plan`: the per-stage culled counts over `total`
-  /// patches (CullFrameStats::culledFrustum, culledBackPatch, culledOcclusion) and, when
-  /// `measuredMs` > 0, the frame's wall time without point update and bounds pass, which
-  /// sets Plan::timeScale (the load of a shared machine, caches: what the calibration did
-  /// not see).
+  /// \brief Learns from a frame that ran `plan` (see Observation): the rates, and from the
+  /// times Plan::drawScale and cullScale (the load of a shared machine, caches, the mesh's
+  /// screen coverage: what the calibration did not see).
+  void observe(const std::string& key, const Plan& plan, const Observation& frame);
+  /// \brief observe() with counts and the frame's wall time only (no split).
   void observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
                uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
                double measuredMs = 0.0);
@@ -222,19 +266,23 @@ class Planner {
     std::optional<StageChoice> current;
     uint64_t since = 0;  // frame the current choice started
     std::map<std::string, double> rates;
-    std::map<std::string, uint64_t> lastRun;  // stage kind → last frame it ran
-    std::set<std::string> measured;           // stage kinds observed at least once
+    std::map<std::string, uint64_t> lastRun;        // stage kind → last frame it ran
+    std::map<std::string, uint32_t> probeInterval;  // stage kind → frames between probes
+    std::set<std::string> measured;                 // stage kinds observed at least once
     uint64_t lastFrame = 0;
-    // Plan::timeScale, learned apart for frames that cull and frames that do not: the
-    // calibration's draw and cull costs can be off by different factors for a given mesh
-    // (its screen coverage, its patch shapes), and only the two kinds of frames tell them
-    // apart. Until one kind is measured it takes the other's.
-    double culledScale = 1.0, unculledScale = 1.0;
-    bool culledMeasured = false, unculledMeasured = false;
-    std::optional<uint64_t> lastUnculled;  // frame the plan last culled nothing
-    std::vector<StageChoice> observed;     // the stage choices observed at least once
+    std::string inputs;               // inputsSignature() of the last plan
+    std::deque<uint64_t> switches;    // frames the choice changed, the last window
+    std::optional<StageChoice> hold;  // an occlusion probe's second frame runs this
+    // Plan::drawScale and cullScale: the calibration's draw and cull costs can be off by
+    // different factors for a given mesh (its screen coverage, its patch shapes); a frame
+    // that times its cull work apart tells them apart. Until one is measured it takes the
+    // other's.
+    double drawScale = 1.0, cullScale = 1.0;
+    bool drawMeasured = false, cullMeasured = false;
+    std::vector<StageChoice> observed;  // the stage choices observed at least once
+    double drawScaleNow() const { return drawMeasured || !cullMeasured ? drawScale : cullScale; }
+    double cullScaleNow() const { return cullMeasured || !drawMeasured ? cullScale : drawScale; }
   };
-  static double scaleFor(const State& state, bool culls);
   /// The frame time of choice `c` predicted for `input`, in this key's measured time.
   double predictedMs(const State& state, const PlanInput& input, const StageChoice& c,
                      BoxInView box) const;

@@ -17,16 +17,17 @@
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/face_varying_uv.h"
 #include "osd_cull/scene/default_scene.h"
+#include "osd_cull/session/mesh_session.h"
 
+#include "adapters/image_png.h"
 #include "adapters/load_occluder.h"
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
-#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
-#include "adapters/image_png.h"
 #include "osd_cull/frame/draw/renderer.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/shader_compiler.h"
 
@@ -197,11 +198,6 @@ int run(const RenderArgs& args) {
 
   frame::RenderTarget target(context, width, height);
   frame::Renderer renderer(context);
-  // Without occlusion: one pass, the cull kernel before it. With occlusion: the two-pass
-  // frame with temporal visibility (frame::CullFrame), the same kernel in its third step.
-  std::unique_ptr<frame::CullPass> pass;
-  std::unique_ptr<frame::CullFrame> cullFrame;
-  const frame::CullMesh meshes[] = {{&gpu, &scene.patches}};
   // On a closed, oriented mesh the rasterizer culls back faces in every mode, with and
   // without culling, so that frames compare like for like (Niessner & Loop §6: "backface
   // culling is always turned on"); back-patch culling assumes it too: a patch culled with
@@ -214,7 +210,11 @@ int run(const RenderArgs& args) {
                     ? "culled by the rasterizer (closed, oriented mesh), with or without culling"
                     : "drawn (" + scene.backPatch.reason + ")")
             << "\n";
-  frame::CullFrameOptions frameOptions = cull.frame;
+  session::MeshSessionOptions sessionOptions;
+  sessionOptions.name = scene.patches.source;
+  sessionOptions.view = "render";
+  frame::CullFrameOptions& frameOptions = sessionOptions.frame;
+  frameOptions = cull.frame;
   frameOptions.render = options;
   frameOptions.cull = cullSettings(cull, scene.backPatch);
   if (displacementMap) {
@@ -223,58 +223,26 @@ int run(const RenderArgs& args) {
     frameOptions.cull.displacedKernel = displacement.kernels[0];
   }
   // The effect plan (docs/algorithms/plan.md): without --cull, each frame's stages are the
-  // planner's; a change rebuilds the pass (the hysteresis keeps changes rare).
+  // planner's, drawn by the session (session/mesh_session.h), which keeps every
+  // configuration's visibility status across plan changes.
   const std::unique_ptr<plan::Planner> planner =
-      makePlanner(args.plan, context, !args.cull.mode.empty(), args.adaptive <= 0.0, std::cout);
-  std::optional<plan::Plan> lastPlan;
-  const bool selfOccluding = planner && plan::mayHideItself(scene.patches);
-  auto planFrame = [&](uint32_t f, const frame::Camera& view) {
-    plan::PlanInput in;
-    in.mesh = scene.patches.source;
-    in.view = "render";
-    in.bezier = scene.patches.bezierCount;
-    in.gregory = scene.patches.gregoryCount;
-    in.tess = args.tess;
-    in.objectBounds = frame::boundsOf(scene.patches.points);
-    in.camera = view;
-    in.displaced = displacementMap.has_value();
-    in.backPatchValidity = scene.backPatch;
-    in.occluders = !occluders.empty();
-    in.selfOccluding = selfOccluding;
-    plan::Plan p = planner->plan("render", in, f);
-    if (!lastPlan || !(p.stages == lastPlan->stages)) {
-      printPlanChange(lastPlan ? &*lastPlan : nullptr, p, std::cout);
-      const frame::CullFrameOptions o = plan::applyPlan(p, frameOptions);
-      pass.reset();
-      cullFrame.reset();
-      if (!p.stages.occlusion.empty())
-        cullFrame = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, o);
-      else if (p.culls())
-        pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches, o.cull);
-    }
-    lastPlan = std::move(p);
-  };
-  const std::vector<const frame::CullMethod*>* stages = nullptr;
-  if (cull.occlusion()) {
-    cullFrame = std::make_unique<frame::CullFrame>(context, renderer, target, meshes, frameOptions);
-    stages = &cullFrame->cullPass(0)->stages();
-  } else if (cull.enabled()) {
-    pass = std::make_unique<frame::CullPass>(context, gpu, scene.patches, frameOptions.cull);
-    stages = &pass->stages();
-  }
-  if (stages) {
+      makePlanner(args.plan, context, !args.cull.mode.empty(),
+                  cull.backPatchMethodGiven ? cull.backPatchMethod : "", std::cout);
+  session::MeshSession meshSession(context, renderer, target, gpu, scene.patches, occluders,
+                                   sessionOptions, planner.get());
+  if (const frame::CullPass* p = meshSession.cullPass()) {
+    const std::vector<const frame::CullMethod*>& stages = p->stages();
     std::cout << "cull: " << cull.mode;
-    for (const frame::CullMethod* m : *stages)
-      std::cout << (m == stages->front() ? " (" : ", ") << m->name;
-    std::cout << (stages->empty() ? "" : ")") << "\n";
-    const frame::CullPass& p = pass ? *pass : *cullFrame->cullPass(0);
-    if (!p.backPatchNote().empty()) std::cout << "note: " << p.backPatchNote() << "\n";
+    for (const frame::CullMethod* m : stages)
+      std::cout << (m == stages.front() ? " (" : ", ") << m->name;
+    std::cout << (stages.empty() ? "" : ")") << "\n";
+    if (!p->backPatchNote().empty()) std::cout << "note: " << p->backPatchNote() << "\n";
     if (backPatchCulling)
       std::cout << "back-patch culls: "
                 << (cull.surfaceExact ? "surface-exact" : "conservative for the drawn triangles")
                 << "; back-facing triangles culled in the draws\n";
   }
-  if (cullFrame) {
+  if (const frame::CullFrame* cullFrame = meshSession.cullFrame()) {
     const auto& layout = cullFrame->pyramid().layout();
     std::cout << "occlusion: " << (frameOptions.aggressive ? "aggressive" : "two passes")
               << ", draw mode " << toString(frameOptions.drawMode) << ", first frame "
@@ -290,20 +258,18 @@ int run(const RenderArgs& args) {
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
   nlohmann::json jsonFrames = nlohmann::json::array();
   frame::Camera view = camera;
+  std::optional<plan::Plan> lastPlan;
   for (uint32_t f = 0; f < frames; ++f) {
     view = frame::orbit(camera, pivot, up, orbitDegrees * f);
-    if (planner) planFrame(f, view);
-    if (cullFrame) {
-      const frame::CullFrameStats stats = cullFrame->render(view, occluders);
-      if (planner)
-        planner->observe("render", *lastPlan, stats.culledFrustum, stats.culledBackPatch,
-                         stats.culledOcclusion, stats.patchesTotal, stats.frameMs);
-      std::printf("%s\n", cullFrameLine(f, stats).c_str());
-      jsonFrames.push_back(cullFrameJson(f, stats));
+    const session::SessionFrame frame = meshSession.render(view);
+    if (frame.plan && frame.planChanged)
+      printPlanChange(lastPlan ? &*lastPlan : nullptr, *frame.plan, std::cout);
+    if (frame.plan) lastPlan = frame.plan;
+    if (frame.kind == session::FrameKind::TwoPass) {
+      std::printf("%s\n", cullFrameLine(f, frame.stats).c_str());
+      jsonFrames.push_back(cullFrameJson(f, frame.stats));
     } else {
-      const frame::FrameStats stats =
-          pass ? frame::renderCulled(renderer, target, view, *pass, occluders, options)
-               : renderer.render(target, view, {&draw, 1}, occluders, options);
+      const frame::FrameStats& stats = frame.onePass;
       std::printf(
           "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
           "fragment invocations %llu\n",
@@ -311,19 +277,15 @@ int run(const RenderArgs& args) {
           static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
           static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
       nlohmann::json j = plainFrameJson(f, stats);
-      if (pass) {
-        uint32_t byStage[4] = {0, 0, 0, 0};
-        for (uint32_t code : pass->results()) ++byStage[bound::CullCode{code}.stage() & 3u];
-        if (planner)
-          planner->observe("render", *lastPlan, byStage[1], byStage[2], 0,
-                           scene.patches.patchCount(), stats.wallMs);
-        std::printf("  culled %u of %u: frustum %u, back-patch %u\n",
-                    scene.patches.patchCount() - stats.patchesDrawn, scene.patches.patchCount(),
-                    byStage[1], byStage[2]);
-        j["patches"] = scene.patches.patchCount();
-        j["drawn"] = stats.patchesDrawn;
+      if (frame.kind == session::FrameKind::OnePass) {
+        const frame::CullFrameStats& c = frame.stats;
+        std::printf("  culled %u of %u: frustum %u, back-patch %u\n", c.patchesTotal - c.survivors,
+                    c.patchesTotal, c.culledFrustum, c.culledBackPatch);
+        j["patches"] = c.patchesTotal;
+        j["drawn"] = c.survivors;
         j["ms"]["cull"] = nullptr;  // not apart: pass1 spans the dispatch and the draws
-        j["culled"] = {{"frustum", byStage[1]}, {"backPatch", byStage[2]}, {"occlusion", 0}};
+        j["culled"] = {
+            {"frustum", c.culledFrustum}, {"backPatch", c.culledBackPatch}, {"occlusion", 0}};
       }
       jsonFrames.push_back(std::move(j));
     }
@@ -340,9 +302,9 @@ int run(const RenderArgs& args) {
       std::cout << "wrote " << out << "\n";
       if (ids) {
         adapters::writePng(sibling(out, "_ids"),
-                        adapters::itemImage(width, height, target.readItems(context)));
+                           adapters::itemImage(width, height, target.readItems(context)));
         adapters::writePng(sibling(out, "_depth"),
-                        adapters::depthImage(width, height, target.readDepth(context)));
+                           adapters::depthImage(width, height, target.readDepth(context)));
         std::cout << "wrote " << sibling(out, "_ids").string() << " and "
                   << sibling(out, "_depth").string() << "\n";
       }
@@ -360,6 +322,8 @@ int run(const RenderArgs& args) {
         "faces culled; --displaced-tess %s)\n",
         *crackPixels, frame::toString(options.tessellation.displaced));
   }
+  const session::SessionSummary& summary = meshSession.summary();
+  std::cout << summary.text() << "\n";
   if (!args.stats.empty()) {
     nlohmann::json doc{{"device", context.info().name},
                        {"scene", scene.patches.source},
@@ -367,8 +331,9 @@ int run(const RenderArgs& args) {
                        {"height", height},
                        {"cull", planner ? std::string("plan") : cull.mode},
                        {"frames", jsonFrames}};
+    doc["summary"] = summaryJson(summary);
     if (crackPixels) doc["crack_pixels"] = *crackPixels;
-    if (cullFrame)
+    if (const frame::CullFrame* cullFrame = meshSession.cullFrame())
       doc["options"] = {
           {"aggressive", frameOptions.aggressive},
           {"drawMode", toString(frameOptions.drawMode)},
@@ -381,6 +346,7 @@ int run(const RenderArgs& args) {
     if (!(file << doc.dump(2) << "\n")) throw Error(args.stats + ": cannot write");
     std::cout << "wrote " << args.stats << "\n";
   }
+  frame::CullFrame* cullFrame = meshSession.cullFrame();
   if (cullFrame && args.statusView) {
     frame::RenderTarget viewTarget(context, width, height);
     const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
@@ -388,7 +354,7 @@ int run(const RenderArgs& args) {
          {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
       cullFrame->renderStatusView(viewTarget, statusCamera, occluders);
       adapters::writePng(sibling(out, suffix),
-                      adapters::colorImage(width, height, viewTarget.readColor(context)));
+                         adapters::colorImage(width, height, viewTarget.readColor(context)));
       std::cout << "wrote " << sibling(out, suffix).string() << "\n";
     }
   }

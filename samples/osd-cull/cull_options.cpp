@@ -11,8 +11,9 @@ void addCullOptions(CLI::App& app, CullArgs& args) {
   const std::string group = "Culling";
   app.add_option("--cull", args.mode,
                  "cull patches on the GPU before drawing, and draw only the survivors:\n"
-                 "none (default), frustum, backpatch, occlusion, all (frustum +\n"
-                 "back-patch + occlusion). With occlusion a frame has two passes\n"
+                 "none, frustum, backpatch, occlusion, all (frustum + back-patch +\n"
+                 "occlusion); default: the effect plan chooses (--plan). With occlusion\n"
+                 "a frame has two passes\n"
                  "(Niessner & Loop): draw the patches visible last frame, build a Hi-Z\n"
                  "pyramid of that depth, run the cull kernel on every patch, draw the\n"
                  "patches that became visible")
@@ -21,7 +22,8 @@ void addCullOptions(CLI::App& app, CullArgs& args) {
       ->check(oneOf({"none", "frustum", "backpatch", "occlusion", "all"}));
   app.add_option("--backpatch-method", args.backPatchMethod,
                  "back-patch test: tcone, ncone, tangent-plane (default),\n"
-                 "tangent-plane-16; used only on closed, outward-oriented meshes")
+                 "tangent-plane-16; used only on closed, outward-oriented meshes.\n"
+                 "With the plan (no --cull): the one method it may choose")
       ->type_name("M")
       ->group(group)
       ->check(oneOf(frame::cullMethodNames(frame::CullStage::BackPatch), "a back-patch method"));
@@ -63,7 +65,15 @@ void addCullOptions(CLI::App& app, CullArgs& args) {
 CullChoice cullChoice(const CullArgs& args) {
   CullChoice c;
   c.mode = args.mode.empty() ? "none" : args.mode;
-  c.backPatchMethod = args.backPatchMethod;
+  c.backPatchMethodGiven = !args.backPatchMethod.empty();
+  if (c.backPatchMethodGiven) {
+    c.backPatchMethod = args.backPatchMethod;
+    if (!args.mode.empty() && c.mode != "backpatch" && c.mode != "all")
+      throw UsageError(
+          "--backpatch-method needs --cull backpatch, --cull all, or the plan (no "
+          "--cull): --cull " +
+          c.mode + " runs no back-patch test");
+  }
   if (args.surfaceExact) {
     if (c.mode != "backpatch" && c.mode != "all")
       throw UsageError("--surface-exact needs --cull backpatch or --cull all");

@@ -18,6 +18,8 @@ namespace osd_cull::cli {
 struct CullChoice {
   std::string mode = "none";                      ///< none, frustum, backpatch, occlusion, all
   std::string backPatchMethod = "tangent-plane";  ///< a registered back-patch method
+  /// --backpatch-method was given: with the plan, the one method it may choose.
+  bool backPatchMethodGiven = false;
   /// Back-patch tests exact for the surface only (CullSettings::drawnTriangles = false).
   bool surfaceExact = false;
   /// The two-pass frame's options (used when occlusion() is true): aggressive, draw mode,
@@ -31,8 +33,8 @@ struct CullChoice {
 
 /// \brief The culling options as given on the command line (empty: not given).
 struct CullArgs {
-  std::string mode;  ///< empty: not given (none, unless a form has its own default)
-  std::string backPatchMethod = "tangent-plane";
+  std::string mode;             ///< empty: not given (none, unless a form has its own default)
+  std::string backPatchMethod;  ///< empty: not given (tangent-plane)
   bool surfaceExact = false;
   bool aggressive = false;
   std::string drawMode;

@@ -28,10 +28,8 @@ nlohmann::json cullFrameMs(const frame::CullFrameStats& s) {
   nlohmann::json ms = msJson(s.gpu, s.totalMs(), s.gpuNote);
   // The diagnostic mode's wall clock of each pass's own submission, when it ran.
   if (s.pass1Ms + s.pyramidMs + s.cullMs + s.pass2Ms > 0.0)
-    ms["wallPerSubmission"] = {{"pass1", s.pass1Ms},
-                               {"pyramid", s.pyramidMs},
-                               {"cull", s.cullMs},
-                               {"pass2", s.pass2Ms}};
+    ms["wallPerSubmission"] = {
+        {"pass1", s.pass1Ms}, {"pyramid", s.pyramidMs}, {"cull", s.cullMs}, {"pass2", s.pass2Ms}};
   return ms;
 }
 
@@ -112,10 +110,22 @@ uint32_t writePyramidLevels(const std::filesystem::path& dir, const frame::HiZPy
   for (uint32_t l = 0; l < levels.size(); ++l) {
     char name[32];
     std::snprintf(name, sizeof(name), "hiz_level_%02u.png", l);
-    adapters::writePng(dir / name,
-                    adapters::depthImage(layout.levelWidth(l), layout.levelHeight(l), levels[l]));
+    adapters::writePng(
+        dir / name, adapters::depthImage(layout.levelWidth(l), layout.levelHeight(l), levels[l]));
   }
   return static_cast<uint32_t>(levels.size());
+}
+
+nlohmann::json summaryJson(const session::SessionSummary& s) {
+  nlohmann::json j{{"frames", s.frames},
+                   {"ms", {{"mean", s.meanMs}, {"median", s.medianMs}}},
+                   {"patches", s.patches},
+                   {"drawn", s.drawn},
+                   {"tes", {{"invocations", s.tesInvocations}, {"saved", s.tesSaved}}},
+                   {"configurations", s.configurations}};
+  if (s.predictedMeanMs > 0.0)
+    j["plan"] = {{"changes", s.planChanges}, {"predicted_mean_ms", s.predictedMeanMs}};
+  return j;
 }
 
 }  // namespace osd_cull::cli

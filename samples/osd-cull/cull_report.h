@@ -5,6 +5,7 @@
 
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/frame/draw/renderer.h"
+#include "osd_cull/session/mesh_session.h"
 
 #include <nlohmann/json.hpp>
 
@@ -23,6 +24,10 @@ nlohmann::json cullFrameJson(uint32_t frame, const frame::CullFrameStats& stats)
 
 /// \brief The JSON object of one frame drawn without culling.
 nlohmann::json plainFrameJson(uint32_t frame, const frame::FrameStats& stats);
+
+/// \brief The end-of-run summary (session::SessionSummary) as JSON: frames, mean and median
+/// ms, patches and drawn, TES invocations and the estimate saved, plan changes, predicted.
+nlohmann::json summaryJson(const session::SessionSummary& summary);
 
 /// \brief Writes every level of the pyramid as DIR/hiz_level_NN.png (16-bit gray, near
 /// dark, far white, as depth images); returns the number of files.

@@ -64,7 +64,7 @@ std::string missingCalibration(const PlanArgs& args, vulkan::Context& context) {
 }
 
 std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context& context,
-                                           bool cullGiven, bool uniformTessellation,
+                                           bool cullGiven, const std::string& backPatchMethod,
                                            std::ostream& out) {
   if (args.mode == "off") {
     out << "plan: off (--plan off)\n";
@@ -72,10 +72,6 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context
   }
   if (cullGiven) {
     out << "plan: off (--cull given: a fixed choice)\n";
-    return nullptr;
-  }
-  if (!uniformTessellation) {
-    out << "plan: off (--adaptive: the plan's cost model needs a uniform level)\n";
     return nullptr;
   }
   if (const std::string missing = missingCalibration(args, context); !missing.empty()) {
@@ -87,6 +83,10 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context
       << (calibration.quick ? " (quick)" : "") << "\n";
   plan::PlannerOptions options;
   options.accuracy = args.accuracy;
+  if (!backPatchMethod.empty()) {
+    options.backPatchMethods = {backPatchMethod};
+    out << "plan: back-patch method restricted to " << backPatchMethod << " (--backpatch-method)\n";
+  }
   return std::make_unique<plan::Planner>(calibration, options);
 }
 

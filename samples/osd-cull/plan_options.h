@@ -39,11 +39,12 @@ void addPlanOptions(CLI::App& app, PlanArgs& args);
 std::string missingCalibration(const PlanArgs& args, vulkan::Context& context);
 
 /// \brief The planner of a render, or null when the plan is off, with one line to `out`
-/// saying which and why: `--plan off`, an explicit `--cull` (a fixed choice), adaptive
-/// tessellation (the plan needs a uniform level), or no calibration of this device.
+/// saying which and why: `--plan off`, an explicit `--cull` (a fixed choice), or no
+/// calibration of this device. `backPatchMethod` (non-empty: --backpatch-method given)
+/// restricts the plan to that method (PlannerOptions::backPatchMethods), and says so.
 /// \throws osd_cull::Error for a --plan-calibration file that does not load.
 std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context& context,
-                                           bool cullGiven, bool uniformTessellation,
+                                           bool cullGiven, const std::string& backPatchMethod,
                                            std::ostream& out);
 
 /// \brief Prints a plan that differs from `last` (every effect when `last` is null):

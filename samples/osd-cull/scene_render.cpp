@@ -107,7 +107,8 @@ int renderScene(const RenderArgs& args) {
       !missing.empty())
     std::cout << "plan: off, playing with --cull all (" << missing << ")\n";
   else
-    planner = makePlanner(args.plan, context, !args.cull.mode.empty(), true, std::cout);
+    planner = makePlanner(args.plan, context, !args.cull.mode.empty(),
+                          cull.backPatchMethodGiven ? cull.backPatchMethod : "", std::cout);
   frame::CullFrameOptions options = cull.frame;
   options.render.tessellation.uniformLevel = tess;
   options.render.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;

@@ -1,0 +1,229 @@
+#include "osd_cull/session/mesh_session.h"
+
+#include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/error.h"
+#include "osd_cull/frame/draw/renderer.h"
+
+#include "shaders/shared/cull_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace osd_cull::session {
+
+StageCounts countByStage(std::span<const uint32_t> results) {
+  StageCounts c;
+  for (uint32_t code : results) {
+    const uint32_t stage = bound::CullCode{code}.stage();
+    c.frustum += stage == shader::kStageFrustum;
+    c.backPatch += stage == shader::kStageBackPatch;
+    c.occlusion += stage == shader::kStageOcclusion;
+  }
+  return c;
+}
+
+const char* toString(FrameKind kind) {
+  switch (kind) {
+    case FrameKind::Plain:
+      return "plain";
+    case FrameKind::OnePass:
+      return "one-pass";
+    case FrameKind::TwoPass:
+      return "two-pass";
+  }
+  return "?";
+}
+
+std::string SessionSummary::text() const {
+  char line[512];
+  const double notDrawn = patches ? 100.0 * double(patches - drawn) / double(patches) : 0.0;
+  std::snprintf(line, sizeof line,
+                "summary: %u frames, mean %.2f ms, median %.2f ms; patches drawn %llu of %llu "
+                "(%.1f%% not drawn), TES invocations %llu (about %llu saved)",
+                frames, meanMs, medianMs, static_cast<unsigned long long>(drawn),
+                static_cast<unsigned long long>(patches), notDrawn,
+                static_cast<unsigned long long>(tesInvocations),
+                static_cast<unsigned long long>(tesSaved));
+  std::string text = line;
+  if (predictedMeanMs > 0.0) {
+    std::snprintf(line, sizeof line,
+                  "\nsummary: plan changes %u, predicted %.2f ms against measured %.2f ms "
+                  "(mean), %zu configurations built",
+                  planChanges, predictedMeanMs, meanMs, configurations);
+    text += line;
+  }
+  return text;
+}
+
+MeshSession::MeshSession(vulkan::Context& context, frame::Renderer& renderer,
+                         frame::RenderTarget& target, frame::GpuPatchSet& gpu, const PatchSet& host,
+                         std::span<const frame::GpuTriangleMesh* const> occluders,
+                         MeshSessionOptions options, plan::Planner* planner)
+    : context_(context),
+      renderer_(renderer),
+      target_(target),
+      gpu_(gpu),
+      host_(host),
+      occluders_(occluders.begin(), occluders.end()),
+      options_(std::move(options)),
+      planner_(planner),
+      objectBounds_(frame::boundsOf(host.points)) {
+  if (options_.cachedConfigurations == 0)
+    throw Error("mesh session: cachedConfigurations must be at least 1");
+  if (planner_) {
+    selfOccluding_ = plan::mayHideItself(host_);
+  } else if (options_.frame.cull.frustum || !options_.frame.cull.backPatch.empty() ||
+             !options_.frame.cull.occlusion.empty()) {
+    last_ = &configuration("fixed", options_.frame);
+  }
+}
+
+MeshSession::~MeshSession() = default;
+
+const frame::CullPass* MeshSession::cullPass() const {
+  if (!last_) return nullptr;
+  return last_->frame ? last_->frame->cullPass(0) : last_->pass.get();
+}
+
+plan::PlanInput MeshSession::planInput(const frame::Camera& camera) const {
+  plan::PlanInput in;
+  in.mesh = options_.name;
+  in.view = options_.view;
+  in.bezier = host_.bezierCount;
+  in.gregory = host_.gregoryCount;
+  in.tess = plan::equivalentUniformLevel(host_, camera, glm::dmat4(1.0),
+                                         options_.frame.render.tessellation);
+  in.objectBounds = objectBounds_;
+  in.camera = camera;
+  in.displaced = options_.frame.cull.displacementMap != nullptr;
+  in.deforming = in.cageMoved = options_.deforming;
+  in.backPatchValidity = options_.frame.cull.backPatchValidity;
+  in.occluders = options_.occluders || !occluders_.empty();
+  in.selfOccluding = selfOccluding_;
+  return in;
+}
+
+MeshSession::Configuration& MeshSession::configuration(const std::string& key,
+                                                       const frame::CullFrameOptions& o) {
+  const auto it = std::find_if(cache_.begin(), cache_.end(),
+                               [&](const Configuration& c) { return c.key == key; });
+  if (it != cache_.end()) {
+    cache_.splice(cache_.begin(), cache_, it);  // most recently used first
+    return cache_.front();
+  }
+  Configuration c;
+  c.key = key;
+  c.options = o;
+  const vulkan::Buffer* data = options_.cullData && !o.cull.backPatch.empty()
+                                   ? options_.cullData(o.cull.backPatch)
+                                   : nullptr;
+  if (!o.cull.occlusion.empty()) {
+    // A planned configuration met for the first time starts with nothing visible: its
+    // second pass draws the other stages' survivors (never every patch, as AllVisible's
+    // first pass would); the fixed one keeps the options' policy.
+    if (planner_) c.options.firstFrame = frame::FirstFrame::NoneVisible;
+    const frame::CullMesh mesh[] = {{&gpu_, &host_, data}};
+    c.frame = std::make_unique<frame::CullFrame>(context_, renderer_, target_, mesh, c.options);
+  } else if (data) {
+    c.pass = std::make_unique<frame::CullPass>(context_, gpu_, host_, c.options.cull, *data);
+  } else {
+    c.pass = std::make_unique<frame::CullPass>(context_, gpu_, host_, c.options.cull);
+  }
+  cache_.push_front(std::move(c));
+  ++built_;
+  // Drop the least recently used (never the one just made).
+  while (cache_.size() > options_.cachedConfigurations) cache_.pop_back();
+  return cache_.front();
+}
+
+SessionFrame MeshSession::draw(Configuration* c, const frame::Camera& camera,
+                               const frame::CullFrameOptions& o) {
+  SessionFrame f;
+  f.index = next_;
+  if (c && c->frame) {
+    f.kind = FrameKind::TwoPass;
+    f.stats = c->frame->render(camera, occluders_);
+    return f;
+  }
+  const uint32_t n = host_.patchCount();
+  if (c) {
+    f.kind = FrameKind::OnePass;
+    f.onePass = frame::renderCulled(renderer_, target_, camera, *c->pass, occluders_, o.render);
+    const StageCounts counts = countByStage(c->pass->results());
+    f.stats.culledFrustum = counts.frustum;
+    f.stats.culledBackPatch = counts.backPatch;
+  } else {
+    const frame::PatchDraw patches{&gpu_, &host_, 0};
+    f.onePass = renderer_.render(target_, camera, {&patches, 1}, occluders_, o.render);
+  }
+  f.stats.patchesTotal = n;
+  f.stats.drawnPass1 = f.onePass.patchesDrawn;
+  f.stats.survivors = f.onePass.patchesDrawn;
+  f.stats.pass1 = f.onePass.statistics;
+  f.stats.frameMs = f.onePass.wallMs;
+  if (f.onePass.gpuMs > 0.0) {
+    // One render pass: the cull dispatch (OnePass) is inside its timestamps.
+    f.stats.gpu.pass1 = f.stats.gpu.total = f.onePass.gpuMs;
+    if (!c) f.stats.gpu.cull = f.stats.gpu.pyramid = f.stats.gpu.pass2 = 0.0;
+  }
+  return f;
+}
+
+SessionFrame MeshSession::render(const frame::Camera& camera) {
+  frame::CullFrameOptions o = options_.frame;
+  std::optional<plan::Plan> p;
+  std::string key = "fixed";
+  if (planner_) {
+    p = planner_->plan(options_.name + "/" + options_.view, planInput(camera), next_);
+    o = plan::applyPlan(*p, options_.frame);
+    key = p->stages.describe() + "|" + p->displacement.choice;
+  }
+  const bool culls = o.cull.frustum || !o.cull.backPatch.empty() || !o.cull.occlusion.empty();
+  Configuration* c = culls ? &configuration(key, o) : nullptr;
+  SessionFrame f = draw(c, camera, o);
+  last_ = c;
+  if (p) {
+    f.planChanged = !lastStages_ || !(*lastStages_ == p->stages);
+    lastStages_ = p->stages;
+    plan::Observation seen;
+    seen.culledFrustum = f.stats.culledFrustum;
+    seen.culledBackPatch = f.stats.culledBackPatch;
+    seen.culledOcclusion = f.stats.culledOcclusion;
+    seen.total = f.stats.patchesTotal;
+    seen.ms = f.stats.frameMs;
+    if (f.kind == FrameKind::TwoPass && f.stats.gpu.measured())
+      seen.cullMs = f.stats.gpu.pyramid + f.stats.gpu.cull;
+    planner_->observe(options_.name + "/" + options_.view, *p, seen);
+    f.plan = std::move(p);
+  }
+  account(f);
+  ++next_;
+  return f;
+}
+
+void MeshSession::account(const SessionFrame& f) {
+  SessionSummary& s = summary_;
+  ++s.frames;
+  frameMs_.push_back(f.stats.frameMs);
+  s.meanMs += (f.stats.frameMs - s.meanMs) / s.frames;
+  std::vector<double> sorted = frameMs_;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  s.medianMs = sorted[sorted.size() / 2];
+  // Keep the per-frame times of long runs bounded: the median of the last 4096 frames.
+  if (frameMs_.size() >= 8192) frameMs_.erase(frameMs_.begin(), frameMs_.begin() + 4096);
+  const uint32_t drawn = f.stats.drawnPass1 + f.stats.drawnPass2;
+  const uint32_t culled = f.stats.patchesTotal - std::min(f.stats.patchesTotal, drawn);
+  s.patches += f.stats.patchesTotal;
+  s.drawn += drawn;
+  s.tesInvocations += f.tesInvocations();
+  if (drawn > 0) s.tesSaved += uint64_t(double(f.tesInvocations()) / drawn * culled + 0.5);
+  if (f.plan) {
+    s.planChanges += f.planChanged && f.index > 0;
+    predictedSum_ += f.plan->predicted.totalMs() - f.plan->predicted.updateMs;
+    s.predictedMeanMs = predictedSum_ / s.frames;
+  }
+  s.configurations = built_;
+}
+
+}  // namespace osd_cull::session
