@@ -63,6 +63,20 @@ TEST(ViewerKeys, TogglesCullStagesColorsAndTessellation) {
   EXPECT_TRUE(s.quit);
 }
 
+TEST(ViewerKeys, PTogglesThePlanAndAStageKeyTakesOverByHand) {
+  ViewState s;
+  s.plan = true;
+  EXPECT_EQ(s.cullLabel(), "plan");
+  EXPECT_EQ(pressKey(s, "p"), "effect plan off");
+  EXPECT_EQ(pressKey(s, "p"), "effect plan on");
+  // A stage key: the plan is off, the stage on, and the line says so.
+  EXPECT_EQ(pressKey(s, "2"), "back-patch culling on (plan off: stages by hand)");
+  EXPECT_FALSE(s.plan);
+  EXPECT_EQ(s.cullLabel(), "backpatch(tcone)");
+  EXPECT_EQ(pressKey(s, "1"), "frustum culling on");  // already by hand: nothing to say
+  EXPECT_NE(viewer::keyHelp().find("  p "), std::string::npos);
+}
+
 TEST(ViewerKeys, SpacePlaysTheAnimationAndRTurnsTheTable) {
   ViewState s;
   EXPECT_FALSE(s.playing || s.turntable || s.sceneCamera);
@@ -335,7 +349,7 @@ size_t differingPixels(const adapters::PngImage& a, const adapters::PngImage& b)
 // The images a view() run's `shot` steps wrote.
 adapters::PngImage shotOf(const std::string& run, int frame) {
   return adapters::readPng(fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer" /
-                        (run + "-frame" + std::to_string(frame) + ".png"));
+                           (run + "-frame" + std::to_string(frame) + ".png"));
 }
 
 TEST_F(ViewerWindow, AnimatedSceneMovesWhilePlayingAndStandsStillWhenPaused) {

@@ -513,12 +513,31 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
                          const StageChoice& without) {
     const bool occlusion = with.occlusion != without.occlusion;
     const double x = breakEven(with, without, occlusion ? rt : rtBack);
-    return std::string(source(stage)) + " rate " + percent(rate) +
-           (rate > x ? " above" : " below") + " break-even " +
+    return std::string(source(stage)) + " rate " + percent(rate) + " against break-even " +
            (std::isfinite(x) ? percent(x) : std::string("(never)")) + " at tess " +
            std::to_string(int(input.tess));
   };
-  const char* probe = "re-probe: runs once to measure its rate; ";
+  // The one sentence of a stage's decision, from the numbers that made it (deltaMs: the
+  // predicted change of the frame the stage makes, on; or would make, off), so that the
+  // reason cannot contradict the on/off: it saves, it would cost, it is a re-probe, or the
+  // hysteresis holds the current choice against a prediction that now favours the other.
+  auto decision = [&](bool on, double deltaMs, bool probed) {
+    char text[160];
+    if (probed)
+      std::snprintf(text, sizeof text, "re-probe: runs once to measure its rate (%+.2f ms)",
+                    deltaMs);
+    else if (on && deltaMs <= 0.0)
+      std::snprintf(text, sizeof text, "saves %.2f ms", -deltaMs);
+    else if (!on && deltaMs >= 0.0)
+      std::snprintf(text, sizeof text, "would cost %.2f ms", deltaMs);
+    else
+      std::snprintf(text, sizeof text,
+                    "kept %s by the hysteresis: %s would save %.2f ms, but a change needs "
+                    "%.0f%% of the frame after %u frames held",
+                    on ? "on" : "off", on ? "off" : "on", std::abs(deltaMs),
+                    100.0 * options_.margin, options_.holdFrames);
+    return std::string(text) + "; ";
+  };
   const double k = p.drawScale;  // the effects' ms in this machine's measured time
 
   // Frustum.
@@ -534,7 +553,8 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       p.frustum.reason = "object box inside the view (Sathe pre-test): would cull nothing";
     else
       p.frustum.reason =
-          (p.probe && p.frustum.on && !s.current->frustum ? probe : "") +
+          decision(p.frustum.on, p.frustum.deltaMs,
+                   p.probe && p.frustum.on && !s.current->frustum) +
           stageReason(kFrustum, p.rates.frustum > 0 ? p.rates.frustum : stageRate(s, kFrustum), on,
                       off);
   }
@@ -551,9 +571,10 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       p.backPatch.reason = input.backPatchValidity.reason;
     else if (p.backPatch.on) {
       p.backPatch.deltaMs = now - total(off);
-      p.backPatch.reason = (p.probe && s.current->backPatch.empty() ? probe : "") +
-                           stageReason(rateKey(p.stages.backPatch, p.stages.accuracy),
-                                       p.rates.backPatch, p.stages, off);
+      p.backPatch.reason =
+          decision(true, p.backPatch.deltaMs, p.probe && s.current->backPatch.empty()) +
+          stageReason(rateKey(p.stages.backPatch, p.stages.accuracy), p.rates.backPatch, p.stages,
+                      off);
     } else {
       // The best method it could have run.
       std::string bestMethod;
@@ -579,7 +600,8 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
         const std::string key = rateKey(bestMethod, bestAccuracy);
         p.backPatch.choice = bestMethod;
         p.backPatch.deltaMs = bestTotal - now;
-        p.backPatch.reason = stageReason(key, stageRate(s, key), with, p.stages);
+        p.backPatch.reason = decision(false, p.backPatch.deltaMs, false) + bestMethod + " " +
+                             stageReason(key, stageRate(s, key), with, p.stages);
       }
     }
   }
@@ -656,16 +678,10 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       // rule (a non-convex surface), learned from its own frames like the other stages.
       const std::string key = occlusionRateKey(with);
       const double rate = stageRate(s, key);
-      const double x = breakEven(with, without, rt);
       p.occlusion.reason =
-          (p.probe && p.occlusion.on && s.current->occlusion.empty() ? probe : "") +
-          (input.occluders ? std::string()
-                           : "self-occlusion (non-convex surface): " + std::string(source(key)) +
-                                 " " + percent(rate) +
-                                 (total(with) < total(without)
-                                      ? ", saves " + ms(total(without) - total(with))
-                                      : ", costs " + ms(total(with) - total(without))) +
-                                 ", " + (rate > x ? "pays" : "does not pay") + "; ") +
+          decision(p.occlusion.on, p.occlusion.deltaMs,
+                   p.probe && p.occlusion.on && s.current->occlusion.empty()) +
+          (input.occluders ? std::string() : "self-occlusion (non-convex surface): ") +
           stageReason(key, rate, with, without) + " (Hi-Z build included)";
     }
     p.passes.on = p.occlusion.on;

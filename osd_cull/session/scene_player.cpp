@@ -213,10 +213,18 @@ frame::CullFrame& ScenePlayer::cullFrame(size_t view) {
 
 std::vector<ViewFrame> ScenePlayer::render(uint32_t frameIndex) {
   seek(frameIndex);
+  return renderCurrent(frameIndex);
+}
+
+void ScenePlayer::setCamera(size_t view, const frame::Camera& camera) {
+  views_.at(view).camera = camera;
+}
+
+std::vector<ViewFrame> ScenePlayer::renderCurrent(uint64_t planFrame) {
   std::vector<ViewFrame> out;
   for (size_t v = 0; v < views_.size(); ++v) {
     if (planner_) {
-      out.push_back(renderPlanned(v, frameIndex));
+      out.push_back(renderPlanned(v, planFrame));
       continue;
     }
     views_[v].frame = &fixedFrame(v);
@@ -252,6 +260,9 @@ frame::CullFrame& ScenePlayer::plannedFrame(size_t view, const std::vector<plan:
   }
   o.aggressive = occlusion && aggressive;
   o.hiz.fullResolution = full;
+  // A set of choices met for the first time starts with nothing visible: its second pass
+  // draws the other stages' survivors, never every patch (issue 18).
+  o.firstFrame = frame::FirstFrame::NoneVisible;
   key += o.aggressive ? "aggressive" : "two-pass";
   key += full ? ", full" : ", half";
   View& v = views_.at(view);
@@ -285,7 +296,7 @@ frame::CullFrame& ScenePlayer::plannedFrame(size_t view, const std::vector<plan:
   return *v.frame;
 }
 
-ViewFrame ScenePlayer::renderPlanned(size_t view, uint32_t frameIndex) {
+ViewFrame ScenePlayer::renderPlanned(size_t view, uint64_t frameIndex) {
   View& v = views_.at(view);
   ViewFrame out{scene_.description.views.at(view).name, v.camera, {}, {}, true};
   std::vector<frame::Bounds> objectBounds;
@@ -294,9 +305,11 @@ ViewFrame ScenePlayer::renderPlanned(size_t view, uint32_t frameIndex) {
     objectBounds.push_back(points_[i.points]->bounds);
     models.push_back(i.model);
   }
-  const double tess = options_.render.tessellation.uniformLevel;
   bool culls = false;
   for (size_t i = 0; i < instances_.size(); ++i) {
+    // An adaptive tessellation is planned as the uniform level of the same work.
+    const double tess = plan::equivalentUniformLevel(patches(i), v.camera, instances_[i].model,
+                                                     options_.render.tessellation);
     plan::PlanInput in = plan::instancePlanInput(scene_, view, i, objectBounds, models, v.camera,
                                                  tess, moved_[instances_[i].points]);
     in.selfOccluding = selfOccluding_[i];
@@ -336,8 +349,16 @@ ViewFrame ScenePlayer::renderPlanned(size_t view, uint32_t frameIndex) {
         predicted > 0.0 && !built
             ? (p.predicted.totalMs() - p.predicted.updateMs) / predicted * out.stats.frameMs
             : 0.0;
-    planner_->observe(plan::scenePlanKey(scene_, view, i), p, culled[i][0], culled[i][1],
-                      culled[i][2], points_[instances_[i].points]->host().patchCount(), share);
+    plan::Observation seen;
+    seen.culledFrustum = culled[i][0];
+    seen.culledBackPatch = culled[i][1];
+    seen.culledOcclusion = culled[i][2];
+    seen.total = points_[instances_[i].points]->host().patchCount();
+    seen.ms = share;
+    // The view's cull work (pyramid, kernels, status), shared the same way.
+    if (out.culled && out.stats.gpu.measured() && out.stats.frameMs > 0.0)
+      seen.cullMs = share / out.stats.frameMs * (out.stats.gpu.pyramid + out.stats.gpu.cull);
+    planner_->observe(plan::scenePlanKey(scene_, view, i), p, seen);
   }
   return out;
 }

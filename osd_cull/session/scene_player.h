@@ -84,13 +84,20 @@ class ScenePlayer {
 
   /// \brief Plans every (view, instance) each frame from now on (null: the fixed stages of
   /// the constructor's options again). The planner must outlive its use; its keys are
-  /// plan::scenePlanKey(). The tessellation planned for is the options' uniform level.
+  /// plan::scenePlanKey(). The tessellation planned for is the options' uniform level, an
+  /// adaptive one as the uniform level of the same work (plan::equivalentUniformLevel).
   void setPlanner(plan::Planner* planner);
   /// \brief Sets the scene to frame `frame` (animations, instance matrices, cameras)
   /// without rendering.
   void seek(uint32_t frame);
-  /// \brief seek(frame), then renders every view; one entry per view.
+  /// \brief seek(frame), then renderCurrent(frame): every view; one entry per view.
   std::vector<ViewFrame> render(uint32_t frame);
+  /// \brief Renders every view at the frame seek() set, with the cameras it set or
+  /// setCamera() replaced; with a planner, planned as frame `planFrame` (increasing).
+  std::vector<ViewFrame> renderCurrent(uint64_t planFrame);
+  /// \brief Replaces view `view`'s camera until the next seek() (a viewer's own camera).
+  /// \throws std::out_of_range for an unknown view.
+  void setCamera(size_t view, const frame::Camera& camera);
   /// \brief The current frame of view `view` drawn without any culling into `target`, with
   /// the same tessellation, back-face culling and image size (the like-for-like baseline).
   frame::FrameStats renderUnculled(size_t view, frame::RenderTarget& target);
@@ -155,7 +162,7 @@ class ScenePlayer {
   // The view's CullFrame of these plans' choices, built on first use (`built` says so).
   frame::CullFrame& fixedFrame(size_t view);  // the options' stages, built on first use
   frame::CullFrame& plannedFrame(size_t view, const std::vector<plan::Plan>& plans, bool& built);
-  ViewFrame renderPlanned(size_t view, uint32_t frameIndex);
+  ViewFrame renderPlanned(size_t view, uint64_t frameIndex);
   frame::FrameStats drawUnculled(size_t view, frame::RenderTarget& target);
 
   vulkan::Context& context_;

@@ -5,6 +5,7 @@
 #include "mesh_patches.h"
 #include "mesh_source.h"
 #include "option_checks.h"
+#include "plan_options.h"
 #include "scene_source.h"
 
 #include "osd_cull/error.h"
@@ -40,7 +41,8 @@ struct ViewArgs {
   std::optional<uint32_t> width;   ///< default 1280
   std::optional<uint32_t> height;  ///< default 720
   uint32_t tess = 4;
-  std::string cull = "none";
+  std::string cull;  ///< empty: the plan (where calibrated)
+  PlanArgs plan;
   uint32_t frames = 0;
   std::string screenshot;
   std::string script;
@@ -56,6 +58,12 @@ int run(const ViewArgs& args) {
   o.height = args.height.value_or(720);
   o.initial.tessLevel = args.tess;
   o.initial.frustum = o.initial.backPatch = o.initial.occlusion = args.cull == "all";
+  // The effect plan by default, as in `render` (docs/algorithms/plan.md); --cull or
+  // --plan off fix the stages, said so.
+  o.initial.plan = args.cull.empty() && args.plan.mode == "auto";
+  o.makePlanner = [args](vulkan::Context& context) {
+    return makePlanner(args.plan, context, !args.cull.empty(), "", std::cout);
+  };
   o.frames = args.frames;
   if (!args.screenshot.empty()) o.screenshot = args.screenshot;
   o.script = args.script;
@@ -108,7 +116,8 @@ Runner setup(CLI::App& app) {
       ->type_name("N")
       ->check(integerIn(1, 64));
   app.add_option("--cull", args->cull,
-                 "initial culling: all or none (default none; keys 1 2 3 c switch stages)")
+                 "initial culling by hand: all or none (default: the effect plan\n"
+                 "chooses, key p; keys 1 2 3 c switch stages by hand)")
       ->type_name("MODE")
       ->check(oneOf({"all", "none"}));
   app.add_option("--frames", args->frames,
@@ -131,6 +140,7 @@ Runner setup(CLI::App& app) {
       ->type_name("N")
       ->check(integerIn(0, 10000000));
   addDeviceOptions(app, args->device);
+  addPlanOptions(app, args->plan);
   return [args] { return run(*args); };
 }
 

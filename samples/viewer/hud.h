@@ -4,6 +4,7 @@
 /// pass, culled by stage, TES invocations, ms per pass) and a live plot of cull rate and
 /// frame time, drawn over the swapchain image after the view is blitted into it.
 
+#include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/vk/handle.h"
 
 #include <vulkan/vulkan.h>
@@ -34,6 +35,15 @@ struct HudFigures {
   uint64_t tesInvocations = 0;
   double pass1Ms = 0, pyramidMs = 0, cullMs = 0, pass2Ms = 0, frameMs = 0;
   std::vector<std::string> notes;
+  /// \brief The patch counts of a frame: drawn per pass, culled per stage, TES invocations.
+  void counts(const frame::CullFrameStats& s) {
+    drawnPass1 = s.drawnPass1;
+    drawnPass2 = s.drawnPass2;
+    culledFrustum = s.culledFrustum;
+    culledBackPatch = s.culledBackPatch;
+    culledOcclusion = s.culledOcclusion;
+    tesInvocations = s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations;
+  }
 };
 
 class Hud {

@@ -23,6 +23,7 @@ double parseNumber(const std::string& text, const std::string& token) {
 }  // namespace
 
 std::string ViewState::cullLabel() const {
+  if (plan) return "plan";
   std::string s;
   auto add = [&](const std::string& part) { s += (s.empty() ? "" : "+") + part; };
   if (frustum) add("frustum");
@@ -54,13 +55,19 @@ std::optional<std::string> pressKey(ViewState& s, std::string_view key) {
     return "tessellation " + std::to_string(s.tessLevel);
   }
   if (key == "a") return "adaptive tessellation " + onOff(s.adaptive = !s.adaptive);
-  if (key == "1") return "frustum culling " + onOff(s.frustum = !s.frustum);
-  if (key == "2") return "back-patch culling " + onOff(s.backPatch = !s.backPatch);
-  if (key == "3") return "occlusion culling " + onOff(s.occlusion = !s.occlusion);
+  if (key == "p") return "effect plan " + onOff(s.plan = !s.plan);
+  // A stage key takes manual control from the plan, said so.
+  const std::string manual =
+      (key == "1" || key == "2" || key == "3" || key == "c") && std::exchange(s.plan, false)
+          ? " (plan off: stages by hand)"
+          : "";
+  if (key == "1") return "frustum culling " + onOff(s.frustum = !s.frustum) + manual;
+  if (key == "2") return "back-patch culling " + onOff(s.backPatch = !s.backPatch) + manual;
+  if (key == "3") return "occlusion culling " + onOff(s.occlusion = !s.occlusion) + manual;
   if (key == "c") {
     const bool on = !s.anyCull();
     s.frustum = s.backPatch = s.occlusion = on;
-    return "culling " + s.cullLabel();
+    return "culling " + s.cullLabel() + manual;
   }
   if (key == "m") {
     const auto& all = backPatchMethods();
@@ -95,7 +102,8 @@ std::optional<std::string> pressKey(ViewState& s, std::string_view key) {
 std::string keyHelp() {
   return "  + / -    tessellation level up / down (adaptive: finer / coarser)\n"
          "  a        adaptive tessellation on/off\n"
-         "  1 2 3    frustum / back-patch / occlusion culling on/off\n"
+         "  p        the effect plan chooses the cull stages (default when calibrated)\n"
+         "  1 2 3    frustum / back-patch / occlusion culling on/off (takes over from the plan)\n"
          "  c        all culling on/off\n"
          "  m        next back-patch method (tcone, ncone, tangent-plane)\n"
          "  s        status colors (visible, newly visible, culled by frustum / back-patch / "

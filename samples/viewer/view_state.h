@@ -20,7 +20,10 @@ struct ViewState {
   double pixelsPerSegment = 8.0;
   uint32_t maxTessLevel = 64;
 
-  bool frustum = false;  ///< cull stages
+  /// The effect plan chooses the cull stages each frame (key p; a stage key takes manual
+  /// control). Only where the viewer has a planner (a calibration of the device).
+  bool plan = false;
+  bool frustum = false;  ///< cull stages, when the plan is off
   bool backPatch = false;
   bool occlusion = false;
   std::string backPatchMethod = "tcone";
@@ -41,7 +44,7 @@ struct ViewState {
   double zoom = 1.0;          ///< eye distance scale, in [0.05, 20]
 
   bool anyCull() const { return frustum || backPatch || occlusion; }
-  /// \brief "frustum+backpatch(tcone)+hiz", or "none".
+  /// \brief "plan", "frustum+backpatch(tcone)+hiz", or "none".
   std::string cullLabel() const;
 };
 

@@ -4,9 +4,9 @@
 #include "swapchain.h"
 #include "window.h"
 
+#include "adapters/image_png.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull_frame.h"
-#include "adapters/image_png.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/session/scene_player.h"
 #include "osd_cull/vk/buffer.h"
@@ -161,6 +161,10 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
 
   ViewState state = options.initial;
   state.maxTessLevel = context.info().limits.maxTessellationGenerationLevel;
+  // The effect plan, as in `osd-cull render`: on by default where the device is calibrated.
+  const std::unique_ptr<plan::Planner> planner =
+      options.makePlanner ? options.makePlanner(context) : nullptr;
+  uint64_t planFrame = 0;  // the plan's frame numbers (the scene frame may stand still)
   const uint32_t frameCount = std::max(1u, description.settings.frameCount);
   // The player (its CullFrame and target) is made for one window size and one set of cull
   // stages; it is made again when either changes. The status view has its own target.
@@ -243,6 +247,11 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
 
     // The cull stages are fixed when a CullFrame is made: make the player again when they
     // change (with none, its CullFrame culls nothing and draws every patch).
+    if (state.plan && !planner) {
+      state.plan = false;
+      std::cout << "note: no effect plan in this viewer (no calibration of this device, or "
+                   "--cull given): the stages are chosen by hand\n";
+    }
     if (!player || state.cullLabel() != builtCull) {
       dropPlayer();
       scene::ViewDescription& view = description.views.front();
@@ -253,7 +262,9 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
       fo.cull.frustum = state.frustum;
       fo.cull.backPatch = state.backPatch ? state.backPatchMethod : "";
       fo.cull.occlusion = state.occlusion ? "hiz" : "";
-      player = std::make_unique<session::ScenePlayer>(context, scene.scene, fo);
+      player = std::make_unique<session::ScenePlayer>(context, scene.scene, fo,
+                                                      frame::PointUpdatePath::Cpu,
+                                                      state.plan ? planner.get() : nullptr);
       statusTarget = std::make_unique<frame::RenderTarget>(context, extent.width, extent.height);
       builtCull = state.cullLabel();
       shownFrame.reset();
@@ -283,44 +294,73 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
                          ? "scene camera '" + description.views.front().name + "'"
                          : std::string("orbit") + (state.turntable ? " (turntable)" : "");
     figures.notes.clear();
-    frame::CullFrame& cullFrame = player->cullFrame(0);
-    frame::CullFrameOptions fo = cullFrame.options();
-    fo.render = render;
-    if (!state.freezeCull || !state.anyCull()) {
-      // Most frames are one submission; a timed one splits the passes (PassTiming).
-      const bool timed = timing.due(f);
-      fo.timePasses = timed;
-      cullFrame.setOptions(fo);
-      const frame::CullFrameStats s = cullFrame.render(camera, player->occluders());
-      if (timed) timing.record(f, s.pass1Ms, s.pyramidMs, s.cullMs, s.pass2Ms);
-      figures.drawnPass1 = s.drawnPass1;
-      figures.drawnPass2 = s.drawnPass2;
-      figures.culledFrustum = s.culledFrustum;
-      figures.culledBackPatch = s.culledBackPatch;
-      figures.culledOcclusion = s.culledOcclusion;
-      figures.tesInvocations =
-          s.pass1.tessEvaluationInvocations + s.pass2.tessEvaluationInvocations;
-    } else {
-      fo.timePasses = false;
-      cullFrame.setOptions(fo);
-    }
-    figures.pass1Ms = timing.pass1Ms();
-    figures.pyramidMs = timing.pyramidMs();
-    figures.cullMs = timing.cullMs();
-    figures.pass2Ms = timing.pass2Ms();
-    figures.timing = timing.describe(f);
     frame::RenderTarget* shown = &player->target(0);
-    if (state.anyCull() && (state.statusColors || state.freezeCull)) {
-      // Every patch from the current camera, colored by what the (frozen) cull camera did.
-      cullFrame.renderStatusView(*statusTarget, camera, player->occluders());
-      shown = statusTarget.get();
-      figures.mode = "status colors";
+    if (state.plan) {
+      // The plan draws the frame (session::ScenePlayer with a planner): the stages it chose
+      // for each instance and why, per-stage GPU times from the frame's own timestamps.
+      player->setCamera(0, camera);
+      const session::ViewFrame view = player->renderCurrent(planFrame++).front();
+      const frame::CullFrameStats& s = view.stats;
+      figures.counts(s);
+      const bool timed = s.gpu.measured();
+      figures.pass1Ms = timed ? s.gpu.pass1 : s.frameMs;
+      figures.pyramidMs = timed ? s.gpu.pyramid : 0.0;
+      figures.cullMs = timed ? s.gpu.cull : 0.0;
+      figures.pass2Ms = timed ? s.gpu.pass2 : 0.0;
+      figures.timing =
+          timed ? "GPU timestamps of this frame" : "wall clock (drawn without culling)";
+      figures.cull = "plan";
+      for (const plan::Plan& p : view.plans) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%s: %s%s, predicted %.1f ms (%.1f without culling)",
+                      p.mesh.c_str(), p.stages.describe().c_str(), p.probe ? " [re-probe]" : "",
+                      p.predicted.totalMs(), p.predictedUnculled.totalMs());
+        figures.notes.push_back(line);
+        for (const auto& [name, e] : p.effects()) {
+          const std::string n = name;
+          if (n == "frustum" || n == "back-patch" || n == "occlusion")
+            figures.notes.push_back("  " + n + (e->on ? " on: " : " off: ") +
+                                    e->reason.substr(0, e->reason.find(';')));
+        }
+      }
+      figures.mode = view.culled ? "culled draw (plan)" : "all patches (the plan culls nothing)";
+      if (state.statusColors || state.freezeCull)
+        figures.notes.push_back(
+            "status colors and the frozen cull camera need the stages by "
+            "hand (1, 2, 3 or c)");
     } else {
-      figures.mode = state.anyCull() ? "culled draw" : "all patches";
-      if (state.statusColors)
-        figures.notes.push_back("status colors need a cull stage (1, 2, 3 or c)");
+      frame::CullFrame& cullFrame = player->cullFrame(0);
+      frame::CullFrameOptions fo = cullFrame.options();
+      fo.render = render;
+      if (!state.freezeCull || !state.anyCull()) {
+        // Most frames are one submission; a timed one splits the passes (PassTiming).
+        const bool timed = timing.due(f);
+        fo.timePasses = timed;
+        cullFrame.setOptions(fo);
+        const frame::CullFrameStats s = cullFrame.render(camera, player->occluders());
+        if (timed) timing.record(f, s.pass1Ms, s.pyramidMs, s.cullMs, s.pass2Ms);
+        figures.counts(s);
+      } else {
+        fo.timePasses = false;
+        cullFrame.setOptions(fo);
+      }
+      figures.pass1Ms = timing.pass1Ms();
+      figures.pyramidMs = timing.pyramidMs();
+      figures.cullMs = timing.cullMs();
+      figures.pass2Ms = timing.pass2Ms();
+      figures.timing = timing.describe(f);
+      if (state.anyCull() && (state.statusColors || state.freezeCull)) {
+        // Every patch from the current camera, colored by what the (frozen) cull camera did.
+        cullFrame.renderStatusView(*statusTarget, camera, player->occluders());
+        shown = statusTarget.get();
+        figures.mode = "status colors";
+      } else {
+        figures.mode = state.anyCull() ? "culled draw" : "all patches";
+        if (state.statusColors)
+          figures.notes.push_back("status colors need a cull stage (1, 2, 3 or c)");
+      }
     }
-    if (state.backPatch)
+    if (state.backPatch || state.plan)
       for (const std::string& note : backPatchNotes) figures.notes.push_back(note);
 
     uint32_t image = 0;

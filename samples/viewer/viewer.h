@@ -14,11 +14,14 @@
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/frame/draw/triangle_mesh.h"
 #include "osd_cull/patch/patch_set.h"
+#include "osd_cull/plan/planner.h"
 #include "osd_cull/scene/loaded_scene.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +60,9 @@ struct ViewerOptions {
   bool validate = false;    ///< validation layers; any message fails the run
   bool printFrames = true;  ///< one line of figures per frame on stdout
   ViewState initial;
+  /// Makes the effect plan's planner for the viewer's device (null: no plan, e.g. no
+  /// calibration); called once after the device is made. Unset: no plan.
+  std::function<std::unique_ptr<plan::Planner>(vulkan::Context&)> makePlanner;
 };
 
 /// \brief Runs the viewer until the window closes, `q` is pressed or `frames` have been
