@@ -11,6 +11,8 @@
 //   bench-plan [--cases builtin,bigguy,animated,displaced] [--tess 1,2,4,8,16,32] [--frames 4]
 //              [--adaptive 8,...] (screen-space adaptive levels, PIXELS per segment, after --tess)
 //              [--mesh FILE,...] [--level 2] (held-out meshes: OBJ cages, cases of their own)
+//              [--scale S] [--translate T] (of the --mesh points) [--orbit DEG] (per frame;
+//              default one turn over --frames)
 //              [--warmup 4] [--width 1280] [--height 720] [--calibration FILE] [--csv FILE]
 //              [--device X]   (--repeats is accepted and unused: --frames sets the medians)
 //
@@ -60,6 +62,9 @@ struct Options {
   std::vector<uint32_t> adaptive;   // pixels per segment
   std::vector<std::string> meshes;  // OBJ files
   uint32_t level = 2;
+  double orbit = 0.0;      // degrees per frame; 0: one turn over --frames
+  double scale = 1.0;      // of the --mesh cases' points
+  double translate = 0.0;  // added to their x, y and z (far from the origin)
   uint32_t frames = 4, warmup = 4, width = 1280, height = 720, repeats = 1;
   std::string calibration, csv, device;
 };
@@ -71,6 +76,9 @@ bench::CommandLine commandLine(Options& o) {
       .numbers("--adaptive", o.adaptive)
       .names("--mesh", o.meshes)
       .number("--level", o.level, 1)
+      .real("--orbit", o.orbit, 0.0)
+      .real("--scale", o.scale, 1e-12)
+      .real("--translate", o.translate, -1e12)
       .number("--frames", o.frames, 1)
       .number("--warmup", o.warmup)
       .imageAndDevice(o.width, o.height, o.repeats, o.device)
@@ -107,11 +115,18 @@ Case builtIn() {
 
 Case bigGuy(vulkan::Context& context, bool animated);
 
-// A held-out mesh: an OBJ cage at `level`, y up.
-Case meshFile(const std::string& file, uint32_t level) {
+// A held-out mesh: an OBJ cage at `level`, y up, its points scaled by `scale` and moved by
+// `translate` on every axis (a mesh authored at another size or far from the origin).
+Case meshFile(const std::string& file, uint32_t level, double scale, double translate) {
   bench::CullMesh m = bench::loadCullMesh(file, level);
+  for (glm::dvec3& p : m.patches.points) p = scale * p + glm::dvec3(translate);
   Case c;
   c.name = std::filesystem::path(file).filename().string() + " level " + std::to_string(level);
+  if (scale != 1.0 || translate != 0.0) {
+    char t[64];
+    std::snprintf(t, sizeof t, " (x%g, +%g)", scale, translate);
+    c.name += t;
+  }
   c.up = {0, 1, 0};
   c.viewDirection = {0.3, 0.25, 1.0};
   c.validity = m.validity;
@@ -281,7 +296,8 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
     const int first = -int(o.warmup);
     for (int f = first; f < int(o.frames); ++f, ++frameNumber) {
       const frame::Camera cam =
-          frame::orbit(start, rest.center(), c.up, 360.0 / o.frames * (f - first) + 7.0);
+          frame::orbit(start, rest.center(), c.up,
+                       (o.orbit > 0.0 ? o.orbit : 360.0 / o.frames) * (f - first) + 7.0);
       if (c.animation) {
         std::vector<glm::dvec3> cage(c.animation->vertexCount());
         c.animation->positions(double(frameNumber) / 24.0, cage);
@@ -378,7 +394,7 @@ int main(int argc, char** argv) {
     // --mesh without --cases: the held-out meshes only.
     if (!o.meshes.empty() && o.cases == Options{}.cases) o.cases.clear();
     for (const std::string& file : o.meshes) {
-      Case c = meshFile(file, o.level);
+      Case c = meshFile(file, o.level, o.scale, o.translate);
       total.add(runCase(context, c, planner, o, csv.get()));
     }
     for (const std::string& name : o.cases) {

@@ -97,8 +97,15 @@ TEST(PlanPreTest, ObjectBoxAgainstTheViewFirst) {
   EXPECT_EQ(boxInView(unitBox(), edge, cam), BoxInView::Crossing);
 }
 
+// The choice from the priors alone (no exploring first frames, PlannerOptions::exploreFrames).
+PlannerOptions fromPriors() {
+  PlannerOptions o;
+  o.exploreFrames = 0;
+  return o;
+}
+
 TEST(Plan, FarAwayLowTessMeshGetsCullingSwitchedOff) {
-  Planner planner(syntheticCalibration());
+  Planner planner(syntheticCalibration(), fromPriors());
   const Plan p = planner.plan("main/ball", meshAt(60.0, 1.0), 0);
   EXPECT_EQ(p.box, BoxInView::Inside);
   EXPECT_FALSE(p.culls()) << planTable({&p, 1});
@@ -388,7 +395,7 @@ TEST(SelfOcclusion, ConvexMeshesCannotHideThemselves) {
 }
 
 TEST(SelfOcclusion, OnForANonConvexMeshOnceItsMeasuredRatePays) {
-  PlannerOptions options;
+  PlannerOptions options = fromPriors();
   options.reprobeFrames = 16;
   // Tess 8: at the prior 10% the Hi-Z stage saves 3.2 ms and costs 3.8 ms (kernel, build,
   // second pass); at a measured 30% it saves 9.6 ms.
@@ -544,7 +551,7 @@ TEST(Plan, DeformingDisplacedMeshChargesItsDisplacedBoundsPass) {
 }
 
 TEST(Plan, HysteresisHoldsAChoiceForHoldFrames) {
-  PlannerOptions options;
+  PlannerOptions options = fromPriors();
   options.holdFrames = 8;
   options.reprobeFrames = 0;
   Calibration oneMethod = syntheticCalibration();  // NCONE the only back-patch method
@@ -584,7 +591,7 @@ TEST(Plan, HysteresisHoldsAChoiceForHoldFrames) {
 }
 
 TEST(Plan, SwitchedOffMeshIsReprobedAndTurnedOnWhenItPays) {
-  PlannerOptions options;
+  PlannerOptions options = fromPriors();
   options.reprobeFrames = 16;
   Planner planner(syntheticCalibration(), options);
   const PlanInput in = meshAt(60.0, 2.0);
@@ -694,12 +701,38 @@ TEST(Plan, PredictionFollowsTheMeasuredFrameTime) {
   EXPECT_NEAR(third.cullScale, 0.5 * 2.0 + 0.5 * 3.0, 1e-9);
 }
 
+TEST(Plan, TheFirstFramesMeasureEveryStageAndTheChoiceAfterIsMadeOnMeasuredRates) {
+  // A mesh whose priors say "cull nothing" (far away, tess 1) but whose back-patch stage
+  // culls 95% and pays: the two exploring frames run every offered stage and measure it,
+  // frame 2 keeps back-patch culling without waiting for a probe.
+  Planner planner(syntheticCalibration());
+  const PlanInput in = meshAt(60.0, 1.0);
+  for (uint64_t f = 0; f < 2; ++f) {
+    const Plan p = planner.plan("k", in, f);
+    EXPECT_TRUE(p.probe) << "frame " << f;
+    EXPECT_TRUE(p.backPatch.on) << planTable({&p, 1});
+    EXPECT_FALSE(p.frustum.on) << "the box is inside the view";
+    EXPECT_EQ(p.backPatch.reason.rfind("re-probe", 0), 0u) << p.backPatch.reason;
+    planner.observe("k", p, 0, 1900, 0, 2000);
+  }
+  const Plan after = planner.plan("k", in, 2);
+  EXPECT_FALSE(after.probe);
+  EXPECT_TRUE(after.backPatch.on) << planTable({&after, 1});
+  EXPECT_NE(after.backPatch.reason.find("measured rate 95.0%"), std::string::npos)
+      << after.backPatch.reason;
+  // Where the measured rates say it does not pay, frame 2 switches it off at once (no hold).
+  Planner other(syntheticCalibration());
+  for (uint64_t f = 0; f < 2; ++f) other.observe("k", other.plan("k", in, f), 0, 0, 0, 2000);
+  const Plan off = other.plan("k", in, 2);
+  EXPECT_FALSE(off.culls()) << planTable({&off, 1});
+}
+
 TEST(Plan, ASteadyViewConvergesAndProbesEverMoreRarely) {
   // A steady view whose measured rates keep culling off: the back-patch re-probes come at
   // 2 (its rate a prior), then 16, 32, 64, 128, 128 frames apart (each doubles the
   // interval, up to maxReprobeFrames), and start over when an input changes (the
   // tessellation level at frame 400: probed at once, then 32, 64 apart).
-  PlannerOptions options;
+  PlannerOptions options = fromPriors();
   options.reprobeFrames = 16;
   options.maxReprobeFrames = 128;
   Planner planner(syntheticCalibration(), options);

@@ -106,14 +106,18 @@ TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
   auto r =
       run("render --out " + out.string() + " --tess 8 --plan-calibration " + calibration_.string());
   ASSERT_EQ(r.exitCode(), 0) << r.output;
-  // The built-in scene at 640x480, tess 8: its box is inside the view (no frustum stage),
-  // NCONE pays (15% prior rate against a 2.9% break-even), occlusion does not.
-  EXPECT_NE(r.output.find("plan, frame 0: ncone (predicted"), std::string::npos) << r.output;
+  // The built-in scene at 640x480, tess 8: its box is inside the view (no frustum stage);
+  // the first frames explore: every other stage runs to measure its rate, the cheapest
+  // predicted method and kernel (NCONE, hiz).
+  EXPECT_NE(r.output.find("plan, frame 0: ncone + hiz (two-pass, half) [re-probe]"),
+            std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("frustum off: object box inside the view (Sathe pre-test)"),
             std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find("back-patch on (ncone): saves "), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(": frustum 0, back-patch "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("back-patch on (ncone): re-probe: "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("culled frustum 0, back-patch "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("summary: 1 frames, mean "), std::string::npos) << r.output;
   // An explicit --cull, --plan off, or no calibration: a fixed choice, said so.
   r = run("render --out " + out.string() + " --cull none --plan-calibration " +
           calibration_.string());

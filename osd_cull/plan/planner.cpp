@@ -399,6 +399,28 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   const StageChoice best = *std::min_element(
       all.begin(), all.end(),
       [&](const StageChoice& a, const StageChoice& b) { return total(a) < total(b); });
+  if (!s.firstFrame) s.firstFrame = frameNumber;
+  if (frameNumber - *s.firstFrame < options_.exploreFrames) {
+    // Exploring: every stage kind offered at once, the cheapest predicted such choice; it
+    // becomes the current choice, held as long as nothing is predicted cheaper by the margin.
+    std::optional<StageChoice> every;
+    const bool anyBackPatch = std::any_of(
+        all.begin(), all.end(), [](const StageChoice& c) { return !c.backPatch.empty(); });
+    for (const StageChoice& c : all)
+      if (c.frustum == (p.box != BoxInView::Inside) && c.backPatch.empty() != anyBackPatch &&
+          c.occlusion.empty() != offersOcclusion(input) && !c.aggressive &&
+          (!every || total(c) < total(*every)))
+        every = c;
+    if (every) {
+      s.current = *every;
+      s.since = frameNumber;
+      s.explored = true;  // the first choice after it is not held
+    }
+  }
+  const bool exploring = s.explored && frameNumber - *s.firstFrame < options_.exploreFrames;
+  // The first choice after exploring is made on the measured rates, not held.
+  const bool unheld = s.explored && !exploring;
+  if (unheld) s.explored = false;
   const bool valid = s.current && std::find(all.begin(), all.end(), *s.current) != all.end();
   // Hysteresis: the margin grows with each change of the last window, so two choices
   // predicted alike (within the rates' noise) cannot take turns.
@@ -406,20 +428,23 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   if (!valid) {
     s.current = best;
     s.since = frameNumber;
-  } else if (!(best == *s.current) && frameNumber - s.since >= options_.holdFrames &&
+  } else if (!(best == *s.current) && (unheld || frameNumber - s.since >= options_.holdFrames) &&
              total(best) < (1.0 - margin) * total(*s.current)) {
     s.current = best;
     s.since = frameNumber;
     s.switches.push_back(frameNumber);
   }
   p.stages = *s.current;
+  p.probe = exploring;
 
   // Re-probe one switched-off stage now and then: its rate is learned only while it runs.
   // The unculled frame is never probed: observe() learns its cost from the culled frames'
   // own draw time (Plan::drawScale), so the visibility status is never thrown away.
   for (const char* kind : {kFrustum, kBackPatch, kOcclusion})
     if (!s.lastRun.count(kind)) s.lastRun[kind] = frameNumber;
-  if (s.hold) {
+  if (exploring) {
+    // Every kind runs already.
+  } else if (s.hold) {
     // An occlusion probe's second frame: its first ran on a status that had not seen the
     // stage (the rate it counted is not learned), this one measures it.
     p.stages = *s.hold;
@@ -554,7 +579,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
     else
       p.frustum.reason =
           decision(p.frustum.on, p.frustum.deltaMs,
-                   p.probe && p.frustum.on && !s.current->frustum) +
+                   p.probe && p.frustum.on && (s.explored || !s.current->frustum)) +
           stageReason(kFrustum, p.rates.frustum > 0 ? p.rates.frustum : stageRate(s, kFrustum), on,
                       off);
   }
@@ -571,10 +596,10 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       p.backPatch.reason = input.backPatchValidity.reason;
     else if (p.backPatch.on) {
       p.backPatch.deltaMs = now - total(off);
-      p.backPatch.reason =
-          decision(true, p.backPatch.deltaMs, p.probe && s.current->backPatch.empty()) +
-          stageReason(rateKey(p.stages.backPatch, p.stages.accuracy), p.rates.backPatch, p.stages,
-                      off);
+      p.backPatch.reason = decision(true, p.backPatch.deltaMs,
+                                    p.probe && (s.explored || s.current->backPatch.empty())) +
+                           stageReason(rateKey(p.stages.backPatch, p.stages.accuracy),
+                                       p.rates.backPatch, p.stages, off);
     } else {
       // The best method it could have run.
       std::string bestMethod;
@@ -680,7 +705,7 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
       const double rate = stageRate(s, key);
       p.occlusion.reason =
           decision(p.occlusion.on, p.occlusion.deltaMs,
-                   p.probe && p.occlusion.on && s.current->occlusion.empty()) +
+                   p.probe && p.occlusion.on && (s.explored || s.current->occlusion.empty())) +
           (input.occluders ? std::string() : "self-occlusion (non-convex surface): ") +
           stageReason(key, rate, with, without) + " (Hi-Z build included)";
     }

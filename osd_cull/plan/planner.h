@@ -164,6 +164,13 @@ struct PlannerOptions {
   /// waited reprobeFrames before its first measurement (the displaced character of
   /// docs/results/plan.md, "Scenes": occlusion off for the first 48 frames, then on).
   uint32_t firstProbeFrames = 2;
+  /// The first frames of a key run every stage kind it offers at once (frustum where the
+  /// box is not inside the view, the back-patch method and occlusion kernel predicted
+  /// cheapest): each stage's rate is measured from the start (a patch counts for the first
+  /// stage that culls it, as the model counts it), so the choice of the frames after is made
+  /// on measured rates, not priors, and needs no probe soon after (0: start from the
+  /// priors' choice). Two frames: a new two-pass frame's first one cannot measure occlusion.
+  uint32_t exploreFrames = 2;
   /// Weight of a new measurement in the moving average of a rate.
   double learnWeight = 0.5;
   /// Aggressive culling (§3.1) shows newly visible patches one frame late: only when
@@ -270,9 +277,11 @@ class Planner {
     std::map<std::string, uint32_t> probeInterval;  // stage kind → frames between probes
     std::set<std::string> measured;                 // stage kinds observed at least once
     uint64_t lastFrame = 0;
-    std::string inputs;               // inputsSignature() of the last plan
-    std::deque<uint64_t> switches;    // frames the choice changed, the last window
-    std::optional<StageChoice> hold;  // an occlusion probe's second frame runs this
+    std::string inputs;                  // inputsSignature() of the last plan
+    std::deque<uint64_t> switches;       // frames the choice changed, the last window
+    std::optional<StageChoice> hold;     // an occlusion probe's second frame runs this
+    std::optional<uint64_t> firstFrame;  // the key's first planned frame
+    bool explored = false;               // exploring until the last frame
     // Plan::drawScale and cullScale: the calibration's draw and cull costs can be off by
     // different factors for a given mesh (its screen coverage, its patch shapes); a frame
     // that times its cull work apart tells them apart. Until one is measured it takes the

@@ -1,5 +1,7 @@
 #include "osd_cull/session/scene_player.h"
 
+#include "osd_cull/session/mesh_session.h"
+
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_methods.h"
 #include "osd_cull/frame/draw/gpu_displacement.h"
@@ -333,10 +335,10 @@ ViewFrame ScenePlayer::renderPlanned(size_t view, uint64_t frameIndex) {
     for (size_t i = 0; i < instances_.size(); ++i) f.setModel(i, instances_[i].model);
     out.stats = f.render(v.camera, occluderPtrs_);
     for (size_t i = 0; i < instances_.size(); ++i)
-      if (out.plans[i].culls())
-        for (uint32_t code : f.readResults(i))
-          if (const uint32_t stage = bound::CullCode{code}.stage(); stage >= 1 && stage <= 3)
-            ++culled[i][stage - 1];
+      if (out.plans[i].culls()) {
+        const StageCounts c = countByStage(f.readResults(i));
+        culled[i] = {c.frustum, c.backPatch, c.occlusion};
+      }
   }
   // Learn: each instance's rates, and the view's frame time shared in proportion to what
   // each instance was predicted to cost (the point update is not part of it; a frame that
