@@ -110,27 +110,210 @@ fs::path sibling(const fs::path& out, const std::string& suffix) {
   return out.parent_path() / (out.stem().string() + suffix + ".png");
 }
 
-int run(const RenderArgs& args) {
-  if (args.source.path && isSceneArgument(*args.source.path)) return renderScene(args);
+struct StartView {
+  frame::Camera camera;
+  glm::dvec3 pivot, up;
+};
+
+// The first frame's camera: --camera's numbers, else the whole scene framed (occluders
+// included) from the format's view direction; the orbit turns about `pivot` and `up`.
+StartView startView(const Scene& scene, const std::vector<double>& cameraNumbers, uint32_t width,
+                    uint32_t height) {
+  frame::Bounds bounds = frame::boundsOf(scene.patches.points);
+  for (const auto& m : scene.occluders) bounds = frame::unite(bounds, frame::boundsOf(m.positions));
+  StartView s{{}, bounds.center(), scene.up};
+  if (cameraNumbers.empty()) {
+    s.camera = frame::frameBounds(bounds, scene.viewDirection, scene.up, 40.0, width, height);
+    return s;
+  }
+  const auto& v = cameraNumbers;
+  const glm::dvec3 eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);
+  s.up = glm::dvec3(v[6], v[7], v[8]);
+  const double d = glm::distance(eye, bounds.center()), r = bounds.radius();
+  s.camera = frame::Camera::lookAt(eye, target, s.up, v[9], width, height,
+                                   std::max(d - r, (d + r) * 1e-4), d + r);
+  s.pivot = target;
+  return s;
+}
+
+frame::RenderOptions renderOptions(const RenderArgs& args, vulkan::Context& context,
+                                   const DisplacementChoice& displacement) {
+  frame::RenderOptions options;
+  options.debugColors = args.debugColors;
+  if (args.adaptive > 0.0) {
+    options.tessellation.mode = frame::TessellationOptions::Mode::Adaptive;
+    options.tessellation.pixelsPerSegment = args.adaptive;
+  } else {
+    options.tessellation.uniformLevel = args.tess;
+  }
+  options.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
+  options.tessellation.displaced = displacement.tessellation;
+  return options;
+}
+
+void printDisplacement(const bound::DisplacementMap& map, const DisplacementChoice& displacement,
+                       const Scene& scene) {
+  const bound::DisplacementRange r = map.displacementRange();
+  std::cout << "displacement: " << map.name() << ", " << map.width() << "x" << map.height()
+            << ", scale " << map.scale() << ", midlevel " << map.midlevel() << ", D in [" << r.dmin
+            << ", " << r.dmax << "], bound "
+            << bound::displacedKernelName(displacement.kernels[0].extension,
+                                          displacement.kernels[0].box)
+            << "; UV seam edges " << countUVSeamEdges(scene.patches, scene.uvCorners) << "\n";
+}
+
+// The fixed stages (a plan says its own): the kernel's stages, notes, the two-pass options.
+void printCullSetup(session::MeshSession& meshSession, const CullChoice& cull,
+                    const frame::CullFrameOptions& frameOptions, bool backPatchCulling) {
+  if (const frame::CullPass* p = meshSession.cullPass()) {
+    const std::vector<const frame::CullMethod*>& stages = p->stages();
+    std::cout << "cull: " << cull.mode;
+    for (const frame::CullMethod* m : stages)
+      std::cout << (m == stages.front() ? " (" : ", ") << m->name;
+    std::cout << (stages.empty() ? "" : ")") << "\n";
+    if (!p->backPatchNote().empty()) std::cout << "note: " << p->backPatchNote() << "\n";
+    if (backPatchCulling)
+      std::cout << "back-patch culls: "
+                << (cull.surfaceExact ? "surface-exact" : "conservative for the drawn triangles")
+                << "; back-facing triangles culled in the draws\n";
+  }
+  if (const frame::CullFrame* cullFrame = meshSession.cullFrame()) {
+    const auto& layout = cullFrame->pyramid().layout();
+    std::cout << "occlusion: " << (frameOptions.aggressive ? "aggressive" : "two passes")
+              << ", draw mode " << toString(frameOptions.drawMode) << ", first frame "
+              << toString(frameOptions.firstFrame) << "; Hi-Z " << layout.levelCount
+              << " levels from " << layout.levelWidth(0) << "x" << layout.levelHeight(0) << ", "
+              << (cullFrame->pyramid().singlePass()
+                      ? "single-pass"
+                      : (cullFrame->pyramid().usesSampler() ? "min/max sampler" : "4-tap"))
+              << " build, "
+              << (frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper")
+              << " lookup\n";
+  }
+}
+
+// One frame's line(s) on stdout and its JSON object (one layout per kind of frame).
+nlohmann::json printFrame(uint32_t f, const session::SessionFrame& frame) {
+  if (frame.kind == session::FrameKind::TwoPass) {
+    std::printf("%s\n", cullFrameLine(f, frame.stats).c_str());
+    return cullFrameJson(f, frame.stats);
+  } else {
+    const frame::FrameStats& stats = frame.onePass;
+    std::printf(
+        "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
+        "fragment invocations %llu\n",
+        f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
+        static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
+        static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+    nlohmann::json j = plainFrameJson(f, stats);
+    if (frame.kind == session::FrameKind::OnePass) {
+      const frame::CullFrameStats& c = frame.stats;
+      std::printf("  culled %u of %u: frustum %u, back-patch %u\n", c.patchesTotal - c.survivors,
+                  c.patchesTotal, c.culledFrustum, c.culledBackPatch);
+      j["patches"] = c.patchesTotal;
+      j["drawn"] = c.survivors;
+      j["ms"]["cull"] = nullptr;  // not apart: pass1 spans the dispatch and the draws
+      j["culled"] = {
+          {"frustum", c.culledFrustum}, {"backPatch", c.culledBackPatch}, {"occlusion", 0}};
+    }
+    return j;
+  }
+  return {};
+}
+
+// The frame's image into --out-dir, and the last one into --out (with --ids its item and
+// depth images).
+void writeFrameImages(const RenderArgs& args, vulkan::Context& context,
+                      const frame::RenderTarget& target, uint32_t f, bool last) {
+  if (args.outDir.empty() && !last) return;
+  const uint32_t width = target.width(), height = target.height();
+  const auto color = adapters::colorImage(width, height, target.readColor(context));
+  if (!args.outDir.empty()) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%04u.png", f);
+    adapters::writePng(fs::path(args.outDir) / name, color);
+  }
+  if (!last) return;
+  const fs::path out = args.out;
+  adapters::writePng(out, color);
+  std::cout << "wrote " << out << "\n";
+  if (!args.ids) return;
+  adapters::writePng(sibling(out, "_ids"),
+                     adapters::itemImage(width, height, target.readItems(context)));
+  adapters::writePng(sibling(out, "_depth"),
+                     adapters::depthImage(width, height, target.readDepth(context)));
+  std::cout << "wrote " << sibling(out, "_ids").string() << " and "
+            << sibling(out, "_depth").string() << "\n";
+}
+
+// --status-view and --pyramid-dir of the last two-pass frame.
+void writeStatusAndPyramid(const RenderArgs& args, vulkan::Context& context,
+                           frame::CullFrame& cullFrame,
+                           std::span<const frame::GpuTriangleMesh* const> occluders,
+                           const frame::Camera& view, const glm::dvec3& pivot,
+                           const glm::dvec3& up) {
+  const fs::path out = args.out;
+  if (args.statusView) {
+    const uint32_t width = view.width, height = view.height;
+    frame::RenderTarget viewTarget(context, width, height);
+    const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
+    for (const auto& [statusCamera, suffix] :
+         {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
+      cullFrame.renderStatusView(viewTarget, statusCamera, occluders);
+      adapters::writePng(sibling(out, suffix),
+                         adapters::colorImage(width, height, viewTarget.readColor(context)));
+      std::cout << "wrote " << sibling(out, suffix).string() << "\n";
+    }
+  }
+  if (!args.pyramidDir.empty()) {
+    const uint32_t n = writePyramidLevels(args.pyramidDir, cullFrame.pyramid(), context);
+    std::cout << "wrote " << n << " pyramid levels to " << args.pyramidDir << "\n";
+  }
+}
+
+// The mesh form's options checked, and every output, before the (possibly long) run; the
+// numbers of --camera.
+std::vector<double> checkMeshForm(const RenderArgs& args, const CullChoice& cull) {
   if (args.compare) throw UsageError("--compare applies to the scene form (render SCENE)");
   if (args.out.empty()) throw UsageError("--out FILE.png is required");
-  const auto out = args.out;
-  const uint32_t width = args.width.value_or(640), height = args.height.value_or(480);
-  const uint32_t frames = args.frames.value_or(1);
-  const double orbitDegrees = args.orbitDegrees;
-  const bool ids = args.ids;
-  const PatchOptions& patchOptions = args.patchOptions;
-  const CullChoice cull = cullChoice(args.cull);
-  const MeshSource& source = args.source;
   if ((args.statusView || !args.pyramidDir.empty()) && !cull.occlusion())
     throw UsageError("--status-view and --pyramid-dir need --cull occlusion or --cull all");
   std::vector<double> cameraNumbers;
   if (!args.camera.empty()) cameraNumbers = parseNumbers(args.camera, 10, "camera");
-  // Every output is checked before the (possibly long) run, not when it is written.
-  checkOutputFile(out, "--out", {".png"});
+  checkOutputFile(args.out, "--out", {".png"});
   if (!args.stats.empty()) checkOutputFile(args.stats, "--stats", {".json"});
   if (!args.outDir.empty()) prepareOutputDirectory(args.outDir, "--out-dir");
   if (!args.pyramidDir.empty()) prepareOutputDirectory(args.pyramidDir, "--pyramid-dir");
+  return cameraNumbers;
+}
+
+// The two-pass frame's options, as --stats records them.
+nlohmann::json twoPassOptionsJson(const frame::CullFrameOptions& o, const frame::CullFrame& f) {
+  return {{"aggressive", o.aggressive},
+          {"drawMode", toString(o.drawMode)},
+          {"firstFrame", toString(o.firstFrame)},
+          {"hizFullResolution", o.hiz.fullResolution},
+          {"hizLookup", o.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper"},
+          {"hizSampler", f.pyramid().usesSampler()},
+          {"hizSinglePass", f.pyramid().singlePass()}};
+}
+
+void writeJson(const std::string& path, const nlohmann::json& doc) {
+  std::ofstream file(path);
+  if (!(file << doc.dump(2) << "\n")) throw Error(path + ": cannot write");
+  std::cout << "wrote " << path << "\n";
+}
+
+int run(const RenderArgs& args) {
+  if (args.source.path && isSceneArgument(*args.source.path)) return renderScene(args);
+  const auto out = args.out;
+  const uint32_t width = args.width.value_or(640), height = args.height.value_or(480);
+  const uint32_t frames = args.frames.value_or(1);
+  const double orbitDegrees = args.orbitDegrees;
+  const PatchOptions& patchOptions = args.patchOptions;
+  const CullChoice cull = cullChoice(args.cull);
+  const MeshSource& source = args.source;
+  const std::vector<double> cameraNumbers = checkMeshForm(args, cull);
 
   Scene scene = loadScene(source, patchOptions);
   for (const std::string& file : splitList(args.occluders))
@@ -155,46 +338,18 @@ int run(const RenderArgs& args) {
     gpuDisplacement = std::make_unique<frame::GpuDisplacement>(
         context, *displacementMap, scene.uvCorners, scene.patches.patchCount());
     gpu.setDisplacement(gpuDisplacement.get());
-    const bound::DisplacementRange r = displacementMap->displacementRange();
-    std::cout << "displacement: " << displacementMap->name() << ", " << displacementMap->width()
-              << "x" << displacementMap->height() << ", scale " << displacementMap->scale()
-              << ", midlevel " << displacementMap->midlevel() << ", D in [" << r.dmin << ", "
-              << r.dmax << "], bound "
-              << bound::displacedKernelName(displacement.kernels[0].extension,
-                                            displacement.kernels[0].box)
-              << "; UV seam edges " << countUVSeamEdges(scene.patches, scene.uvCorners) << "\n";
+    printDisplacement(*displacementMap, displacement, scene);
   }
   std::vector<frame::GpuTriangleMesh> occluderMeshes;
   for (const auto& m : scene.occluders) occluderMeshes.emplace_back(context, m);
   std::vector<const frame::GpuTriangleMesh*> occluders;
   for (const auto& m : occluderMeshes) occluders.push_back(&m);
 
-  frame::Bounds bounds = frame::boundsOf(scene.patches.points);
-  for (const auto& m : scene.occluders) bounds = frame::unite(bounds, frame::boundsOf(m.positions));
-  frame::Camera camera;
-  glm::dvec3 pivot = bounds.center(), up = scene.up;
-  if (!cameraNumbers.empty()) {
-    const auto& v = cameraNumbers;
-    const glm::dvec3 eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);
-    up = glm::dvec3(v[6], v[7], v[8]);
-    const double d = glm::distance(eye, bounds.center()), r = bounds.radius();
-    camera = frame::Camera::lookAt(eye, target, up, v[9], width, height,
-                                   std::max(d - r, (d + r) * 1e-4), d + r);
-    pivot = target;
-  } else {
-    camera = frame::frameBounds(bounds, scene.viewDirection, scene.up, 40.0, width, height);
-  }
+  const StartView start = startView(scene, cameraNumbers, width, height);
+  const frame::Camera& camera = start.camera;
+  const glm::dvec3 pivot = start.pivot, up = start.up;
 
-  frame::RenderOptions options;
-  options.debugColors = args.debugColors;
-  if (args.adaptive > 0.0) {
-    options.tessellation.mode = frame::TessellationOptions::Mode::Adaptive;
-    options.tessellation.pixelsPerSegment = args.adaptive;
-  } else {
-    options.tessellation.uniformLevel = args.tess;
-  }
-  options.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
-  options.tessellation.displaced = displacement.tessellation;
+  frame::RenderOptions options = renderOptions(args, context, displacement);
 
   frame::RenderTarget target(context, width, height);
   frame::Renderer renderer(context);
@@ -230,31 +385,7 @@ int run(const RenderArgs& args) {
                   cull.backPatchMethodGiven ? cull.backPatchMethod : "", std::cout);
   session::MeshSession meshSession(context, renderer, target, gpu, scene.patches, occluders,
                                    sessionOptions, planner.get());
-  if (const frame::CullPass* p = meshSession.cullPass()) {
-    const std::vector<const frame::CullMethod*>& stages = p->stages();
-    std::cout << "cull: " << cull.mode;
-    for (const frame::CullMethod* m : stages)
-      std::cout << (m == stages.front() ? " (" : ", ") << m->name;
-    std::cout << (stages.empty() ? "" : ")") << "\n";
-    if (!p->backPatchNote().empty()) std::cout << "note: " << p->backPatchNote() << "\n";
-    if (backPatchCulling)
-      std::cout << "back-patch culls: "
-                << (cull.surfaceExact ? "surface-exact" : "conservative for the drawn triangles")
-                << "; back-facing triangles culled in the draws\n";
-  }
-  if (const frame::CullFrame* cullFrame = meshSession.cullFrame()) {
-    const auto& layout = cullFrame->pyramid().layout();
-    std::cout << "occlusion: " << (frameOptions.aggressive ? "aggressive" : "two passes")
-              << ", draw mode " << toString(frameOptions.drawMode) << ", first frame "
-              << toString(frameOptions.firstFrame) << "; Hi-Z " << layout.levelCount
-              << " levels from " << layout.levelWidth(0) << "x" << layout.levelHeight(0) << ", "
-              << (cullFrame->pyramid().singlePass()
-                      ? "single-pass"
-                      : (cullFrame->pyramid().usesSampler() ? "min/max sampler" : "4-tap"))
-              << " build, "
-              << (frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper")
-              << " lookup\n";
-  }
+  printCullSetup(meshSession, cull, frameOptions, backPatchCulling);
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
   nlohmann::json jsonFrames = nlohmann::json::array();
   frame::Camera view = camera;
@@ -265,50 +396,8 @@ int run(const RenderArgs& args) {
     if (frame.plan && frame.planChanged)
       printPlanChange(lastPlan ? &*lastPlan : nullptr, *frame.plan, std::cout);
     if (frame.plan) lastPlan = frame.plan;
-    if (frame.kind == session::FrameKind::TwoPass) {
-      std::printf("%s\n", cullFrameLine(f, frame.stats).c_str());
-      jsonFrames.push_back(cullFrameJson(f, frame.stats));
-    } else {
-      const frame::FrameStats& stats = frame.onePass;
-      std::printf(
-          "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
-          "fragment invocations %llu\n",
-          f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
-          static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
-          static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
-      nlohmann::json j = plainFrameJson(f, stats);
-      if (frame.kind == session::FrameKind::OnePass) {
-        const frame::CullFrameStats& c = frame.stats;
-        std::printf("  culled %u of %u: frustum %u, back-patch %u\n", c.patchesTotal - c.survivors,
-                    c.patchesTotal, c.culledFrustum, c.culledBackPatch);
-        j["patches"] = c.patchesTotal;
-        j["drawn"] = c.survivors;
-        j["ms"]["cull"] = nullptr;  // not apart: pass1 spans the dispatch and the draws
-        j["culled"] = {
-            {"frustum", c.culledFrustum}, {"backPatch", c.culledBackPatch}, {"occlusion", 0}};
-      }
-      jsonFrames.push_back(std::move(j));
-    }
-    const bool last = f + 1 == frames;
-    if (args.outDir.empty() && !last) continue;
-    const auto color = adapters::colorImage(width, height, target.readColor(context));
-    if (!args.outDir.empty()) {
-      char name[32];
-      std::snprintf(name, sizeof(name), "frame_%04u.png", f);
-      adapters::writePng(fs::path(args.outDir) / name, color);
-    }
-    if (last) {
-      adapters::writePng(out, color);
-      std::cout << "wrote " << out << "\n";
-      if (ids) {
-        adapters::writePng(sibling(out, "_ids"),
-                           adapters::itemImage(width, height, target.readItems(context)));
-        adapters::writePng(sibling(out, "_depth"),
-                           adapters::depthImage(width, height, target.readDepth(context)));
-        std::cout << "wrote " << sibling(out, "_ids").string() << " and "
-                  << sibling(out, "_depth").string() << "\n";
-      }
-    }
+    jsonFrames.push_back(printFrame(f, frame));
+    writeFrameImages(args, context, target, f, f + 1 == frames);
   }
   // Displaced: the pixels where the surface opens in the last view (UV seams; edges
   // elsewhere get equal levels on both sides), drawn unculled with back faces culled and not.
@@ -330,38 +419,15 @@ int run(const RenderArgs& args) {
                        {"width", width},
                        {"height", height},
                        {"cull", planner ? std::string("plan") : cull.mode},
-                       {"frames", jsonFrames}};
-    doc["summary"] = summaryJson(summary);
+                       {"frames", jsonFrames},
+                       {"summary", summaryJson(summary)}};
     if (crackPixels) doc["crack_pixels"] = *crackPixels;
     if (const frame::CullFrame* cullFrame = meshSession.cullFrame())
-      doc["options"] = {
-          {"aggressive", frameOptions.aggressive},
-          {"drawMode", toString(frameOptions.drawMode)},
-          {"firstFrame", toString(frameOptions.firstFrame)},
-          {"hizFullResolution", frameOptions.hiz.fullResolution},
-          {"hizLookup", frameOptions.hiz.lookup == bound::HiZLookup::Tight ? "tight" : "paper"},
-          {"hizSampler", cullFrame->pyramid().usesSampler()},
-          {"hizSinglePass", cullFrame->pyramid().singlePass()}};
-    std::ofstream file(args.stats);
-    if (!(file << doc.dump(2) << "\n")) throw Error(args.stats + ": cannot write");
-    std::cout << "wrote " << args.stats << "\n";
+      doc["options"] = twoPassOptionsJson(frameOptions, *cullFrame);
+    writeJson(args.stats, doc);
   }
-  frame::CullFrame* cullFrame = meshSession.cullFrame();
-  if (cullFrame && args.statusView) {
-    frame::RenderTarget viewTarget(context, width, height);
-    const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
-    for (const auto& [statusCamera, suffix] :
-         {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
-      cullFrame->renderStatusView(viewTarget, statusCamera, occluders);
-      adapters::writePng(sibling(out, suffix),
-                         adapters::colorImage(width, height, viewTarget.readColor(context)));
-      std::cout << "wrote " << sibling(out, suffix).string() << "\n";
-    }
-  }
-  if (cullFrame && !args.pyramidDir.empty()) {
-    const uint32_t n = writePyramidLevels(args.pyramidDir, cullFrame->pyramid(), context);
-    std::cout << "wrote " << n << " pyramid levels to " << args.pyramidDir << "\n";
-  }
+  if (frame::CullFrame* cullFrame = meshSession.cullFrame())
+    writeStatusAndPyramid(args, context, *cullFrame, occluders, view, pivot, up);
   const vulkan::ShaderCacheStats shaders = vulkan::shaderCacheStats();
   std::printf("shader variants: %zu from the library's build-time SPIR-V, %.1f ms\n",
               shaders.embedded, shaders.milliseconds);
