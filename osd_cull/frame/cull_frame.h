@@ -186,7 +186,8 @@ class CullFrame {
   ///   DEPTH_STENCIL_ATTACHMENT_OPTIMAL; an application's: ExternalTarget::colorLayout and
   ///   depthLayout), with their writes made available (the render passes' external
   ///   dependencies, or the barriers of dynamic rendering, docs/integration.md);
-  /// - move the depth image to DEPTH_STENCIL_READ_ONLY_OPTIMAL for the pyramid build and
+  /// - move the depth image to TRANSFER_SRC_OPTIMAL (the pyramid build copies it when it
+  ///   has TRANSFER_SRC usage) or DEPTH_STENCIL_READ_ONLY_OPTIMAL for the pyramid build and
   ///   back; the pyramid image stays in GENERAL;
   /// - copy the frame's statistics into a readback slot, made available to the host.
   ///
@@ -273,10 +274,10 @@ class CullFrame {
   };
   void recordBatchCull(VkCommandBuffer cmd, const Camera& camera, Batch& batch);
   std::vector<Batch> batches_;
-  std::vector<size_t> batchOf_;     // per mesh
-  std::vector<uint32_t> slotOf_;    // per mesh: its instance in the batch
+  std::vector<size_t> batchOf_;        // per mesh
+  std::vector<uint32_t> slotOf_;       // per mesh: its instance in the batch
   std::vector<uint32_t> levelSlotOf_;  // per mesh: its slot of its set's tessLevels()
-  vulkan::Buffer survivedResults_;  // all kStageNone, used without a pass
+  vulkan::Buffer survivedResults_;     // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
   std::vector<std::unique_ptr<StatsSlot>> slots_;  // the statistics ring
