@@ -274,10 +274,10 @@ class CullFrame {
   };
   void recordBatchCull(VkCommandBuffer cmd, const Camera& camera, Batch& batch);
   std::vector<Batch> batches_;
-  std::vector<size_t> batchOf_;        // per mesh
-  std::vector<uint32_t> slotOf_;       // per mesh: its instance in the batch
+  std::vector<size_t> batchOf_;     // per mesh
+  std::vector<uint32_t> slotOf_;    // per mesh: its instance in the batch
   std::vector<uint32_t> levelSlotOf_;  // per mesh: its slot of its set's tessLevels()
-  vulkan::Buffer survivedResults_;     // all kStageNone, used without a pass
+  vulkan::Buffer survivedResults_;  // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
   std::vector<std::unique_ptr<StatsSlot>> slots_;  // the statistics ring
