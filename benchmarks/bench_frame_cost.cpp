@@ -44,8 +44,8 @@
 #include <cstdio>
 #include <functional>
 #include <map>
-#include <memory>
 #include <optional>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -179,9 +179,9 @@ ConfigFrames makeConfigFrames(vulkan::Context& context, frame::Renderer& rendere
     frame::CullFrameOptions fo;
     fo.render = render;
     fo.cull = settings(c, scene);
-    f.frames.push_back(
-        c.occlusion ? std::make_unique<frame::CullFrame>(context, renderer, target, cullMeshes, fo)
-                    : nullptr);
+    f.frames.push_back(c.occlusion ? std::make_unique<frame::CullFrame>(context, renderer, target,
+                                                                        cullMeshes, fo)
+                                   : nullptr);
     f.passes.push_back(
         c.occlusion ? nullptr
                     : std::make_unique<frame::CullPass>(context, gpu, scene.patches, fo.cull));
@@ -285,8 +285,8 @@ PathResult measurePath(vulkan::Context& context, const std::string& name, const 
         }
         const size_t c = side - 1;
         Row& row = result.rows[{tess, c}];
-        results[c] =
-            culledFrame(context, renderer, culled, configs, c, cam, occluders, render, row, timed);
+        results[c] = culledFrame(context, renderer, culled, configs, c, cam, occluders, render,
+                                 row, timed);
         freeFrame.setPatches(0, results[c].drawn);
         const frame::FrameStats fs = freeFrame.render(freeTarget, cam, occluders, render);
         sideMs[c] = {results[c].ms, fs.wallMs};
@@ -425,8 +425,8 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
       const float* r1 = r0 + w;
       float* dst = l0.texels.data() + size_t{ty} * l0.width;
       for (uint32_t tx = 0; tx < fullX; ++tx)
-        dst[tx] =
-            std::max(std::max(r0[2 * tx], r0[2 * tx + 1]), std::max(r1[2 * tx], r1[2 * tx + 1]));
+        dst[tx] = std::max(std::max(r0[2 * tx], r0[2 * tx + 1]),
+                           std::max(r1[2 * tx], r1[2 * tx + 1]));
     }
   } else {
     for (uint32_t y = 0; y < layout.height; ++y) {
@@ -442,7 +442,8 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
   if (layout.width % n)
     for (uint32_t y = 0; y < l0.height; ++y) l0.texels[size_t{y} * l0.width + l0.width - 1] = 1.0f;
   if (layout.height % n)
-    for (uint32_t x = 0; x < l0.width; ++x) l0.texels[size_t{l0.height - 1} * l0.width + x] = 1.0f;
+    for (uint32_t x = 0; x < l0.width; ++x)
+      l0.texels[size_t{l0.height - 1} * l0.width + x] = 1.0f;
   for (uint32_t l = 1; l < layout.levelCount; ++l) {
     const FloorLevel& src = levels[l - 1];
     FloorLevel& dst = levels[l];
@@ -453,7 +454,8 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
       for (uint32_t x = 0; x < dst.width; ++x) {
         // Sources past the covered part are padding: far.
         auto at = [&](uint32_t sx, uint32_t sy) {
-          return sx < src.width && sy < src.height ? src.texels[size_t{sy} * src.width + sx] : 1.0f;
+          return sx < src.width && sy < src.height ? src.texels[size_t{sy} * src.width + sx]
+                                                   : 1.0f;
         };
         const uint32_t sx = 2 * x, sy = 2 * y;
         if (sx + 1 < src.width && sy + 1 < src.height) {  // inside: all four
@@ -475,8 +477,7 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
 
 // True when every covered texel of the floor's levels equals the GPU pyramid's.
 bool floorEqualsBuild(const std::vector<FloorLevel>& floor,
-                      const std::vector<std::vector<float>>& built,
-                      const bound::HiZLayout& layout) {
+                      const std::vector<std::vector<float>>& built, const bound::HiZLayout& layout) {
   for (uint32_t l = 0; l < floor.size(); ++l)
     for (uint32_t y = 0; y < floor[l].height; ++y)
       for (uint32_t x = 0; x < floor[l].width; ++x)
@@ -505,14 +506,15 @@ void pyramidCost(vulkan::Context& context, const Options& o) {
     bool legacy = false;
     bool readDepthImage = false;
   };
-  std::vector<Kind> kinds = {{"blocked: 3 levels a dispatch, depth copied to RGBA rows (default)",
-                              frame::HiZReduction::Blocked},
-                             {"blocked, top level gathered from the depth image",
-                              frame::HiZReduction::Blocked, false, true},
-                             {"single pass (1 dispatch)", frame::HiZReduction::SinglePass},
-                             {"per level, four-tap", frame::HiZReduction::FourTap},
-                             {"per level, four-tap, before (every texel every build)",
-                              frame::HiZReduction::FourTap, true}};
+  std::vector<Kind> kinds = {
+      {"blocked: 3 levels a dispatch, depth copied to RGBA rows (default)",
+       frame::HiZReduction::Blocked},
+      {"blocked, top level gathered from the depth image", frame::HiZReduction::Blocked, false,
+       true},
+      {"single pass (1 dispatch)", frame::HiZReduction::SinglePass},
+      {"per level, four-tap", frame::HiZReduction::FourTap},
+      {"per level, four-tap, before (every texel every build)", frame::HiZReduction::FourTap,
+       true}};
   if (frame::supportsMinmaxReduction(context)) {
     kinds.push_back(
         {"per level, min/max sampler, gathered top level", frame::HiZReduction::Sampler});
@@ -588,16 +590,14 @@ void pyramidCost(vulkan::Context& context, const Options& o) {
     std::printf("| %s | %u | %.2f | %.2f | %.1fx | %.1f%% | %.0f |\n", kinds[k].name.c_str(),
                 pyramids[k]->dispatchCount(), median(ms[k]), median(gpuMs[k]),
                 median(gpuMs[k]) / floorMedian, 100 * median(ms[k]) / frame, createMs[k]);
-  std::printf(
-      "| floor: plain C++ 2x2 max chain, 1 thread (values equal the build: %s) | 0 | "
-      "%.2f | | 1.0x | %.1f%% | |\n",
-      same ? "yes" : "NO", floorMedian, 100 * floorMedian / frame);
+  std::printf("| floor: plain C++ 2x2 max chain, 1 thread (values equal the build: %s) | 0 | "
+              "%.2f | | 1.0x | %.1f%% | |\n",
+              same ? "yes" : "NO", floorMedian, 100 * floorMedian / frame);
   std::printf("| (empty submission) | 0 | %.2f | | | %.1f%% | |\n", median(emptyMs),
               100 * median(emptyMs) / frame);
   std::printf("\nUnculled built-in scene frame, tess 4, back faces culled: %.2f ms (median). %s\n",
               frame, bench::machineState().c_str());
-  if (!stamps)
-    std::printf("No GPU times: %s\n", vulkan::TimestampQuery::unavailableReason(context).c_str());
+  if (!stamps) std::printf("No GPU times: %s\n", vulkan::TimestampQuery::unavailableReason(context).c_str());
   std::fflush(stdout);
 }
 
