@@ -68,56 +68,58 @@ float firstLevelTexel(ivec2 t) {
 #endif
 }
 
+// Texels t .. t + (3, 0) of the first level: one row of the block. No arrays and no loops:
+// llvmpipe keeps an indexed local array in memory, one access per lane.
+vec4 blockRow(ivec2 t) {
+#if defined(HIZ_DEPTH_ROWS) && defined(HIZ_FULL_RESOLUTION)
+  return depthRow(t.x, t.y);
+#elif defined(HIZ_DEPTH_ROWS)
+  // Texel (x, y) is the farthest of pixels 2 (x, y) + {0, 1}^2: two fetches per pixel row.
+  const vec4 a = max(depthRow(2 * t.x, 2 * t.y), depthRow(2 * t.x, 2 * t.y + 1));
+  const vec4 b = max(depthRow(2 * t.x + 4, 2 * t.y), depthRow(2 * t.x + 4, 2 * t.y + 1));
+  return vec4(max(a.x, a.y), max(a.z, a.w), max(b.x, b.y), max(b.z, b.w));
+#else
+  return vec4(firstLevelTexel(t), firstLevelTexel(t + ivec2(1, 0)),
+              firstLevelTexel(t + ivec2(2, 0)), firstLevelTexel(t + ivec2(3, 0)));
+#endif
+}
+
+// Stores row r of texels t .. t + (3, 0) where they lie inside the level (size).
+#define STORE_ROW(image, t, r, size)                                           \
+  if (t.y < size.y) {                                                          \
+    if (t.x < size.x) imageStore(image, t, vec4(r.x));                         \
+    if (t.x + 1 < size.x) imageStore(image, t + ivec2(1, 0), vec4(r.y));       \
+    if (t.x + 2 < size.x) imageStore(image, t + ivec2(2, 0), vec4(r.z));       \
+    if (t.x + 3 < size.x) imageStore(image, t + ivec2(3, 0), vec4(r.w));       \
+  }
+
 void main() {
   const ivec2 g = ivec2(gl_GlobalInvocationID.xy);
   const ivec2 t0 = int(kHiZBlock) * g;  // the block's first texel of the first level
   const uvec2 level0 = uvec2(pc.level0Width, pc.level0Height);
-  float v[4][4];  // v[y][x]: the block
-#if defined(HIZ_DEPTH_ROWS) && defined(HIZ_FULL_RESOLUTION)
-  for (int y = 0; y < 4; ++y) {
-    const vec4 r = depthRow(t0.x, t0.y + y);
-    v[y][0] = r.x;
-    v[y][1] = r.y;
-    v[y][2] = r.z;
-    v[y][3] = r.w;
-  }
-#elif defined(HIZ_DEPTH_ROWS)
-  // Texel (x, y) is the farthest of pixels 2 (x, y) + {0, 1}^2: 8 x 8 pixels, two fetches
-  // per pixel row.
-  for (int y = 0; y < 4; ++y) {
-    const int py = 2 * (t0.y + y);
-    const vec4 a = max(depthRow(2 * t0.x, py), depthRow(2 * t0.x, py + 1));
-    const vec4 b = max(depthRow(2 * t0.x + 4, py), depthRow(2 * t0.x + 4, py + 1));
-    v[y][0] = max(a.x, a.y);
-    v[y][1] = max(a.z, a.w);
-    v[y][2] = max(b.x, b.y);
-    v[y][3] = max(b.z, b.w);
-  }
-#else
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) v[y][x] = firstLevelTexel(t0 + ivec2(x, y));
-#endif
-  ivec2 size = hizLevelSize(level0, pc.firstLevel);
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) {
-      const ivec2 t = t0 + ivec2(x, y);
-      if (all(lessThan(t, size))) imageStore(dst0, t, vec4(v[y][x]));
-    }
+  const vec4 r0 = blockRow(t0), r1 = blockRow(t0 + ivec2(0, 1)), r2 = blockRow(t0 + ivec2(0, 2)),
+             r3 = blockRow(t0 + ivec2(0, 3));
+  const ivec2 size = hizLevelSize(level0, pc.firstLevel);
+  STORE_ROW(dst0, t0, r0, size)
+  STORE_ROW(dst0, (t0 + ivec2(0, 1)), r1, size)
+  STORE_ROW(dst0, (t0 + ivec2(0, 2)), r2, size)
+  STORE_ROW(dst0, (t0 + ivec2(0, 3)), r3, size)
   if (pc.levels < 2u) return;
-  float w[2][2];
-  for (int y = 0; y < 2; ++y)
-    for (int x = 0; x < 2; ++x) {
-      const ivec2 t = 2 * g + ivec2(x, y);
-      w[y][x] = hizReduce(size, t, v[2 * y][2 * x], v[2 * y][2 * x + 1], v[2 * y + 1][2 * x],
-                          v[2 * y + 1][2 * x + 1]);
-    }
+  const ivec2 t1 = 2 * g;  // the 2 x 2 texels of the next level
+  const vec2 w0 = vec2(hizReduce(size, t1, r0.x, r0.y, r1.x, r1.y),
+                       hizReduce(size, t1 + ivec2(1, 0), r0.z, r0.w, r1.z, r1.w));
+  const vec2 w1 = vec2(hizReduce(size, t1 + ivec2(0, 1), r2.x, r2.y, r3.x, r3.y),
+                       hizReduce(size, t1 + 1, r2.z, r2.w, r3.z, r3.w));
   const ivec2 size1 = hizLevelSize(level0, pc.firstLevel + 1u);
-  for (int y = 0; y < 2; ++y)
-    for (int x = 0; x < 2; ++x) {
-      const ivec2 t = 2 * g + ivec2(x, y);
-      if (all(lessThan(t, size1))) imageStore(dst1, t, vec4(w[y][x]));
-    }
+  if (t1.y < size1.y) {
+    if (t1.x < size1.x) imageStore(dst1, t1, vec4(w0.x));
+    if (t1.x + 1 < size1.x) imageStore(dst1, t1 + ivec2(1, 0), vec4(w0.y));
+  }
+  if (t1.y + 1 < size1.y) {
+    if (t1.x < size1.x) imageStore(dst1, t1 + ivec2(0, 1), vec4(w1.x));
+    if (t1.x + 1 < size1.x) imageStore(dst1, t1 + 1, vec4(w1.y));
+  }
   if (pc.levels < 3u) return;
-  const float u = hizReduce(size1, g, w[0][0], w[0][1], w[1][0], w[1][1]);
+  const float u = hizReduce(size1, g, w0.x, w0.y, w1.x, w1.y);
   if (all(lessThan(g, hizLevelSize(level0, pc.firstLevel + 2u)))) imageStore(dst2, g, vec4(u));
 }
