@@ -2,8 +2,9 @@
 // Up to kHiZBlockLevels levels of the Hi-Z pyramid (Niessner & Loop §4.1) in one dispatch,
 // without shared memory or barriers: each invocation reduces the sources of a
 // kHiZBlock x kHiZBlock block of the first level it writes, then that block to 2 x 2
-// texels of the next level and to one of the level after (hiz_reduce.glsl). A build is
-// ceil(levels / 3) dispatches (11 levels at 720p and 1080p: 4).
+// texels of the next level and to one of the level after (hiz_reduce.glsl). Dispatches
+// follow one another until the rest fits hiz_tail.comp (at 720p and 1080p: levels 0-2 here,
+// 3-10 in the tail).
 //
 // Why (docs/algorithms/occlusion.md, "Building the pyramid on lavapipe"): llvmpipe runs the
 // invocations of a workgroup in 8-lane vectors; what costs is each texel a vector touches
@@ -11,7 +12,8 @@
 // fetch of an R32 level), each dispatch and barrier, and every branch, which it executes
 // masked rather than skips. So the top level is read as four depth pixels per fetch
 // (HIZ_DEPTH_ROWS: a copy of the depth in an RGBA32F texel buffer, rows of pc.rowTexels
-// texels), the variants are compiled apart, and one dispatch writes three levels.
+// texels), the variants are compiled apart, one dispatch writes three levels, and the block
+// lives in four vec4 rows, without loops (an indexed local array lives in memory).
 //
 // Sources (the first level, pc.firstLevel):
 //   HIZ_DEPTH_ROWS   level 0 from the depth rows buffer (pixels past the image read far);
