@@ -1,6 +1,7 @@
-// Constants and push-constant blocks of the Hi-Z pyramid build (shaders/hiz/hiz_reduce.comp)
-// and of the Hi-Z occlusion test (shaders/hiz/occlusion.glsl), shared by C++
-// (osd_cull/bound/occlusion, osd_cull/frame/hiz_pyramid) and GLSL.
+// Constants and push-constant blocks of the Hi-Z pyramid builds (shaders/hiz/hiz_blocks.comp,
+// hiz_tail.comp, hiz_reduce.comp, hiz_single_pass.comp) and of the Hi-Z occlusion test
+// (shaders/hiz/occlusion.glsl), shared by C++ (osd_cull/bound/occlusion,
+// osd_cull/frame/hiz_pyramid) and GLSL.
 //
 // Pyramid layout (Niessner & Loop §4.1; bound::HiZLayout computes it on the host): the depth
 // image W x H is padded to P = max(bit_ceil(W), 2^s) x max(bit_ceil(H), 2^s), s = baseShift
