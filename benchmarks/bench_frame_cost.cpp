@@ -503,15 +503,21 @@ void pyramidCost(vulkan::Context& context, const Options& o) {
   struct Kind {
     std::string name;
     frame::HiZReduction reduction;
-    bool legacy;
+    bool legacy = false;
+    bool readDepthImage = false;
   };
-  std::vector<Kind> kinds = {{"single pass (1 dispatch)", frame::HiZReduction::SinglePass, false},
-                             {"per level, four-tap", frame::HiZReduction::FourTap, false},
-                             {"per level, four-tap, before (every texel every build)",
-                              frame::HiZReduction::FourTap, true}};
+  std::vector<Kind> kinds = {
+      {"blocked: 3 levels a dispatch, depth copied to RGBA rows (default)",
+       frame::HiZReduction::Blocked},
+      {"blocked, top level gathered from the depth image", frame::HiZReduction::Blocked, false,
+       true},
+      {"single pass (1 dispatch)", frame::HiZReduction::SinglePass},
+      {"per level, four-tap", frame::HiZReduction::FourTap},
+      {"per level, four-tap, before (every texel every build)", frame::HiZReduction::FourTap,
+       true}};
   if (frame::supportsMinmaxReduction(context)) {
-    kinds.push_back({"per level, min/max sampler, gathered top level (default)",
-                     frame::HiZReduction::Sampler, false});
+    kinds.push_back(
+        {"per level, min/max sampler, gathered top level", frame::HiZReduction::Sampler});
     kinds.push_back({"per level, min/max sampler, before (four-tap top level, every texel)",
                      frame::HiZReduction::Sampler, true});
   }
@@ -521,6 +527,7 @@ void pyramidCost(vulkan::Context& context, const Options& o) {
     frame::HiZOptions ho;
     ho.reduction = k.reduction;
     ho.legacyBuild = k.legacy;
+    ho.readDepthImage = k.readDepthImage;
     createMs.push_back(timed([&] {
       pyramids.push_back(std::make_unique<frame::HiZPyramid>(context, target.depth(), ho));
       pyramids.back()->build(context, frame::RenderTarget::kDepthLayout);

@@ -1,6 +1,8 @@
-// The Hi-Z pyramid built in compute equals the double-precision reference texel for texel,
-// in one dispatch (single pass) and per level with the min/max sampler reduction and with
-// four texel fetches, at half and full resolution, for power-of-two, odd and tiny sizes.
+// The Hi-Z pyramid built in compute equals the double-precision reference texel for texel:
+// blocked (three levels a dispatch, the top level from a copy of the depth or from the
+// depth image, the others with the min/max sampler or four fetches), in one dispatch
+// (single pass) and per level with the min/max sampler reduction and with four texel
+// fetches, at half and full resolution, for power-of-two, odd and tiny sizes.
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/frame/hiz/hiz_pyramid.h"
 #include "osd_cull/vk/buffer.h"
@@ -13,6 +15,7 @@
 
 #include <cstring>
 #include <random>
+#include <string>
 
 namespace osd_cull {
 namespace {
@@ -63,15 +66,19 @@ class HiZPyramidTest : public test::VkTest {
   // Builds on the GPU and compares every texel with the reference; returns the levels.
   std::vector<std::vector<float>> buildAndCompare(uint32_t w, uint32_t h,
                                                   const std::vector<float>& depth, bool full,
-                                                  HiZReduction reduction) {
+                                                  HiZReduction reduction,
+                                                  frame::HiZOptions options = {}) {
     const vulkan::Image image = depthImage(w, h, depth);
-    frame::HiZPyramid pyramid(context(), image, {full, reduction});
-    if (reduction != HiZReduction::Auto) {
-      EXPECT_EQ(pyramid.usesSampler(), reduction == HiZReduction::Sampler);
-    }
-    EXPECT_EQ(pyramid.singlePass(),
-              reduction == HiZReduction::SinglePass ||
-                  (reduction == HiZReduction::Auto && !frame::supportsMinmaxReduction(context())));
+    options.fullResolution = full;
+    options.reduction = reduction;
+    frame::HiZPyramid pyramid(context(), image, options);
+    const bool blocked = reduction == HiZReduction::Blocked || reduction == HiZReduction::Auto;
+    EXPECT_EQ(pyramid.usesSampler(),
+              reduction == HiZReduction::Sampler ||
+                  (blocked && !options.fourTapLevels && frame::supportsMinmaxReduction(context())));
+    EXPECT_EQ(pyramid.singlePass(), reduction == HiZReduction::SinglePass);
+    EXPECT_EQ(pyramid.blocked(), blocked);
+    EXPECT_EQ(pyramid.copiesDepth(), blocked && !options.readDepthImage);
     pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
     const auto levels = pyramid.readLevels(context());
     const bound::HiZPyramid ref = bound::buildHiZPyramid(depth, w, h, full);
@@ -89,6 +96,18 @@ class HiZPyramidTest : public test::VkTest {
     return levels;
   }
 
+  // Every level equals the reference's texel for texel (stops at the first difference).
+  static void expectReference(const std::vector<std::vector<float>>& levels,
+                              const std::vector<float>& depth, uint32_t w, uint32_t h, bool full,
+                              const std::string& what) {
+    const bound::HiZPyramid ref = bound::buildHiZPyramid(depth, w, h, full);
+    ASSERT_EQ(levels.size(), ref.levels.size()) << what;
+    for (size_t l = 0; l < levels.size(); ++l)
+      for (size_t i = 0; i < levels[l].size(); ++i)
+        ASSERT_EQ(double{levels[l][i]}, ref.levels[l][i])
+            << what << (full ? " full" : " half") << " level " << l << " texel " << i;
+  }
+
   void requireSampler() {
     if (!frame::supportsMinmaxReduction(context()))
       GTEST_SKIP() << "device has no min/max sampler reduction";
@@ -99,6 +118,56 @@ struct Size {
   uint32_t w, h;
 };
 const Size kSizes[] = {{1, 1}, {2, 3}, {5, 5}, {64, 64}, {1, 17}, {40, 1}, {333, 517}};
+
+TEST_F(HiZPyramidTest, BlockedBuildEqualsTheReference) {
+  // Every source of the first dispatch (the depth copied as RGBA rows, or read from the
+  // image) and of the others (MAX sampler, four fetches); widths that are and are not
+  // multiples of the four pixels of a row texel, sizes below and above one block; 4000 x 8
+  // has 12 levels: blocked 0-2 and 3-5, the tail 6-11.
+  const Size sizes[] = {{1, 1},  {2, 3},     {5, 5},   {64, 64}, {1, 17},
+                        {40, 1}, {333, 517}, {130, 7}, {4000, 8}};
+  for (const Size& s : sizes)
+    for (bool full : {false, true})
+      for (bool image : {false, true})
+        for (bool fourTap : {false, true}) {
+          frame::HiZOptions o;
+          o.readDepthImage = image;
+          o.fourTapLevels = fourTap;
+          buildAndCompare(s.w, s.h, randomDepth(s.w, s.h, s.w * 7 + s.h), full,
+                          HiZReduction::Blocked, o);
+        }
+}
+
+TEST_F(HiZPyramidTest, BlockedBuildNeedsTwoDispatchesAt720pAnd1080p) {
+  // Levels 0-2 blocked, 3-10 in the tail's workgroup; more levels, more blocked dispatches.
+  const struct {
+    Size size;
+    uint32_t levels, dispatches;
+  } cases[] = {{{1280, 720}, 11, 2}, {{1920, 1080}, 11, 2}, {{4000, 8}, 12, 3}, {{5, 5}, 3, 1}};
+  for (const auto& c : cases) {
+    const vulkan::Image image =
+        depthImage(c.size.w, c.size.h, std::vector<float>(size_t{c.size.w} * c.size.h, 0.5f));
+    const frame::HiZPyramid pyramid(context(), image);
+    EXPECT_TRUE(pyramid.blocked());
+    EXPECT_TRUE(pyramid.copiesDepth());
+    EXPECT_EQ(pyramid.layout().levelCount, c.levels) << c.size.w << "x" << c.size.h;
+    EXPECT_EQ(pyramid.dispatchCount(), c.dispatches) << c.size.w << "x" << c.size.h;
+  }
+}
+
+TEST_F(HiZPyramidTest, BlockedBuildReadsADepthImageWithoutTransferUsage) {
+  // An application's depth attachment may lack TRANSFER_SRC: no copy, gathers instead.
+  const uint32_t w = 70, h = 45;
+  const std::vector<float> depth = randomDepth(w, h, 5);
+  const vulkan::Image owned = depthImage(w, h, depth);
+  vulkan::ImageDesc desc = owned.desc();
+  desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
+  const vulkan::Image borrowed = vulkan::Image::borrow(context(), owned.handle(), desc);
+  frame::HiZPyramid pyramid(context(), borrowed);
+  EXPECT_FALSE(pyramid.copiesDepth());
+  pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
+  expectReference(pyramid.readLevels(context()), depth, w, h, false, "borrowed");
+}
 
 TEST_F(HiZPyramidTest, FourTapReductionEqualsTheReference) {
   for (const Size s : kSizes)
@@ -176,7 +245,8 @@ TEST_F(HiZPyramidTest, RebuildsUpdateTheImageAndKeepThePaddingFar) {
   // Later builds skip the texels that cover only padding: they must still read far.
   const uint32_t w = 300, h = 70;
   const std::vector<float> first = randomDepth(w, h, 1), second = randomDepth(w, h, 2);
-  for (HiZReduction r : {HiZReduction::SinglePass, HiZReduction::FourTap, HiZReduction::Sampler})
+  for (HiZReduction r : {HiZReduction::Blocked, HiZReduction::SinglePass, HiZReduction::FourTap,
+                         HiZReduction::Sampler})
     for (bool full : {false, true}) {
       if (r == HiZReduction::Sampler && !frame::supportsMinmaxReduction(context())) continue;
       const vulkan::Image image = depthImage(w, h, first);
@@ -184,13 +254,7 @@ TEST_F(HiZPyramidTest, RebuildsUpdateTheImageAndKeepThePaddingFar) {
       pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
       upload(image, second, VK_IMAGE_LAYOUT_GENERAL);
       pyramid.build(context(), VK_IMAGE_LAYOUT_GENERAL);
-      const auto levels = pyramid.readLevels(context());
-      const bound::HiZPyramid ref = bound::buildHiZPyramid(second, w, h, full);
-      ASSERT_EQ(levels.size(), ref.levels.size());
-      for (size_t l = 0; l < levels.size(); ++l)
-        for (size_t i = 0; i < levels[l].size(); ++i)
-          ASSERT_EQ(double{levels[l][i]}, ref.levels[l][i])
-              << toString(r) << (full ? " full" : " half") << " level " << l << " texel " << i;
+      expectReference(pyramid.readLevels(context()), second, w, h, full, toString(r));
     }
 }
 

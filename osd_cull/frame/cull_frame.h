@@ -186,7 +186,8 @@ class CullFrame {
   ///   DEPTH_STENCIL_ATTACHMENT_OPTIMAL; an application's: ExternalTarget::colorLayout and
   ///   depthLayout), with their writes made available (the render passes' external
   ///   dependencies, or the barriers of dynamic rendering, docs/integration.md);
-  /// - move the depth image to DEPTH_STENCIL_READ_ONLY_OPTIMAL for the pyramid build and
+  /// - move the depth image to TRANSFER_SRC_OPTIMAL (the pyramid build copies it when it
+  ///   has TRANSFER_SRC usage) or DEPTH_STENCIL_READ_ONLY_OPTIMAL for the pyramid build and
   ///   back; the pyramid image stays in GENERAL;
   /// - copy the frame's statistics into a readback slot, made available to the host.
   ///

@@ -11,7 +11,7 @@
 // max(1, level0 >> l): once an axis is one texel wide, a texel's source column (or row)
 // pair is clamped to that one texel, so the maximum runs over the sources inside the level
 // only (the clamped duplicate is one of them).
-#include <shared/hiz_layout.h>
+#include "hiz_reduce.glsl"
 
 layout(local_size_x = 256) in;  // kHiZSinglePassThreads: 16 x 16 threads, 2 x 2 texels each
 
@@ -73,15 +73,9 @@ float level0(ivec2 t) {
 }
 
 // The farthest of the (up to) four values below texel t of level l + 1 that lie inside
-// level l; v[dy][dx] is the value of source 2t + (dx, dy).
+// level l (hiz_reduce.glsl).
 float reduce(uint l, ivec2 t, float v00, float v10, float v01, float v11) {
-  const ivec2 size = levelSize(l);
-  const bool x1 = 2 * t.x + 1 < size.x, y1 = 2 * t.y + 1 < size.y;
-  float m = v00;
-  if (x1) m = max(m, v10);
-  if (y1) m = max(m, v01);
-  if (x1 && y1) m = max(m, v11);
-  return m;
+  return hizReduce(levelSize(l), t, v00, v10, v01, v11);
 }
 
 // Level L of this tile, n x n texels, from level L - 1 in `tile` (written back to it).

@@ -1,6 +1,7 @@
-// Constants and push-constant blocks of the Hi-Z pyramid build (shaders/hiz/hiz_reduce.comp)
-// and of the Hi-Z occlusion test (shaders/hiz/occlusion.glsl), shared by C++
-// (osd_cull/bound/occlusion, osd_cull/frame/hiz_pyramid) and GLSL.
+// Constants and push-constant blocks of the Hi-Z pyramid builds (shaders/hiz/hiz_blocks.comp,
+// hiz_tail.comp, hiz_reduce.comp, hiz_single_pass.comp) and of the Hi-Z occlusion test
+// (shaders/hiz/occlusion.glsl), shared by C++ (osd_cull/bound/occlusion,
+// osd_cull/frame/hiz_pyramid) and GLSL.
 //
 // Pyramid layout (Niessner & Loop §4.1; bound::HiZLayout computes it on the host): the depth
 // image W x H is padded to P = max(bit_ceil(W), 2^s) x max(bit_ceil(H), 2^s), s = baseShift
@@ -84,6 +85,32 @@ struct HiZSinglePassConstants {
   float invHeight;
 };
 
+// The blocked build (shaders/hiz/hiz_blocks.comp): each dispatch writes up to
+// kHiZBlockLevels levels, each invocation a kHiZBlock x kHiZBlock block of the first of
+// them, kHiZBlockGroup x kHiZBlockGroup invocations a workgroup.
+OSD_CULL_CONST uint kHiZBlockLevels = 3u;
+OSD_CULL_CONST uint kHiZBlock = 4u;
+OSD_CULL_CONST uint kHiZBlockGroup = 8u;
+// The tail (shaders/hiz/hiz_tail.comp): one workgroup of kHiZTailThreads threads writes
+// the last levels, at most kHiZTailLevels, when the first of them has at most
+// kHiZTailTexels texels.
+OSD_CULL_CONST uint kHiZTailLevels = 8u;
+OSD_CULL_CONST uint kHiZTailThreads = 64u;
+OSD_CULL_CONST uint kHiZTailTexels = 16384u;
+
+// Push constants of one dispatch of the blocked build.
+struct HiZBlockConstants {
+  uint firstLevel;   // the first level written
+  uint levels;       // levels written, 1 .. kHiZBlockLevels
+  uint srcWidth;     // the source in texels: the depth image (firstLevel 0) or level
+  uint srcHeight;    //   firstLevel - 1; depth pixels past it read kHiZFar. hiz_tail.comp:
+                     //   the texels of the first level to write (its updated part)
+  uint level0Width;  // level 0 in texels; level l is max(1, size >> l)
+  uint level0Height;
+  uint rowTexels;  // the depth rows buffer (HIZ_DEPTH_ROWS): RGBA32F texels per pixel row
+  uint pad0;
+};
+
 // What the occlusion test needs to know about the pyramid (part of the cull constants).
 struct HiZParams {
   uint width;  // depth image size in pixels (the screen the box is clamped to)
@@ -110,5 +137,6 @@ OSD_CULL_SHARED_END
 static_assert(sizeof(osd_cull::shader::HiZReduceConstants) == 32);
 static_assert(sizeof(osd_cull::shader::HiZParams) == 32);
 static_assert(sizeof(osd_cull::shader::HiZSinglePassConstants) == 32);
+static_assert(sizeof(osd_cull::shader::HiZBlockConstants) == 32);
 #endif
 #endif

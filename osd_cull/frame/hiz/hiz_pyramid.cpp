@@ -72,6 +72,46 @@ const vulkan::ShaderSource kReduceFetch{"hiz/hiz_reduce.comp", {}};
 const vulkan::ShaderSource kReduceSampler{"hiz/hiz_reduce.comp", {{"HIZ_SAMPLER", ""}}};
 const vulkan::ShaderSource kReduceGather{"hiz/hiz_reduce.comp", {{"HIZ_GATHER", ""}}};
 const vulkan::ShaderSource kSinglePass{"hiz/hiz_single_pass.comp", {}};
+// The blocked build: the top level's sources, then the other levels'.
+const vulkan::ShaderSource kBlocksDepthRows{"hiz/hiz_blocks.comp", {{"HIZ_DEPTH_ROWS", ""}}};
+const vulkan::ShaderSource kBlocksDepthRowsFull{
+    "hiz/hiz_blocks.comp", {{"HIZ_DEPTH_ROWS", ""}, {"HIZ_FULL_RESOLUTION", ""}}};
+const vulkan::ShaderSource kBlocksDepthGather{"hiz/hiz_blocks.comp", {{"HIZ_DEPTH_GATHER", ""}}};
+const vulkan::ShaderSource kBlocksDepthFetch{"hiz/hiz_blocks.comp", {{"HIZ_DEPTH_FETCH", ""}}};
+const vulkan::ShaderSource kBlocksSampler{"hiz/hiz_blocks.comp", {{"HIZ_SAMPLER", ""}}};
+const vulkan::ShaderSource kBlocksFourTap{"hiz/hiz_blocks.comp", {}};
+const vulkan::ShaderSource kTailSampler{"hiz/hiz_tail.comp", {{"HIZ_SAMPLER", ""}}};
+const vulkan::ShaderSource kTailFourTap{"hiz/hiz_tail.comp", {}};
+
+// Binding 0 the source (the depth rows buffer or an image), 1-3 the levels written.
+const vulkan::DescriptorBinding kBlockBindings[] = {
+    {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+const vulkan::DescriptorBinding kBlockRowsBindings[] = {
+    {0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+// The tail: binding 0 the level below its first, 1-8 its levels.
+const vulkan::DescriptorBinding kTailBindings[] = {
+    {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT},
+    {8, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT}};
+static_assert(std::size(kTailBindings) == 1 + shader::kHiZTailLevels);
+// What a pool of the blocked build's sets holds per set (either binding 0).
+const vulkan::DescriptorBinding kBlockPoolBindings[] = {
+    {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT, shader::kHiZTailLevels}};
+constexpr VkFormat kDepthRowsFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 }  // namespace
 
@@ -79,6 +119,8 @@ const char* toString(HiZReduction reduction) {
   switch (reduction) {
     case HiZReduction::Auto:
       return "auto";
+    case HiZReduction::Blocked:
+      return "blocked";
     case HiZReduction::SinglePass:
       return "single";
     case HiZReduction::Sampler:
@@ -111,13 +153,12 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth,
     throw Error("HiZPyramid: min/max sampler reduction requested, but device '" +
                 context.info().name +
                 "' lacks samplerFilterMinmax or MINMAX and LINEAR filtering of R32_SFLOAT");
-  // Auto: the fastest build measured on lavapipe (docs/results/frame-cost.md), where the
-  // cost is per texel accessed, not per dispatch.
-  singlePass_ = options.reduction == HiZReduction::SinglePass ||
-                (options.reduction == HiZReduction::Auto && !minmax);
-  sampler_ = options.reduction == HiZReduction::Sampler ||
-             (options.reduction == HiZReduction::Auto && minmax);
-  depthSampler_ = sampler_ && formatHasMinmax(context, depth.format());
+  // Auto: the fastest build measured on lavapipe (docs/algorithms/occlusion.md).
+  blocked_ = options.reduction == HiZReduction::Blocked || options.reduction == HiZReduction::Auto;
+  singlePass_ = options.reduction == HiZReduction::SinglePass;
+  sampler_ =
+      options.reduction == HiZReduction::Sampler || (blocked_ && minmax && !options.fourTapLevels);
+  depthSampler_ = sampler_ && !blocked_ && formatHasMinmax(context, depth.format());
   lookup_ = options.lookup;
   legacy_ = options.legacyBuild;
   if (singlePass_ && layout_.levelCount > shader::kHiZMaxLevels)
@@ -132,6 +173,10 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth,
   fetchSampler_ = createSampler(context, false, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
   if (singlePass_) {
     createSinglePass(context);
+    return;
+  }
+  if (blocked_) {
+    createBlocked(context, options.readDepthImage);
     return;
   }
   if (depthSampler_)
@@ -168,6 +213,12 @@ HiZPyramid::HiZPyramid(vulkan::Context& context, const vulkan::Image& depth,
 }
 
 HiZPyramid::~HiZPyramid() = default;
+
+uint32_t HiZPyramid::dispatchCount() const {
+  if (singlePass_) return 1;
+  if (blocked_) return static_cast<uint32_t>(blockDispatches_.size());
+  return layout_.levelCount;
+}
 
 const vulkan::ComputeProgram& HiZPyramid::programOf(uint32_t level) const {
   if (level == 0 && gatherProgram_ && layout_.baseShift == 1) return *gatherProgram_;
@@ -246,11 +297,16 @@ void HiZPyramid::recordSinglePass(VkCommandBuffer cmd) {
 }
 
 void HiZPyramid::record(VkCommandBuffer cmd, VkImageLayout depthLayout) {
-  vulkan::imageBarrier(cmd, depth_, depthLayout, kDepthReadLayout, kDepthWrite,
-                       vulkan::scope::kComputeRead);
   vulkan::imageBarrier(
       cmd, image_, built_ ? kPyramidLayout : VK_IMAGE_LAYOUT_UNDEFINED, kPyramidLayout,
       kPyramidUsers, singlePass_ ? vulkan::scope::kComputeReadWrite : vulkan::scope::kComputeWrite);
+  if (blocked_) {
+    recordBlocked(cmd, depthLayout);
+    built_ = true;
+    return;
+  }
+  vulkan::imageBarrier(cmd, depth_, depthLayout, kDepthReadLayout, kDepthWrite,
+                       vulkan::scope::kComputeRead);
   if (singlePass_)
     recordSinglePass(cmd);
   else
@@ -258,6 +314,154 @@ void HiZPyramid::record(VkCommandBuffer cmd, VkImageLayout depthLayout) {
   vulkan::imageBarrier(cmd, depth_, kDepthReadLayout, depthLayout, vulkan::scope::kComputeRead,
                        kDepthTests);
   built_ = true;
+}
+
+void HiZPyramid::createBlocked(vulkan::Context& context, bool readDepthImage) {
+  const uint32_t rowTexels = (layout_.width + 3) / 4;
+  VkFormatProperties rows;
+  vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), kDepthRowsFormat, &rows);
+  const bool copy =
+      !readDepthImage && depth_.format() == VK_FORMAT_D32_SFLOAT &&
+      (depth_.desc().usage & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) &&
+      (rows.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT) &&
+      uint64_t{rowTexels} * layout_.height <= context.info().limits.maxTexelBufferElements;
+  const bool full = layout_.baseShift == 0;
+  const vulkan::ShaderSource& top = copy   ? (full ? kBlocksDepthRowsFull : kBlocksDepthRows)
+                                    : full ? kBlocksDepthFetch
+                                           : kBlocksDepthGather;
+  topProgram_ = std::make_unique<vulkan::ComputeProgram>(
+      context, top, copy ? std::span(kBlockRowsBindings) : std::span(kBlockBindings),
+      sizeof(shader::HiZBlockConstants));
+  // Three levels a dispatch from the depth, then until the rest fit the tail's workgroup.
+  for (uint32_t first = 0; first < layout_.levelCount; first += shader::kHiZBlockLevels) {
+    const uint32_t rest = layout_.levelCount - first;
+    if (first > 0 && rest <= shader::kHiZTailLevels &&
+        layout_.levelWidth(first) * layout_.levelHeight(first) <= shader::kHiZTailTexels) {
+      blockDispatches_.push_back({first, rest, true});
+      break;
+    }
+    blockDispatches_.push_back({first, std::min(rest, shader::kHiZBlockLevels), false});
+  }
+  const size_t blockedDispatches = blockDispatches_.size() - (blockDispatches_.back().tail ? 1 : 0);
+  if (blockedDispatches > 1)
+    blockProgram_ = std::make_unique<vulkan::ComputeProgram>(
+        context, sampler_ ? kBlocksSampler : kBlocksFourTap, kBlockBindings,
+        sizeof(shader::HiZBlockConstants));
+  if (blockDispatches_.back().tail)
+    tailProgram_ =
+        std::make_unique<vulkan::ComputeProgram>(context, sampler_ ? kTailSampler : kTailFourTap,
+                                                 kTailBindings, sizeof(shader::HiZBlockConstants));
+  if (copy) {
+    depthRowTexels_ = rowTexels;
+    depthRows_ =
+        vulkan::Buffer(context, VkDeviceSize{rowTexels} * layout_.height * 16,
+                       VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+    info.buffer = depthRows_.handle();
+    info.format = kDepthRowsFormat;
+    info.range = VK_WHOLE_SIZE;
+    VkBufferView view = VK_NULL_HANDLE;
+    OSD_CULL_VK(vkCreateBufferView(context.device(), &info, nullptr, &view));
+    depthRowsView_ =
+        vulkan::DeviceHandle<VkBufferView, vkDestroyBufferView>(context.device(), view);
+  } else {
+    depthMaxSampler_ = createSampler(context, false, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER);
+  }
+  if (sampler_)
+    levelMaxSampler_ = createSampler(context, true, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE);
+  pool_ = std::make_unique<vulkan::DescriptorPool>(context, dispatchCount(), kBlockPoolBindings);
+  for (uint32_t d = 0; d < dispatchCount(); ++d) {
+    const BlockDispatch& b = blockDispatches_[d];
+    const uint32_t first = b.firstLevel;
+    const VkDescriptorSet set = pool_->allocate(blockProgramOf(b).setLayout());
+    vulkan::DescriptorWriter w;
+    if (d > 0)
+      w.sampledImage(0, image_.mipView(first - 1),
+                     sampler_ ? levelMaxSampler_.get() : fetchSampler_.get(), kPyramidLayout);
+    else if (!copy)
+      w.sampledImage(0, depth_.view(), full ? fetchSampler_.get() : depthMaxSampler_.get(),
+                     kDepthReadLayout);
+    // Levels past the last repeat it (the shader writes only pc.levels of them).
+    for (uint32_t k = 0; k < (b.tail ? shader::kHiZTailLevels : shader::kHiZBlockLevels); ++k)
+      w.storageImage(1 + k, image_.mipView(std::min(first + k, layout_.levelCount - 1)),
+                     kPyramidLayout);
+    w.update(context.device(), set);
+    if (d == 0 && copy) {
+      const VkBufferView view = depthRowsView_.get();
+      VkWriteDescriptorSet rowsWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+      rowsWrite.dstSet = set;
+      rowsWrite.dstBinding = 0;
+      rowsWrite.descriptorCount = 1;
+      rowsWrite.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+      rowsWrite.pTexelBufferView = &view;
+      vkUpdateDescriptorSets(context.device(), 1, &rowsWrite, 0, nullptr);
+    }
+    sets_.push_back(set);
+  }
+}
+
+const vulkan::ComputeProgram& HiZPyramid::blockProgramOf(const BlockDispatch& b) const {
+  if (b.tail) return *tailProgram_;
+  return b.firstLevel == 0 ? *topProgram_ : *blockProgram_;
+}
+
+void HiZPyramid::recordBlocked(VkCommandBuffer cmd, VkImageLayout depthLayout) {
+  if (copiesDepth()) {
+    // The depth pixels into the rows buffer (a copy: four per texel fetch afterwards), and
+    // the depth image straight back to its layout for the next render pass.
+    constexpr VkImageLayout kCopyLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    vulkan::imageBarrier(cmd, depth_, depthLayout, kCopyLayout, kDepthWrite,
+                         vulkan::scope::kTransferRead);
+    vulkan::bufferBarrier(cmd, depthRows_, vulkan::scope::kComputeRead,
+                          vulkan::scope::kTransferWrite);  // the last build's reads
+    VkBufferImageCopy region{};
+    region.bufferRowLength = depthRowTexels_ * 4;
+    region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
+    region.imageExtent = {layout_.width, layout_.height, 1};
+    vkCmdCopyImageToBuffer(cmd, depth_.handle(), kCopyLayout, depthRows_.handle(), 1, &region);
+    vulkan::bufferBarrier(cmd, depthRows_, vulkan::scope::kTransferWrite,
+                          vulkan::scope::kComputeRead);
+    vulkan::imageBarrier(cmd, depth_, kCopyLayout, depthLayout, vulkan::scope::kTransferRead,
+                         kDepthTests);
+  } else {
+    vulkan::imageBarrier(cmd, depth_, depthLayout, kDepthReadLayout, kDepthWrite,
+                         vulkan::scope::kComputeRead);
+  }
+  for (uint32_t d = 0; d < dispatchCount(); ++d) {
+    const BlockDispatch& b = blockDispatches_[d];
+    shader::HiZBlockConstants c{};
+    c.firstLevel = b.firstLevel;
+    c.levels = b.levels;
+    c.srcWidth = d == 0 ? layout_.width : layout_.levelWidth(c.firstLevel - 1);
+    c.srcHeight = d == 0 ? layout_.height : layout_.levelHeight(c.firstLevel - 1);
+    c.level0Width = layout_.levelWidth(0);
+    c.level0Height = layout_.levelHeight(0);
+    c.rowTexels = depthRowTexels_;
+    const VkExtent2D extent = updatedExtent(c.firstLevel);
+    const std::span<const std::byte> push = std::as_bytes(std::span(&c, 1));
+    if (b.tail) {
+      // One workgroup; the levels above the first are small enough to write whole.
+      c.srcWidth = extent.width;
+      c.srcHeight = extent.height;
+      tailProgram_->dispatch(cmd, sets_[d], push, 1, 1);
+    } else {
+      // Each invocation covers kHiZBlock texels of the first level per axis, and so the
+      // updated part of the levels above it.
+      blockProgramOf(b).dispatch(
+          cmd, sets_[d], push,
+          vulkan::groupCount(vulkan::groupCount(extent.width, shader::kHiZBlock),
+                             shader::kHiZBlockGroup),
+          vulkan::groupCount(vulkan::groupCount(extent.height, shader::kHiZBlock),
+                             shader::kHiZBlockGroup));
+    }
+    vulkan::imageBarrier(cmd, image_, kPyramidLayout, kPyramidLayout, vulkan::scope::kComputeWrite,
+                         {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT},
+                         c.firstLevel, c.levels);
+  }
+  if (!copiesDepth())
+    vulkan::imageBarrier(cmd, depth_, kDepthReadLayout, depthLayout, vulkan::scope::kComputeRead,
+                         kDepthTests);
 }
 
 VkExtent2D HiZPyramid::updatedExtent(uint32_t level) const {
@@ -322,7 +526,9 @@ std::vector<std::vector<float>> HiZPyramid::readLevels(vulkan::Context& context)
 std::vector<vulkan::ShaderVariant> hizPyramidShaderVariants() {
   std::vector<vulkan::ShaderVariant> v;
   for (const vulkan::ShaderSource* s :
-       {&kReduceFetch, &kReduceSampler, &kReduceGather, &kSinglePass})
+       {&kReduceFetch, &kReduceSampler, &kReduceGather, &kSinglePass, &kBlocksDepthRows,
+        &kBlocksDepthRowsFull, &kBlocksDepthGather, &kBlocksDepthFetch, &kBlocksSampler,
+        &kBlocksFourTap, &kTailSampler, &kTailFourTap})
     v.push_back(vulkan::ShaderVariant::file(*s));
   return v;
 }

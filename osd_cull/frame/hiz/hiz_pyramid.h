@@ -5,12 +5,15 @@
 ///
 /// Layout: bound::HiZLayout (sizes padded to powers of two, pixels past the image count as
 /// far, level 0 at half resolution as in the paper or at full resolution). By default the
-/// build is one dispatch for all levels (shaders/hiz/hiz_single_pass.comp, a single-pass
-/// downsampler as AMD FidelityFX SPD: workgroups reduce 64 x 64 tiles through shared memory,
-/// the last one to finish builds the top levels). The older per-level build (one dispatch
-/// and barrier per level) remains, with a min/max-reduction sampler (one filtered fetch per
-/// texel, VK_SAMPLER_REDUCTION_MODE_MAX) or with four texel fetches. All give the same
-/// values, equal to bound::buildHiZPyramid().
+/// build is blocked (shaders/hiz/hiz_blocks.comp): three levels per dispatch, each
+/// invocation a 4 x 4 block of texels and the 2 x 2 and 1 above it, the top level read from
+/// a copy of the depth in an RGBA32F texel buffer (four pixels per fetch), the others with a
+/// min/max-reduction sampler (VK_SAMPLER_REDUCTION_MODE_MAX) or four texel fetches: the
+/// cheapest on lavapipe (docs/algorithms/occlusion.md, "Building the pyramid on lavapipe").
+/// The single-pass build (hiz_single_pass.comp, a single-pass downsampler as AMD FidelityFX
+/// SPD: one dispatch, shared memory, the last workgroup builds the top levels) and the
+/// per-level build (one dispatch and barrier per level) remain. All give the same values,
+/// equal to bound::buildHiZPyramid().
 
 #include "osd_cull/bound/occlusion.h"
 #include "osd_cull/vk/buffer.h"
@@ -32,13 +35,14 @@ namespace osd_cull::frame {
 
 /// \brief How each level is reduced.
 enum class HiZReduction {
-  Auto,        ///< Sampler where supported (fastest on lavapipe), else SinglePass
+  Auto,        ///< Blocked (fastest on lavapipe)
+  Blocked,     ///< three levels per dispatch, 4 x 4 texels per invocation (the default)
   SinglePass,  ///< all levels in one dispatch (texel fetches, shared memory)
   Sampler,     ///< one dispatch per level, min/max sampler reduction (throws when unsupported)
   FourTap,     ///< one dispatch per level, four texelFetch() and max()
 };
 
-/// \brief "auto", "single", "sampler", "fourtap".
+/// \brief "auto", "blocked", "single", "sampler", "fourtap".
 const char* toString(HiZReduction reduction);
 
 /// \brief Options of a HiZPyramid.
@@ -50,6 +54,13 @@ struct HiZOptions {
   /// For measurements only: the per-level build as it was before the gathered top level and
   /// the skipped padding (every texel written in every build). Same values.
   bool legacyBuild = false;
+  /// Blocked build: read the top level from the depth image (one gather or fetch per texel)
+  /// rather than from a copy of it. Forced when the depth image lacks TRANSFER_SRC usage or
+  /// is not D32_SFLOAT, or the copy exceeds maxTexelBufferElements.
+  bool readDepthImage = false;
+  /// Blocked build: reduce the levels past the first dispatch's with four texel fetches
+  /// even where the MAX sampler exists (as on devices without it).
+  bool fourTapLevels = false;
 };
 
 /// \brief True when the device can reduce pyramid levels with a MAX sampler: the
@@ -77,9 +88,16 @@ class HiZPyramid {
   const bound::HiZLayout& layout() const { return layout_; }
   /// \brief True when all levels are built in one dispatch (HiZReduction::SinglePass).
   bool singlePass() const { return singlePass_; }
-  /// \brief Dispatches per build: 1 with the single pass, else one per level.
-  uint32_t dispatchCount() const { return singlePass_ ? 1 : layout_.levelCount; }
-  /// \brief True when levels 1.. are reduced with the MAX sampler (per-level build).
+  /// \brief True for the blocked build (HiZReduction::Blocked, Auto).
+  bool blocked() const { return blocked_; }
+  /// \brief True when the blocked build reads the top level from a copy of the depth.
+  bool copiesDepth() const { return bool(depthRows_); }
+  /// \brief Dispatches per build: 1 with the single pass; blocked one per three levels
+  /// until the rest fit the tail, one for the tail (2 at 720p and 1080p); else one per
+  /// level.
+  uint32_t dispatchCount() const;
+  /// \brief True when levels 1.. are reduced with the MAX sampler (per-level and blocked
+  /// builds).
   bool usesSampler() const { return sampler_; }
   /// \brief True when level 0 is reduced from the depth image with the MAX sampler.
   bool depthUsesSampler() const { return depthSampler_; }
@@ -107,12 +125,15 @@ class HiZPyramid {
   const vulkan::ComputeProgram& programOf(uint32_t level) const;
   void createSinglePass(vulkan::Context& context);
   void recordSinglePass(VkCommandBuffer cmd);
+  void createBlocked(vulkan::Context& context, bool readDepthImage);
+  void recordBlocked(VkCommandBuffer cmd, VkImageLayout depthLayout);
   void recordPerLevel(VkCommandBuffer cmd);
   /// Texels of `level` a build must write: all the first time, later only those whose
   /// footprint overlaps the depth image.
   VkExtent2D updatedExtent(uint32_t level) const;
 
   bool singlePass_ = false;
+  bool blocked_ = false;
   bool legacy_ = false;
   bool sampler_ = false;
   bool depthSampler_ = false;
@@ -131,6 +152,21 @@ class HiZPyramid {
   std::unique_ptr<vulkan::ComputeProgram> singlePassProgram_;
   vulkan::Buffer counter_;  // workgroups finished (single pass)
   VkDescriptorSet singlePassSet_ = VK_NULL_HANDLE;
+  // Blocked build: its dispatches (one set each, in sets_), the programs of the top level,
+  // of the other blocked levels and of the tail, and the depth copied as RGBA32F texels
+  // (rows of depthRowTexels_), when it is.
+  struct BlockDispatch {
+    uint32_t firstLevel = 0, levels = 0;
+    bool tail = false;  // shaders/hiz/hiz_tail.comp
+  };
+  std::vector<BlockDispatch> blockDispatches_;
+  std::unique_ptr<vulkan::ComputeProgram> topProgram_;
+  std::unique_ptr<vulkan::ComputeProgram> blockProgram_;
+  std::unique_ptr<vulkan::ComputeProgram> tailProgram_;
+  const vulkan::ComputeProgram& blockProgramOf(const BlockDispatch& b) const;
+  vulkan::Buffer depthRows_;
+  vulkan::DeviceHandle<VkBufferView, vkDestroyBufferView> depthRowsView_;
+  uint32_t depthRowTexels_ = 0;
 };
 
 }  // namespace osd_cull::frame
