@@ -362,6 +362,24 @@ TEST_F(CullKernelTest, NonFiniteControlPointsAreKeptByEveryStage) {
       }
     }
   }
+  // With static points the frustum stage and the cones' bound read the boxes: NaN for these
+  // patches (frame::packPatchBoxes), kept as well.
+  for (const std::string& method : {std::string(), std::string("ncone")}) {
+    CullSettings settings = backPatchOnly(method);
+    settings.frustum = true;
+    settings.staticPoints = true;
+    CullPass pass(context(), gpu, set, settings);
+    ASSERT_TRUE(pass.patchBoxes());
+    for (const auto& camera : views) {
+      pass.run(camera);
+      for (uint32_t p : bad) {
+        const CullCode c{pass.results()[p]};
+        EXPECT_FALSE(c.culled()) << "static " << method << " patch " << p << ": "
+                                 << bound::describe(c);
+        EXPECT_EQ(c.frustum(), sh::kFrustumNonFinite) << "static " << method;
+      }
+    }
+  }
 }
 
 TEST_F(CullKernelTest, UnknownOrMisplacedMethodsAreRejected) {
