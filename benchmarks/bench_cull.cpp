@@ -8,7 +8,7 @@
 //              [--frame-modes tcone,tcone/surface,tcone/listed,hiz/full,...] [--kernel-tess 4]
 //              [--displacement procedural|MAP] [--displacement-scale 0.64]
 //              [--break-even-tess 1,2,4,8,16,32] [--break-even-methods frustum,tcone]
-//              [--break-even-views 4] [--validate]
+//              [--break-even-views 4] [--floor-grids 316,1000] [--floor-views 3] [--validate]
 //
 // Method and mode names: "empty" (a pass with no test), "frustum", "all" (frustum +
 // tangent plane), a back-patch method ("tcone", ...) with the drawn-triangle bound (the
@@ -43,11 +43,29 @@
 // --break-even-methods (frustum and back-patch stage, drawn-triangle bound) is timed on
 // the real frustum too; with the sweep's slope b its intercept a_m is the median of
 // r - b s over views and its break-even (a_m + b - 1) / b. All frames interleaved per view.
+// Part 4: each kernel next to its floor (issue 24 item 3), on the closed quad-grid torus of
+// osd_cull/scene/procedural.h (one Bezier patch per face, --floor-grids N: N^2 patches, so
+// that the submission's fixed cost is spread thin). The floor is a plain single-threaded C++
+// loop doing the kernel's arithmetic per patch on precomputed float data in
+// structure-of-arrays layout, writing a result per patch and appending survivors: the
+// frustum box test (the box of the control points against the six clip planes, with the
+// kernel's margin), the cone test (NCONE: dot(a, E - l) + sin(g) |E - l| < 0 with the
+// kernel's margin), box + cone, and the tangent-plane test (bound::tangentPlaneFactored in
+// double: the 64 factored coefficients and their signs). Kernel: median wall time of one
+// cull submission (as part 1) over --floor-views views x --repeats, and the process's CPU
+// time over it (all threads; a loaded machine disturbs it less); "static" rows set
+// CullSettings::staticPoints (precomputed boxes instead of control points); floor: median
+// of its loop over the same views and repeats, interleaved with the kernels. Also the CullPass
+// construction time per patch (frustum + ncone): with its host cones, and reading the cones
+// frame::BoundsPass computes on the GPU (its construction and one run included); and the
+// load average before and after.
 #include "adapters/image_displacement.h"
 #include "adapters/load_mesh.h"
 #include "bench_support.h"
 #include "osd_cull/bound/back_patch_validity.h"
+#include "osd_cull/bound/tangent_plane_factored.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/cull/bounds_pass.h"
 #include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/cull_frame.h"
@@ -57,14 +75,18 @@
 #include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/procedural.h"
 #include "osd_cull/vk/context.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -101,6 +123,8 @@ struct Options {
   std::vector<uint32_t> breakEvenTess = {1, 2, 4, 8, 16, 32};
   std::vector<std::string> breakEvenMethods = {"frustum", "tcone", "tangent-plane"};
   uint32_t breakEvenViews = 4;
+  std::vector<uint32_t> floorGrids = {316, 1000};  ///< part 4's torus grids
+  uint32_t floorViews = 3;
   bool validate = false;  ///< Vulkan validation layers; any message fails the run
 };
 
@@ -121,6 +145,8 @@ bool parse(int argc, char** argv, Options& o) {
       .numbers("--break-even-tess", o.breakEvenTess)
       .names("--break-even-methods", o.breakEvenMethods)
       .number("--break-even-views", o.breakEvenViews, 1)
+      .numbers("--floor-grids", o.floorGrids)
+      .number("--floor-views", o.floorViews, 1)
       .flag("--validate", o.validate)
       .parse(argc, argv);
 }
@@ -597,6 +623,301 @@ void breakEven(vulkan::Context& context, const Options& o) {
   std::fflush(stdout);
 }
 
+/// CPU time of the process in ms (every thread: lavapipe's workers too), which a loaded
+/// machine disturbs much less than wall time.
+double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+/// Part 4's per-patch data, float, structure of arrays: the box of the control points (the
+/// kernel's own, frame::packPatchBoxes) and the NCONE cone (what the floors read).
+struct FloorData {
+  std::vector<float> box[6];  ///< min x, y, z, max x, y, z
+  std::vector<float> apex[3], axis[3], sinAngle;
+  std::vector<uint8_t> coneValid;
+};
+
+FloorData floorData(const PatchSet& set, std::span<const bound::ConeOfNormals> cones) {
+  FloorData d;
+  const uint32_t n = set.patchCount();
+  for (auto& v : d.box) v.resize(n);
+  for (int c = 0; c < 3; ++c) {
+    d.apex[c].resize(n);
+    d.axis[c].resize(n);
+  }
+  d.sinAngle.resize(n);
+  d.coneValid.resize(n);
+  const std::vector<float> boxes = frame::packPatchBoxes(set);  // what the kernel reads
+  for (uint32_t p = 0; p < n; ++p) {
+    for (size_t c = 0; c < 6; ++c) d.box[c][p] = boxes[c * n + p];
+    for (int c = 0; c < 3; ++c) {
+      d.apex[c][p] = float(cones[p].apex[c]);
+      d.axis[c][p] = float(cones[p].axis[c]);
+    }
+    d.sinAngle[p] = float(cones[p].sinAngle);
+    d.coneValid[p] = cones[p].valid ? 1 : 0;
+  }
+  return d;
+}
+
+/// The floor loops: results[p] and the appended survivors, as the kernel writes them.
+class FloorLoops {
+ public:
+  FloorLoops(const PatchSet& set, const FloorData& d)
+      : set_(set), d_(d), results_(set.patchCount()), list_(set.patchCount()) {}
+
+  /// Frustum: the box against the six planes of `viewProj` (p . (x, 1) >= 0 inside), culled
+  /// when the box's largest value is below -margin times its magnitude.
+  double frustum(const glm::mat4& viewProj) {
+    return time([&] { run(viewProj, false, {}); });
+  }
+  /// NCONE: the cone test alone.
+  double cone(const glm::vec3& eye) {
+    return time([&] { runCone(eye); });
+  }
+  /// Box, then cone for the patches inside.
+  double frustumCone(const glm::mat4& viewProj, const glm::vec3& eye) {
+    return time([&] { run(viewProj, true, eye); });
+  }
+  /// Tangent plane: the 64 factored coefficients (double) and their signs per Bezier patch.
+  double tangentPlane(const glm::dvec3& eye) {
+    return time([&] {
+      uint32_t count = 0;
+      for (uint32_t p = 0; p < set_.bezierCount; ++p) {
+        const bound::TangentPlaneFactored f =
+            bound::tangentPlaneFactored(set_.controlPoints(p), eye);
+        bool positive = false;
+        for (int i = 0; i < 64; ++i) positive = positive || f.d[i] + f.bound[i] > 0.0;
+        results_[p] = positive ? 1u : 0u;
+        if (positive) list_[count++] = p;
+      }
+      survivors_ = count;
+    });
+  }
+  uint32_t survivors() const { return survivors_; }
+
+ private:
+  template <typename F>
+  double time(F f) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  }
+  bool coneCulls(uint32_t p, const glm::vec3& e, float eyeLength) const {
+    const float dx = e.x - d_.apex[0][p], dy = e.y - d_.apex[1][p], dz = e.z - d_.apex[2][p];
+    const float lhs = d_.axis[0][p] * dx + d_.axis[1][p] * dy + d_.axis[2][p] * dz +
+                      d_.sinAngle[p] * std::sqrt(dx * dx + dy * dy + dz * dz);
+    const float apexLength =
+        std::sqrt(d_.apex[0][p] * d_.apex[0][p] + d_.apex[1][p] * d_.apex[1][p] +
+                  d_.apex[2][p] * d_.apex[2][p]);
+    return d_.coneValid[p] && lhs < -shader::kCullRelativeMargin * (eyeLength + apexLength);
+  }
+  void runCone(const glm::vec3& e) {
+    const uint32_t n = set_.patchCount();
+    const float eyeLength = glm::length(e);
+    uint32_t count = 0;
+    for (uint32_t p = 0; p < n; ++p) {
+      const bool culled = coneCulls(p, e, eyeLength);
+      results_[p] = culled ? 2u : 0u;
+      if (!culled) list_[count++] = p;
+    }
+    survivors_ = count;
+  }
+  void run(const glm::mat4& m, bool withCone, const glm::vec3& e) {
+    // Plane k: row combination of the matrix (x + w, w - x, y + w, w - y, z, w - z).
+    const glm::mat4 t = glm::transpose(m);  // t[r] = row r
+    const glm::vec4 planes[6] = {t[3] + t[0], t[3] - t[0], t[3] + t[1],
+                                 t[3] - t[1], t[2],        t[3] - t[2]};
+    glm::vec4 absPlanes[6];
+    for (int k = 0; k < 6; ++k) absPlanes[k] = glm::abs(planes[k]);
+    const float eyeLength = glm::length(e);
+    const uint32_t n = set_.patchCount();
+    uint32_t count = 0;
+    for (uint32_t p = 0; p < n; ++p) {
+      const float cx = 0.5f * (d_.box[0][p] + d_.box[3][p]),
+                  ex = 0.5f * (d_.box[3][p] - d_.box[0][p]);
+      const float cy = 0.5f * (d_.box[1][p] + d_.box[4][p]),
+                  ey = 0.5f * (d_.box[4][p] - d_.box[1][p]);
+      const float cz = 0.5f * (d_.box[2][p] + d_.box[5][p]),
+                  ez = 0.5f * (d_.box[5][p] - d_.box[2][p]);
+      uint32_t code = 6;
+      for (uint32_t k = 0; k < 6; ++k) {
+        const glm::vec4& q = planes[k];
+        const glm::vec4& a = absPlanes[k];
+        const float reach = a.x * ex + a.y * ey + a.z * ez;
+        const float top = q.x * cx + q.y * cy + q.z * cz + q.w + reach;
+        const float mag =
+            a.x * std::abs(cx) + a.y * std::abs(cy) + a.z * std::abs(cz) + a.w + reach;
+        if (top < -shader::kCullRelativeMargin * mag) {
+          code = k;
+          break;
+        }
+      }
+      bool culled = code < 6;
+      if (!culled && withCone) culled = coneCulls(p, e, eyeLength);
+      results_[p] = culled ? code : 6u;
+      if (!culled) list_[count++] = p;
+    }
+    survivors_ = count;
+  }
+  const PatchSet& set_;
+  const FloorData& d_;
+  std::vector<uint32_t> results_, list_;
+  uint32_t survivors_ = 0;
+};
+
+void kernelFloors(vulkan::Context& context, const Options& o) {
+  std::printf("\nkernels against their floors (%s at the start)\n\n",
+              bench::machineState().c_str());
+  std::printf(
+      "| patches | kernel | cull rate | kernel ns/patch | floor | floor ns/patch | ratio | kernel "
+      "CPU ns/patch | floor CPU ns/patch | CPU ratio | CullPass us/patch |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (uint32_t grid : o.floorGrids) {
+    bench::progress("floors: grid " + std::to_string(grid));
+    PatchOptions po;
+    po.isolationLevel = 1;
+    const PatchExtraction ex = extractPatches(scene::torus(int(grid), int(grid), 1.0, 0.4), po);
+    const PatchSet& set = ex.patches;
+    const uint32_t n = set.patchCount();
+    frame::GpuPatchSet gpu(context, set);
+    const bound::BackPatchValidity closed{true, "closed torus"};
+    auto settings = [&](bool frustum, const std::string& backPatch, bool drawn,
+                        bool staticPoints = false) {
+      return frame::CullSettings{.frustum = frustum,
+                                 .backPatch = backPatch,
+                                 .backPatchValidity = closed,
+                                 .drawnTriangles = drawn,
+                                 .staticPoints = staticPoints};
+    };
+    // Construction first, timed: frustum + ncone builds the host cones.
+    const auto start = std::chrono::steady_clock::now();
+    auto ncone =
+        std::make_unique<frame::CullPass>(context, gpu, set, settings(true, "ncone", false));
+    const double constructionMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    // The same pass reading cones the bounds pass computes on the GPU (as a deforming mesh
+    // does, DynamicPatchMesh): construction without the host cones.
+    const auto gpuStart = std::chrono::steady_clock::now();
+    frame::BoundsPass bounds(context, gpu, bound::BackPatchMethod::NCone);
+    double maxAbs = 0.0;
+    for (const glm::dvec3& q : set.points)
+      maxAbs = std::max({maxAbs, std::abs(q.x), std::abs(q.y), std::abs(q.z)});
+    bounds.run(1.01 * std::ldexp(1.0, -24) * maxAbs);  // the float points' error
+    auto nconeGpuCones = std::make_unique<frame::CullPass>(
+        context, gpu, set, settings(true, "ncone", false), bounds.cullData());
+    const double gpuConstructionMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - gpuStart)
+            .count();
+    const FloorData data = floorData(set, ncone->cones());
+    FloorLoops floors(set, data);
+    struct Row {
+      std::string kernel, floor;
+      std::unique_ptr<frame::CullPass> pass;
+      std::function<double(const frame::Camera&)> floorMs;
+      std::vector<double> ms, cpuMs, floorSamples, floorCpuMs;
+      uint64_t culled = 0;
+    };
+    auto eyeOf = [](const frame::Camera& c) {
+      return bound::makeCullView(c.viewProjection()).eye.value_or(glm::dvec3(0.0));
+    };
+    auto viewProj = [](const frame::Camera& c) { return glm::mat4(c.viewProjection()); };
+    std::vector<Row> rows;
+    auto add = [&](const std::string& kernel, std::unique_ptr<frame::CullPass> pass,
+                   const std::string& floor, std::function<double(const frame::Camera&)> f) {
+      rows.push_back({kernel, floor, std::move(pass), std::move(f), {}, {}, {}, {}, 0});
+    };
+    auto pass = [&](bool frustum, const std::string& backPatch, bool drawn,
+                    bool staticPoints = false) {
+      return std::make_unique<frame::CullPass>(context, gpu, set,
+                                               settings(frustum, backPatch, drawn, staticPoints));
+    };
+    add("empty", pass(false, "", false), "-", nullptr);
+    add("frustum", pass(true, "", false), "box",
+        [&](const frame::Camera& c) { return floors.frustum(viewProj(c)); });
+    add("frustum/static", pass(true, "", false, true), "box",
+        [&](const frame::Camera& c) { return floors.frustum(viewProj(c)); });
+    add("ncone/surface", pass(false, "ncone", false), "cone",
+        [&](const frame::Camera& c) { return floors.cone(glm::vec3(eyeOf(c))); });
+    add("frustum + ncone/surface", std::move(ncone), "box + cone", [&](const frame::Camera& c) {
+      return floors.frustumCone(viewProj(c), glm::vec3(eyeOf(c)));
+    });
+    add("frustum + ncone/surface, GPU cones", std::move(nconeGpuCones), "box + cone",
+        [&](const frame::Camera& c) {
+          return floors.frustumCone(viewProj(c), glm::vec3(eyeOf(c)));
+        });
+    add("frustum + ncone/surface, static", pass(true, "ncone", false, true), "box + cone",
+        [&](const frame::Camera& c) {
+          return floors.frustumCone(viewProj(c), glm::vec3(eyeOf(c)));
+        });
+    add("ncone", pass(false, "ncone", true), "cone",
+        [&](const frame::Camera& c) { return floors.cone(glm::vec3(eyeOf(c))); });
+    add("ncone/static", pass(false, "ncone", true, true), "cone",
+        [&](const frame::Camera& c) { return floors.cone(glm::vec3(eyeOf(c))); });
+    add("tangent-plane/surface", pass(false, "tangent-plane", false), "tangent plane",
+        [&](const frame::Camera& c) { return floors.tangentPlane(eyeOf(c)); });
+    add("tangent-plane", pass(false, "tangent-plane", true), "tangent plane", nullptr);
+    frame::ViewSetOptions vo;
+    vo.count = o.floorViews;
+    vo.width = o.width;
+    vo.height = o.height;
+    const auto cameras = frame::randomViews(frame::boundsOf(set.points), vo);
+    frame::TessellationOptions tessellation;
+    tessellation.uniformLevel = o.kernelTess.at(0);
+    for (Row& r : rows) r.pass->run(cameras[0], tessellation);  // compile (or cache)
+    for (const frame::Camera& camera : cameras)
+      for (uint32_t rep = 0; rep < o.repeats; ++rep)
+        for (Row& r : rows) {
+          double cpu = processCpuMs();
+          r.ms.push_back(r.pass->run(camera, tessellation));
+          r.cpuMs.push_back(processCpuMs() - cpu);
+          if (rep == 0) r.culled += n - r.pass->counts().survivors();
+          if (!r.floorMs) continue;
+          cpu = processCpuMs();
+          r.floorSamples.push_back(r.floorMs(camera));
+          r.floorCpuMs.push_back(processCpuMs() - cpu);
+        }
+    auto nsPerPatch = [&](const std::vector<double>& ms) { return median(ms) * 1e6 / n; };
+    for (const Row& r : rows) {
+      const double kernel = nsPerPatch(r.ms);
+      const double rate = 100.0 * double(r.culled) / double(n) / double(cameras.size());
+      const double kernelCpu = nsPerPatch(r.cpuMs);
+      char floorNs[32] = "-", ratio[32] = "-", floorCpu[32] = "-", cpuRatio[32] = "-",
+           build[32] = "";
+      if (!r.floorSamples.empty()) {
+        std::snprintf(floorNs, sizeof floorNs, "%.2f", nsPerPatch(r.floorSamples));
+        std::snprintf(ratio, sizeof ratio, "%.1f", kernel / nsPerPatch(r.floorSamples));
+        std::snprintf(floorCpu, sizeof floorCpu, "%.2f", nsPerPatch(r.floorCpuMs));
+        std::snprintf(cpuRatio, sizeof cpuRatio, "%.1f", kernelCpu / nsPerPatch(r.floorCpuMs));
+      }
+      if (r.kernel == "frustum + ncone/surface")
+        std::snprintf(build, sizeof build, "%.2f (host cones)", constructionMs * 1e3 / n);
+      if (r.kernel == "frustum + ncone/surface, GPU cones")
+        std::snprintf(build, sizeof build, "%.2f (bounds pass)", gpuConstructionMs * 1e3 / n);
+      std::printf("| %u | %s | %.1f%% | %.1f | %s | %s | %s | %.1f | %s | %s | %s |\n", n,
+                  r.kernel.c_str(), rate, kernel, r.floor.c_str(), floorNs, ratio, kernelCpu,
+                  floorCpu, cpuRatio, build);
+    }
+    auto kernelOf = [&](const std::string& name, bool cpu) {
+      for (const Row& r : rows)
+        if (r.kernel == name) return nsPerPatch(cpu ? r.cpuMs : r.ms);
+      return 0.0;
+    };
+    std::printf(
+        "| %u | tangent plane / ncone | | %.1f (surface), %.1f (drawn) | | | | %.1f (surface), "
+        "%.1f (drawn) | | | |\n",
+        n, kernelOf("tangent-plane/surface", false) / kernelOf("ncone/surface", false),
+        kernelOf("tangent-plane", false) / kernelOf("ncone", false),
+        kernelOf("tangent-plane/surface", true) / kernelOf("ncone/surface", true),
+        kernelOf("tangent-plane", true) / kernelOf("ncone", true));
+    std::fflush(stdout);
+  }
+  std::printf("\n(%s at the end)\n", bench::machineState().c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -610,6 +931,7 @@ int main(int argc, char** argv) {
     if (o.parts.find('1') != std::string::npos) kernelCost(context, o);
     if (o.parts.find('2') != std::string::npos) frameSavings(context, o);
     if (o.parts.find('3') != std::string::npos) breakEven(context, o);
+    if (o.parts.find('4') != std::string::npos) kernelFloors(context, o);
     if (context.validationLog() && context.validationLog()->count() > 0)
       throw Error("Vulkan validation messages:\n" + context.validationLog()->summary());
     return 0;

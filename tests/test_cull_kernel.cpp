@@ -4,14 +4,15 @@
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
-#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/view_sets.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/vk/transfer.h"
 #include "support/vk_test_context.h"
 
 #include <osd_cull/shared/cull_layout.h>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -205,6 +206,116 @@ TEST_F(CullKernelTest, SurvivorListAndIndirectCommandsMatchTheResultCodes) {
   EXPECT_EQ(slots, counts.survivorsGregory);
 }
 
+// Issue 24: the boxes CullSettings::staticPoints uploads hold every control point and are
+// their box rounded outward to float (no looser), in the layout of shared/cull_layout.h.
+TEST_F(CullKernelTest, PrecomputedPatchBoxesAreTheControlPointBoxesRoundedOutward) {
+  PatchSet set = sphereWithGregory();
+  set.points[set.firstPoint(5) + 3].y = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<float> boxes = frame::packPatchBoxes(set);
+  const size_t n = set.patchCount();
+  ASSERT_EQ(boxes.size(), n * sh::kBoxFloats);
+  for (size_t c = 0; c < sh::kBoxFloats; ++c) EXPECT_TRUE(std::isnan(boxes[c * n + 5])) << c;
+  for (uint32_t p = 0; p < n; ++p) {
+    if (p == 5) continue;  // the non-finite patch: a NaN box, kept by the kernel
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const glm::dvec3& q : set.controlPoints(p)) {
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+    for (int c = 0; c < 3; ++c) {
+      const float bLo = boxes[c * n + p], bHi = boxes[(3 + c) * n + p];
+      EXPECT_LE(double(bLo), lo[c]) << "patch " << p;
+      EXPECT_GE(double(bHi), hi[c]) << "patch " << p;
+      // The nearest floats outward: the next float inward is inside the exact box.
+      EXPECT_GT(double(std::nextafter(bLo, std::numeric_limits<float>::max())), lo[c]);
+      EXPECT_LT(double(std::nextafter(bHi, -std::numeric_limits<float>::max())), hi[c]);
+    }
+  }
+}
+
+// With static points the frustum stage and the cones' drawn-triangle bound read the boxes:
+// every cull is still a cull of the double reference, and they cull nearly what the
+// control-point kernel culls (the box holds the hull; the bound's distance is the box's).
+// The frustum-only pass (method "") has no back-patch stage.
+TEST_F(CullKernelTest, StaticPointBoxesCullASubsetOfTheReferenceAndNearlyThePointKernels) {
+  const PatchSet set = scene::convertToGregory(scene::bezierSphere({0.2, -0.1, 0.3}, 1.5, 8),
+                                               [](uint32_t p) { return p % 7 == 3; });
+  frame::GpuPatchSet gpu(context(), set);
+  frame::ViewSetOptions vo;
+  vo.count = 8;
+  auto views = frame::randomViews(frame::boundsOf(set.points), vo);
+  for (frame::Camera& camera : views)  // a narrow view: a third of the sphere is outside
+    camera.projection = glm::scale(glm::dmat4(1.0), glm::dvec3(3.0, 3.0, 1.0)) * camera.projection;
+  for (const std::string& method : {std::string("ncone"), std::string("tcone"), std::string()}) {
+    CullSettings settings = backPatchOnly(method);
+    settings.frustum = true;
+    CullPass points(context(), gpu, set, settings);
+    settings.staticPoints = true;
+    CullPass boxes(context(), gpu, set, settings);
+    EXPECT_FALSE(points.patchBoxes());
+    EXPECT_TRUE(boxes.patchBoxes());
+    uint64_t boxCulls = 0, pointCulls = 0, frustumCulls = 0;
+    for (const auto& camera : views) {
+      points.run(camera);
+      boxes.run(camera);
+      std::vector<bound::TriangleShape> shapes;
+      const auto codes =
+          bound::referenceCull(set, bound::makeCullView(camera.viewProjection()),
+                               boxes.referenceTests(camera, {}, shapes), boxes.cones());
+      for (uint32_t p = 0; p < set.patchCount(); ++p) {
+        const CullCode b{boxes.results()[p]}, c{codes[p]};
+        EXPECT_TRUE(!b.culled() || c.culled())
+            << method << " patch " << p << ": GPU " << bound::describe(b) << ", reference "
+            << bound::describe(c);
+        boxCulls += b.culled();
+        frustumCulls += b.stage() == sh::kStageFrustum;
+        pointCulls += CullCode{points.results()[p]}.culled();
+      }
+    }
+    EXPECT_GT(frustumCulls, set.patchCount() * views.size() / 10) << method;
+    // The sphere's 384 patches are large and curved: their boxes lose ~10% of the hull's
+    // frustum culls (fine meshes lose far less, docs/results/cull-kernel-floor.md).
+    EXPECT_GE(double(boxCulls), 0.85 * double(pointCulls)) << method;
+    EXPECT_LE(boxCulls, pointCulls + pointCulls / 100) << method;
+  }
+}
+
+// The drawn-triangle kernels run without the listed-triangle test where it cannot list a
+// patch (uniform levels above bound::kDrawnListLowLevel), and with it elsewhere.
+TEST_F(CullKernelTest, TheLeanKernelRunsOnlyWhereNoPatchCanBeListed) {
+  const PatchSet set = sphereWithGregory();
+  frame::GpuPatchSet gpu(context(), set);
+  CullPass pass(context(), gpu, set, backPatchOnly("ncone"));
+  frame::TessellationOptions t;
+  for (uint32_t level = 1; level <= 5; ++level) {
+    t.uniformLevel = level;
+    EXPECT_EQ(pass.leanKernelApplies(t), level > bound::kDrawnListLowLevel) << level;
+  }
+  t.uniformLevel = 8;
+  t.maxLevel = 2;  // every edge at level 2: listable
+  EXPECT_FALSE(pass.leanKernelApplies(t));
+  t.maxLevel = 64;
+  t.mode = frame::TessellationOptions::Mode::Adaptive;
+  EXPECT_FALSE(pass.leanKernelApplies(t));
+  // At a listable level (the full kernel) and above it (the lean one): every cull is a cull
+  // of the reference.
+  for (uint32_t level : {2u, 3u}) {
+    frame::TessellationOptions u;
+    u.uniformLevel = level;
+    frame::ViewSetOptions vo;
+    vo.count = 4;
+    for (const auto& camera : frame::randomViews(frame::boundsOf(set.points), vo)) {
+      pass.run(camera, u);
+      std::vector<bound::TriangleShape> shapes;
+      const auto codes = bound::referenceCull(set, bound::makeCullView(camera.viewProjection()),
+                                              pass.referenceTests(camera, u, shapes), pass.cones());
+      for (uint32_t p = 0; p < set.patchCount(); ++p)
+        EXPECT_TRUE(!CullCode{pass.results()[p]}.culled() || CullCode{codes[p]}.culled())
+            << "level " << level << " patch " << p;
+    }
+  }
+}
+
 TEST_F(CullKernelTest, BackPatchStageIsLeftOutWithTheReasonOnAnInvalidMesh) {
   const PatchSet set = sphereWithGregory();
   frame::GpuPatchSet gpu(context(), set);
@@ -248,6 +359,24 @@ TEST_F(CullKernelTest, NonFiniteControlPointsAreKeptByEveryStage) {
         const CullCode c{pass.results()[p]};
         EXPECT_FALSE(c.culled()) << method << " patch " << p << ": " << bound::describe(c);
         EXPECT_EQ(c.frustum(), sh::kFrustumNonFinite) << method;
+      }
+    }
+  }
+  // With static points the frustum stage and the cones' bound read the boxes: NaN for these
+  // patches (frame::packPatchBoxes), kept as well.
+  for (const std::string& method : {std::string(), std::string("ncone")}) {
+    CullSettings settings = backPatchOnly(method);
+    settings.frustum = true;
+    settings.staticPoints = true;
+    CullPass pass(context(), gpu, set, settings);
+    ASSERT_TRUE(pass.patchBoxes());
+    for (const auto& camera : views) {
+      pass.run(camera);
+      for (uint32_t p : bad) {
+        const CullCode c{pass.results()[p]};
+        EXPECT_FALSE(c.culled()) << "static " << method << " patch " << p << ": "
+                                 << bound::describe(c);
+        EXPECT_EQ(c.frustum(), sh::kFrustumNonFinite) << "static " << method;
       }
     }
   }

@@ -42,7 +42,15 @@ uint drawnConeVerdict(uint patchIndex, vec4 apexSin, vec3 axis) {
   if (!isBezier(patchIndex)) return kVerdictDrawnTriangles;
   vec4 bounds = cones[kConeVec4s * patchIndex + 2u];  // G, H, max |coordinate|, min |N|
   vec4 shape4 = cones[kConeVec4s * patchIndex + 3u];  // max radius, half-angle
+#if CULL_PATCH_BOXES
+  // An upper bound of max |E - b| from the box (its farthest corner), as conservative as
+  // the distance itself (a larger R widens the cone), without the 16 point loads.
+  vec3 c, e;
+  patchBox(patchIndex, c, e);
+  float dv = drawnVertexError(bounds.z, length(abs(pc.eye.xyz - c) + e) * kDrawnSafety);
+#else
   float dv = drawnVertexError(bounds.z, drawnMaxDistance(firstPoint(patchIndex)));
+#endif
   float deviation = drawnNormalDeviation(bounds.x, bounds.y, drawnShape(patchIndex), dv);
   if (!(bounds.w > deviation) || !isFiniteF(deviation)) return kVerdictDrawnTriangles;
   float widen = asin(min(1.0, deviation / bounds.w * kDrawnSafety)) * kDrawnSafety + 1e-5;

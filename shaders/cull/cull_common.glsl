@@ -34,6 +34,23 @@ layout(std430, set = 0, binding = kCullBindingDrawList) writeonly buffer DrawLis
 };
 layout(std430, set = 0, binding = kCullBindingCounters) buffer Counters { uint counters[]; };
 layout(std430, set = 0, binding = kCullBindingTable) readonly buffer Table { uvec2 table[]; };
+layout(std430, set = 0, binding = kCullBindingBoxes) readonly buffer Boxes { float boxes[]; };
+
+#if CULL_PATCH_BOXES
+// The precomputed box of a patch's control points (CullSettings::staticPoints): its centre
+// and half extent, in fp32 (their rounding is far below kCullRelativeMargin of the
+// magnitudes the tests compare with). Six loads instead of the 48 of 16 control points:
+// on lavapipe every load of a per-invocation address is a loop over the SIMD lanes, and the
+// loads dominated the frustum kernel (docs/results/cull-kernel-floor.md).
+void patchBox(uint patchIndex, out vec3 centre, out vec3 halfExtent) {
+  const uint n = pcView.patchCount;
+  vec3 lo = vec3(boxes[patchIndex], boxes[n + patchIndex], boxes[2u * n + patchIndex]);
+  vec3 hi = vec3(boxes[3u * n + patchIndex], boxes[4u * n + patchIndex],
+                 boxes[5u * n + patchIndex]);
+  centre = 0.5 * (lo + hi);
+  halfExtent = 0.5 * (hi - lo);
+}
+#endif
 
 #include "../common/patch_points.glsl"
 

@@ -29,6 +29,40 @@ struct PatchClipBounds {
   vec3 ndcMax;
 };
 
+#if CULL_PATCH_BOXES
+// The frustum test of the patch's precomputed box (CULL_PATCH_BOXES: static points, no
+// occlusion stage, so no NDC box is needed): the box contains the control points, so when
+// its largest value of plane p's function is below -eps times a magnitude bound, every
+// control point is certainly outside plane p, as the reference requires of a cull. For the
+// plane q = r_a +- r_b of rows of viewProj (the six of bound::FrustumPlane) the largest
+// value over the box is q . (c, 1) + |q.xyz| . e, and the magnitude |r_a| . (|c| + e, 1) +
+// |r_b| . (|c| + e, 1) bounds every product of it and of each control point's own distance
+// (|p| <= |c| + e componentwise), so a box cull is a cull of the point test with its
+// margin (the fp32 error of the box values, including the rounding of c and e, is a few
+// 2^-24 of that magnitude). The frustum code is the lowest plane the box is outside of.
+PatchClipBounds patchClipBounds(uint patchIndex) {
+  PatchClipBounds b = PatchClipBounds(0u, matrixIsFinite(), false, vec3(0.0), vec3(0.0));
+  vec3 c, e;
+  patchBox(patchIndex, c, e);
+  b.finite = b.finite && isFiniteF(c) && isFiniteF(e);
+  if (!b.finite) return b;
+  const mat4 m = pc.viewProjection;
+  const vec4 rx = vec4(m[0].x, m[1].x, m[2].x, m[3].x), ry = vec4(m[0].y, m[1].y, m[2].y, m[3].y);
+  const vec4 rz = vec4(m[0].z, m[1].z, m[2].z, m[3].z), rw = vec4(m[0].w, m[1].w, m[2].w, m[3].w);
+  const vec4 planes[6] = vec4[6](rw + rx, rw - rx, rw + ry, rw - ry, rz, rw - rz);
+  const vec4 ca = vec4(abs(c) + e, 1.0);
+  const float mx = dot(abs(rx), ca), my = dot(abs(ry), ca), mz = dot(abs(rz), ca),
+              mw = dot(abs(rw), ca);
+  const float mags[6] = float[6](mw + mx, mw + mx, mw + my, mw + my, mz, mw + mz);
+  const float eps = kCullRelativeMargin;
+  for (uint plane = 0u; plane < 6u; ++plane) {
+    const vec4 q = planes[plane];
+    const float top = dot(q.xyz, c) + q.w + dot(abs(q.xyz), e);
+    if (top < -eps * mags[plane]) b.outsideAll |= 1u << plane;
+  }
+  return b;
+}
+#else
 PatchClipBounds patchClipBounds(uint patchIndex) {
   PatchClipBounds b;
   b.outsideAll = 0x3Fu;
@@ -71,6 +105,7 @@ PatchClipBounds patchClipBounds(uint patchIndex) {
   b.hasNdcBox = b.hasNdcBox && b.finite;
   return b;
 }
+#endif
 
 // The frustum field of the result code: the lowest plane every point is outside of
 // (culled), kFrustumInside, or kFrustumNonFinite (kept).

@@ -24,6 +24,11 @@ OSD_CULL_CONST uint kCullBindingInstances = 9u;      // CullInstances: the insta
                                                      // one dispatch (their view · model)
 OSD_CULL_CONST uint kCullBindingTable = 6u;          // uvec2 table[]: the method's constant table
 OSD_CULL_CONST uint kCullBindingTessLevels = 10u;    // uvec2 tessLevels[]: GpuPatchSet::tessLevels()
+OSD_CULL_CONST uint kCullBindingBoxes = 11u;  // float boxes[]: with CullSettings::staticPoints
+                                              // the box of each patch's control points,
+                                              // structure of arrays: boxes[c * patchCount + p],
+                                              // c = min x, y, z, max x, y, z (kBoxFloats),
+                                              // rounded outward (CULL_PATCH_BOXES)
 // (CullMethod::table). The tangent-plane table: per term (target | j << 8 | k << 16 | l << 24,
 // floatBitsToUint(weight)). A buffer, not GLSL constants: lavapipe's LLVM backend needs
 // 150-190 s to compile the kernel with 516-entry constant arrays, 0.4 s with this buffer.
@@ -45,6 +50,7 @@ OSD_CULL_CONST uint kCounterCount = 4u;
 // cones[4p+3] = (max radius rounded up, half-angle in radians rounded up, 0, 0): what
 // bound::widenCone needs.
 OSD_CULL_CONST uint kConeVec4s = 4u;
+OSD_CULL_CONST uint kBoxFloats = 6u;  // floats per patch in boxes[]
 
 OSD_CULL_CONST uint kCullGroupSize = 64u;   // invocations per workgroup, every variant
 OSD_CULL_CONST uint kDrawsGroupSize = 64u;  // write_draws.comp

@@ -1,9 +1,9 @@
 #include "osd_cull/frame/cull/cull_pass.h"
 
 #include "osd_cull/bound/clip_space.h"
+#include "osd_cull/bound/drawn_triangle_set.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
-#include "osd_cull/bound/drawn_triangle_set.h"
 #include "osd_cull/frame/draw/draw_chunks.h"
 #include "osd_cull/frame/draw/tess_levels_pass.h"
 #include "osd_cull/frame/shader_variants.h"
@@ -42,7 +42,8 @@ const vulkan::DescriptorBinding kBindings[] = {
     {sh::kCullBindingParams, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingDisplacedView, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-    {sh::kCullBindingTessLevels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    {sh::kCullBindingTessLevels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingBoxes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
 
 // What the outputs are read by after the pass: indirect draws, the patch draw shaders (draw
 // list) and the host (results, counters).
@@ -103,11 +104,39 @@ void packCone(const bound::ConeOfNormals& c, const bound::DerivativeBounds& d, f
   out[15] = 0.0f;
 }
 
+}  // namespace
+
+std::vector<float> packPatchBoxes(const PatchSet& patches) {
+  const size_t n = patches.patchCount();
+  std::vector<float> boxes(n * sh::kBoxFloats);
+  for (uint32_t p = 0; p < n; ++p) {
+    const std::span<const glm::dvec3> points = patches.controlPoints(p);
+    glm::dvec3 lo = points[0], hi = points[0];
+    bool finite = true;
+    for (const glm::dvec3& q : points) {
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+      finite = finite && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+    }
+    // A non-finite point: a NaN box, which the kernel keeps as the reference keeps the
+    // patch (kFrustumNonFinite), where min/max would drop a NaN.
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (int c = 0; c < 3; ++c) {
+      boxes[c * n + p] = finite ? roundDown(lo[c]) : float(nan);
+      boxes[(3 + c) * n + p] = finite ? roundUp(hi[c]) : float(nan);
+    }
+  }
+  return boxes;
+}
+
+namespace {
+
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
 std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
                           bool drawnTriangles, bool drawnEnumerate,
-                          const CullMethod::Displaced* displaced, bool pointsByAddress) {
+                          const CullMethod::Displaced* displaced, bool pointsByAddress,
+                          bool patchBoxes, bool listing = true) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
@@ -123,12 +152,16 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   // The listing only refines the drawn-triangle back-patch test; elsewhere it is off, so the
   // kernel text (and its build-time SPIR-V) does not depend on it. With the bound it always
   // runs at low levels (bound::kDrawnListLowLevel), at every level with drawnEnumerate.
-  const bool drawn = drawnTriangles && has(CullStage::BackPatch);
+  // `listing` false: the kernel for views where no patch can be listed (CullPass::record
+  // chooses it, leanKernelApplies()); on lavapipe the listing's code costs every invocation
+  // even when it never runs (docs/results/cull-kernel-floor.md).
+  const bool drawn = drawnTriangles && has(CullStage::BackPatch) && listing;
   text += std::string("#define CULL_DRAWN_ENUMERATE ") + (drawn ? "1" : "0") + "\n";
   if (drawn)
     text += "#define CULL_DRAWN_LIST_LEVEL " +
             std::to_string(drawnEnumerate ? 64u : bound::kDrawnListLowLevel) + "\n";
   text += std::string("#define CULL_DISPLACED ") + (displaced ? "1" : "0") + "\n";
+  text += std::string("#define CULL_PATCH_BOXES ") + (patchBoxes ? "1" : "0") + "\n";
   if (displaced)
     text += "#define DISPLACED_BOX " + std::to_string(static_cast<uint32_t>(displaced->box)) + "\n";
   for (const CullMethod* m : stages)
@@ -165,27 +198,35 @@ std::vector<vulkan::ShaderVariant> cullPassShaderVariants() {
         for (const bool drawn : {false, true})
           for (const bool enumerate : {false, true})
             for (const bool bda : {false, true})
-              for (const int box : {-1, 0, 1}) {  // -1: not displaced, else a DisplacedBox
-                if (enumerate && !(drawn && backPatch)) continue;
-                if (box >= 0 && backPatch) continue;
-                if (occlusion && occlusion->displaced &&
-                    (box < 0 || static_cast<int>(occlusion->displaced->box) != box))
-                  continue;
-                std::vector<const CullMethod*> stages;
-                uint32_t lanes = 1;
-                for (const CullMethod* m : {frustum, backPatch, occlusion})
-                  if (m) {
-                    stages.push_back(m);
-                    lanes = std::max(lanes, m->lanesPerPatch);
+              for (const bool boxes : {false, true})
+                for (const int box : {-1, 0, 1}) {  // -1: not displaced, else a DisplacedBox
+                  if (enumerate && !(drawn && backPatch)) continue;
+                  if (boxes && (occlusion || box >= 0)) continue;  // CullPass::patchBoxes()
+                  if (box >= 0 && backPatch) continue;
+                  if (occlusion && occlusion->displaced &&
+                      (box < 0 || static_cast<int>(occlusion->displaced->box) != box))
+                    continue;
+                  std::vector<const CullMethod*> stages;
+                  uint32_t lanes = 1;
+                  for (const CullMethod* m : {frustum, backPatch, occlusion})
+                    if (m) {
+                      stages.push_back(m);
+                      lanes = std::max(lanes, m->lanesPerPatch);
+                    }
+                  CullMethod::Displaced displaced;
+                  displaced.box = static_cast<bound::DisplacedBox>(std::max(box, 0));
+                  // With the listed-triangle test and, for the views where it cannot run,
+                  // without (CullPass::leanKernelApplies).
+                  for (const bool listing : {true, false}) {
+                    if (!listing && (enumerate || !(drawn && backPatch))) continue;
+                    std::string text =
+                        composeKernel(stages, lanes, drawn, enumerate,
+                                      box >= 0 ? &displaced : nullptr, bda, boxes, listing);
+                    if (texts.insert(text).second)
+                      variants.push_back(vulkan::ShaderVariant::glsl(text, kCullKernelName,
+                                                                     VK_SHADER_STAGE_COMPUTE_BIT));
                   }
-                CullMethod::Displaced displaced;
-                displaced.box = static_cast<bound::DisplacedBox>(std::max(box, 0));
-                std::string text = composeKernel(stages, lanes, drawn, enumerate,
-                                                 box >= 0 ? &displaced : nullptr, bda);
-                if (texts.insert(text).second)
-                  variants.push_back(vulkan::ShaderVariant::glsl(text, kCullKernelName,
-                                                                 VK_SHADER_STAGE_COMPUTE_BIT));
-              }
+                }
   return variants;
 }
 
@@ -273,6 +314,9 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   if (cullData_ == &conesBuffer_) uploadHostCones(context);
+  const std::vector<float> boxes = patchBoxes() ? packPatchBoxes(host) : std::vector<float>(1);
+  boxes_ = vulkan::Buffer(context, boxes.size() * sizeof(float), storage);
+  vulkan::upload<float>(context, boxes_, boxes);
   const size_t instances = settings.instanceCount;
   displacedView_ = vulkan::Buffer(context, instances * sizeof(sh::DisplacedView), storage);
   instances_ = vulkan::Buffer(context, 16 + instances * sizeof(sh::CullInstance), storage);
@@ -351,6 +395,9 @@ struct CullPipelines {
   vulkan::UniqueDescriptorSetLayout stageSetLayout;
   vulkan::UniquePipelineLayout layout;
   vulkan::UniquePipeline cull;
+  /// The kernel without the listed-triangle test (null when `cull` has none): for views
+  /// where it cannot run (CullPass::leanKernelApplies).
+  vulkan::UniquePipeline cullLean;
   vulkan::UniquePipeline draws;
 };
 
@@ -358,6 +405,7 @@ namespace {
 
 std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
                                                      const std::string& kernel,
+                                                     const std::string& leanKernel,
                                                      const std::vector<const CullMethod*>& stages) {
   static std::mutex mutex;
   static std::map<std::pair<VkDevice, std::string>, std::weak_ptr<const CullPipelines>> cache;
@@ -377,6 +425,10 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
   const vulkan::Spirv cull =
       vulkan::compileGlsl(kernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT);
   p->cull = vulkan::createComputePipeline(context, p->layout.get(), cull);
+  if (!leanKernel.empty() && leanKernel != kernel)
+    p->cullLean = vulkan::createComputePipeline(
+        context, p->layout.get(),
+        vulkan::compileGlsl(leanKernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
   p->draws =
       vulkan::createComputePipeline(context, p->layout.get(), vulkan::compileShader(kWriteDraws));
   slot = p;
@@ -386,11 +438,14 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
 }  // namespace
 
 void CullPass::buildPipelines(vulkan::Context& context) {
-  pipelines_ = sharedPipelines(
-      context,
-      composeKernel(stages_, lanes_, settings_.drawnTriangles, settings_.drawnEnumerate,
-                    displaced() ? &displacedKernel_ : nullptr, gpu_.pointsByAddress()),
-      stages_);
+  const auto kernel = [&](bool listing) {
+    return composeKernel(stages_, lanes_, settings_.drawnTriangles, settings_.drawnEnumerate,
+                         displaced() ? &displacedKernel_ : nullptr, gpu_.pointsByAddress(),
+                         patchBoxes(), listing);
+  };
+  // With drawnEnumerate the listing runs at every level: no lean kernel.
+  pipelines_ = sharedPipelines(context, kernel(true),
+                               settings_.drawnEnumerate ? std::string() : kernel(false), stages_);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(pipelines_->setLayout.get());
   vulkan::DescriptorWriter()
@@ -405,8 +460,27 @@ void CullPass::buildPipelines(vulkan::Context& context) {
       .buffer(sh::kCullBindingDisplacedView, displacedView_)
       .buffer(sh::kCullBindingInstances, instances_)
       .buffer(sh::kCullBindingTessLevels, gpu_.tessLevels())
+      .buffer(sh::kCullBindingBoxes, boxes_)
       .update(context.device(), set_);
   boundTessLevels_ = gpu_.tessLevels().handle();
+}
+
+bool CullPass::leanKernelApplies(const TessellationOptions& tessellation) const {
+  // The listing (shaders/cull/drawn_triangle_set.glsl) lists a patch only when its levels
+  // are exact and every outer level is at most bound::kDrawnListLowLevel. Under uniform
+  // levels an edge has max(1, min(L, max)) segments, a transition edge two halves of
+  // h = min(L, floor(max / 2)) each (one segment in all when h = 0), as the kernel's
+  // drawnEdgeLevels and drawnTrianglesFaceAway compute them.
+  const TessellationOptions t = effectiveOptions(tessellation, gpu_.hasTransitionEdges());
+  if (t.mode != TessellationOptions::Mode::Uniform) return false;
+  uint32_t lowest = std::max(1u, std::min(t.uniformLevel, t.maxLevel));
+  const uint32_t half = std::min(t.uniformLevel, t.maxLevel / 2);
+  if (gpu_.hasTransitionEdges()) lowest = std::min(lowest, half == 0 ? 1u : 2 * half);
+  return lowest > bound::kDrawnListLowLevel;
+}
+
+bool CullPass::patchBoxes() const {
+  return settings_.staticPoints && !displaced() && settings_.occlusion.empty();
 }
 
 bool CullPass::backPatchEnabled() const {
@@ -542,7 +616,9 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   vkCmdPushConstants(cmd, pipelines_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->cull.get());
+    const bool lean = pipelines_->cullLean && leanKernelApplies(tessellation);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                      lean ? pipelines_->cullLean.get() : pipelines_->cull.get());
     const vulkan::DispatchSize groups = vulkan::checkedGroups2D(
         context_, cullGroups(n, lanes_, settings_.instanceCount), "CullPass: the cull dispatch");
     vkCmdDispatch(cmd, groups.x, groups.y, 1);
@@ -567,9 +643,8 @@ void CullPass::recordTessLevels(VkCommandBuffer cmd, std::span<const Camera> cam
                                 const TessellationOptions& tessellation) {
   if (!usesExactLevels(tessellation)) return;
   if (cameras.size() != settings_.instanceCount)
-    throw Error("CullPass::recordTessLevels: " + std::to_string(cameras.size()) +
-                " cameras for " + std::to_string(settings_.instanceCount) + " instances of " +
-                host_.source);
+    throw Error("CullPass::recordTessLevels: " + std::to_string(cameras.size()) + " cameras for " +
+                std::to_string(settings_.instanceCount) + " instances of " + host_.source);
   if (!tessLevels_) tessLevels_ = std::make_unique<TessLevelsPass>(context_);
   for (uint32_t i = 0; i < cameras.size(); ++i)
     tessLevels_->record(cmd, cameras[i], nullptr, gpu_, levelSlots_[i], tessellation);

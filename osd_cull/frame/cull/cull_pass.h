@@ -68,6 +68,15 @@ struct CullSettings {
   /// instances of one patch set share the control points and are culled in the same
   /// dispatch"), each with its own camera (view · model), results, draw list and counters.
   uint32_t instanceCount = 1;
+  /// The control points stay as the host PatchSet has them for the pass's lifetime (no
+  /// GpuPatchSet::updatePoints, readPointsFrom or GPU evaluator writing them). The pass then
+  /// builds each patch's box once (patchBoxes()) and the kernel's frustum stage and the
+  /// cones' drawn-triangle bound read 6 floats per patch instead of 16-20 control points,
+  /// the larger part of the frustum kernel's cost on lavapipe (issue 24,
+  /// docs/results/cull-kernel-floor.md). Culls stay culls of the reference (the box holds
+  /// the points). Used only without an occlusion stage (which needs the points' NDC box)
+  /// and on undisplaced meshes; off by default, since a pass cannot see points change.
+  bool staticPoints = false;
 };
 
 struct CullPipelines;
@@ -86,6 +95,13 @@ struct CullCounts {
 /// (uniform: level 2N at transition edges, adaptive: maxLevel): at least 1, at most `count`.
 uint32_t indirectDrawChunk(const TessellationOptions& tessellation, uint32_t controlPoints,
                            uint32_t count);
+
+/// \brief The box of each patch's control points as the kernel reads it with
+/// CullSettings::staticPoints (shaders/shared/cull_layout.h kCullBindingBoxes): float,
+/// structure of arrays (min x of every patch, then min y, ..., max z), each bound rounded
+/// outward, so that every box holds its patch's points exactly; NaN for a patch with a
+/// non-finite point (kept by the kernel).
+std::vector<float> packPatchBoxes(const PatchSet& patches);
 
 /// \brief The pipelines, per-mesh data (cones) and output buffers of one cull
 /// configuration for one patch set. The patch set must outlive the pass.
@@ -122,6 +138,15 @@ class CullPass {
   bool displaced() const { return settings_.displacementMap != nullptr; }
   const CullMethod::Displaced& displacedKernel() const { return displacedKernel_; }
   std::span<const bound::DisplacedPatch> displacedPatches() const { return displaced_; }
+  /// \brief Whether the kernel reads the precomputed boxes (CullSettings::staticPoints on an
+  /// undisplaced mesh without an occlusion stage).
+  bool patchBoxes() const;
+  /// \brief Whether record() with `tessellation` runs the kernel without the listed-triangle
+  /// test: drawn-triangle kernels without drawnEnumerate, under uniform levels at which no
+  /// patch can be listed (every outer level above bound::kDrawnListLowLevel), so the verdicts
+  /// are the same. On lavapipe the listing's code costs every invocation even when no patch
+  /// reaches it: 4x the NCONE kernel at uniform level 4 (docs/results/cull-kernel-floor.md).
+  bool leanKernelApplies(const TessellationOptions& tessellation) const;
   /// \brief Host copies (double) of the uploaded cones, empty when none are used.
   std::span<const bound::ConeOfNormals> cones() const { return cones_; }
   /// \brief Whether back-patch culls respect the drawn triangles (CullSettings::
@@ -229,6 +254,7 @@ class CullPass {
   vulkan::Buffer instances_;      // header uvec4, then CullInstance per instance
   uint64_t dispatches_ = 0;
 
+  vulkan::Buffer boxes_;                            // shared/cull_layout.h boxes[] (or 1 float)
   vulkan::Buffer conesBuffer_;                      // host-built cull data (unused if external)
   const vulkan::Buffer* cullData_ = &conesBuffer_;  // what the kernel reads
   vulkan::Buffer table_;
@@ -239,7 +265,7 @@ class CullPass {
   std::shared_ptr<const CullPipelines> pipelines_;  // shared by passes with the same kernel
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
-  VkDescriptorSet drawSet_ = VK_NULL_HANDLE;  // gpu_'s set with drawList_, made on first draw
+  VkDescriptorSet drawSet_ = VK_NULL_HANDLE;    // gpu_'s set with drawList_, made on first draw
   std::unique_ptr<TessLevelsPass> tessLevels_;  // made on first use
   VkBuffer boundTessLevels_ = VK_NULL_HANDLE;   // the tessLevels() set_ holds
   bool exactLevels_ = false;                    // of the last record()
