@@ -115,6 +115,9 @@ MeshSession::Configuration& MeshSession::configuration(const std::string& key,
   Configuration c;
   c.key = key;
   c.options = o;
+  // A static mesh's points never move under the session: the one-pass stages may test the
+  // precomputed per-patch boxes (CullSettings::staticPoints, docs/results/cull-kernel-floor.md).
+  c.options.cull.staticPoints = !options_.deforming;
   const vulkan::Buffer* data = options_.cullData && !o.cull.backPatch.empty()
                                    ? options_.cullData(o.cull.backPatch)
                                    : nullptr;

@@ -56,10 +56,12 @@ void addCullOptions(CLI::App& app, CullArgs& args) {
                "cover them (default: the paper's ceil(log2) level)")
       ->group(group);
   app.add_option("--hiz-reduction", args.hizReduction,
-                 "occlusion: auto (default), sampler (min/max sampler) or fourtap")
+                 "occlusion: auto (default: blocked), blocked (three levels per\n"
+                 "dispatch from a copy of the depth), sampler (min/max sampler, a\n"
+                 "dispatch per level) or fourtap")
       ->type_name("R")
       ->group(group)
-      ->check(oneOf({"auto", "sampler", "fourtap"}));
+      ->check(oneOf({"auto", "blocked", "sampler", "fourtap"}));
 }
 
 CullChoice cullChoice(const CullArgs& args) {
@@ -86,6 +88,7 @@ CullChoice cullChoice(const CullArgs& args) {
   if (args.firstFrame == "none") f.firstFrame = frame::FirstFrame::NoneVisible;
   f.hiz.fullResolution = args.hizFull;
   if (args.hizTight) f.hiz.lookup = bound::HiZLookup::Tight;
+  if (args.hizReduction == "blocked") f.hiz.reduction = frame::HiZReduction::Blocked;
   if (args.hizReduction == "sampler") f.hiz.reduction = frame::HiZReduction::Sampler;
   if (args.hizReduction == "fourtap") f.hiz.reduction = frame::HiZReduction::FourTap;
   const bool frameOption = args.aggressive || !args.drawMode.empty() || !args.firstFrame.empty() ||
