@@ -39,14 +39,15 @@ std::optional<std::string> extentProblem(std::span<const glm::dvec3> points, con
     s << "degenerate extent: all " << points.size() << " " << what << " coincide at (" << lo.x
       << ", " << lo.y << ", " << lo.z << ")";
   else
-    s << "degenerate extent " << diagonal << " (bounding-box diagonal of its " << points.size()
+    s << "degenerate extent " << diagonal << " (the bounding-box diagonal of " << points.size()
       << " " << what << "), below 1e-18, the smallest size fp32 drawing and culling can resolve "
-      << "(squared distances must stay above 1.2e-38); scale the mesh up";
+      << "(squared distances must stay above 1.2e-38)";
   return s.str();
 }
 
 void checkExtent(std::span<const glm::dvec3> positions, const std::string& file) {
-  if (auto problem = extentProblem(positions, "vertices")) detail::fail(file, 0, *problem);
+  if (auto problem = extentProblem(positions, "vertices"))
+    detail::fail(file, 0, *problem + ": scale the mesh up");
 }
 
 }  // namespace osd_cull::adapters

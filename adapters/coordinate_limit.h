@@ -26,9 +26,9 @@ inline constexpr double kMaxCoordinate = 1e18;
 /// fp32), has no size to frame, draw or cull.
 inline constexpr double kMinExtent = 1e-18;
 
-/// \brief What is wrong with the extent of `points` (their bounding-box diagonal, or of
-/// the points transformed by `model`), e.g. "degenerate extent: all 8 vertices coincide at
-/// (1, 2, 3)" or "degenerate extent 1e-300, below 1e-18 ..."; nullopt when it is at least
+/// \brief What is wrong with the extent of `points` (their bounding-box diagonal), e.g.
+/// "degenerate extent: all 8 vertices coincide at (1, 2, 3)" or "degenerate extent 1e-300
+/// (the bounding-box diagonal of 3 vertices), below 1e-18 ..."; nullopt when it is at least
 /// kMinExtent. `what` names the points in the message ("vertices", "control points").
 std::optional<std::string> extentProblem(std::span<const glm::dvec3> points, const char* what);
 

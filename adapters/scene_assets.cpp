@@ -66,7 +66,7 @@ void checkInstanceExtents(const LoadedScene& scene) {
                                         c & 4 ? mesh.restBounds.hi.z : mesh.restBounds.lo.z, 1.0)));
     if (auto problem = extentProblem(corners, "corners of its box in the world"))
       throw Error(scene.description.source + ": instance '" + inst.name + "' of mesh '" +
-                  mesh.name + "': " + *problem + " (check the instance's transform and scale)");
+                  mesh.name + "': " + *problem + ": check the instance's transform and scale");
   }
 }
 

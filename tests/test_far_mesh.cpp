@@ -101,6 +101,13 @@ TEST(FarMeshRender, CullsAndDrawsAsTheSameMeshAtTheOrigin) {
     EXPECT_GT(atOrigin, 0.02) << stage;           // the comparison means something
     EXPECT_NEAR(atFar, atOrigin, 0.01) << stage;  // within one point
   }
+  // verify (random views framed on the recentred bounds) says so too, and finds no false cull.
+  const test::CommandResult v =
+      test::runCommand(test::osdCullProgram().string() + " verify " + (dir / "far.obj").string() +
+                       " --level 1 --views 3 --width 64 --height 64 --tess 2");
+  EXPECT_EQ(v.exitCode(), 0) << v.output;
+  EXPECT_NE(v.output.find("note: the mesh lies far from the origin"), std::string::npos)
+      << v.output;
   ASSERT_EQ(far.image.samples8.size(), origin.image.samples8.size());
   size_t differing = 0;
   for (size_t i = 0; i < origin.image.samples8.size(); ++i)

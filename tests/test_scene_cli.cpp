@@ -266,7 +266,7 @@ TEST(SceneCommand, BadDisplacementNamesThePath) {
 // opening) beside a closed torus.
 const char* kOpenBox =
     "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-    "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nt sharpness 0/0/0\n";
 
 const char* kOpenBoxScene = R"({
   "version": 1,
@@ -292,6 +292,10 @@ TEST(SceneCommand, EveryCullModeCullsBackFacesPerMeshSoTheImagesAreIdentical) {
                                     " --validate --tess 2 --cull " + mode + " --out-dir " +
                                     (dir.path() / mode).string());
     ASSERT_EQ(r.exitCode(), 0) << r.output;
+    // The loader's notes on a mesh of the scene are printed, as for a mesh file.
+    EXPECT_NE(r.output.find("note: mesh 'box': ignored 1 tag line(s) with unknown tag 'sharpness'"),
+              std::string::npos)
+        << r.output;
   }
   // The open box draws its back faces (its inside) in every mode and the torus culls its
   // own in every mode: the baseline is like for like, and culling changes no pixel.

@@ -259,6 +259,7 @@ TEST(SceneFile, AnInstanceScaledToNoSizeNamesItsDegenerateExtent) {
     EXPECT_NE(what.find("test.json: instance 'speck' of mesh 'm': degenerate extent"),
               std::string::npos)
         << what;
+    EXPECT_NE(what.find("below 1e-18"), std::string::npos) << what;
     EXPECT_NE(what.find("check the instance's transform and scale"), std::string::npos) << what;
     EXPECT_EQ(what.find("camera"), std::string::npos) << what;
   }
