@@ -101,6 +101,8 @@ PatchSet loadBezierPatches(const std::filesystem::path& path) {
   if (nextContent())
     lines.fail("content after the last of " + std::to_string(*count) +
                " patches (is the count on the first line right?)");
+  if (auto problem = extentProblem(set.points, "control points"))
+    detail::fail(file, 0, *problem + ": scale the patches up");
   return set;
 }
 

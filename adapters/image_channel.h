@@ -22,8 +22,8 @@ struct ImageChannel {
   int bitDepth = 8;  ///< bits per sample of the file (8, 16 for PNG; 16, 32 for EXR)
 };
 
-/// \brief Reads channel `channel` ('r', 'g', 'b' or 'a'; gray images answer r, g and b
-/// with their gray) of a PNG file.
+/// \brief Reads channel `channel` ('r', 'g', 'b' or 'a'; a gray image answers r with its
+/// gray and refuses g and b, as an image without alpha refuses a) of a PNG file.
 /// \throws osd_cull::Error naming the file and the problem (not a PNG, missing channel,
 /// corrupt data).
 ImageChannel readPngChannel(const std::filesystem::path& path, char channel);

@@ -190,7 +190,6 @@ PngImage itemImage(uint32_t width, uint32_t height, std::span<const uint32_t> it
   return image;
 }
 
-
 namespace detail {
 
 ImageChannel readPngChannel(const std::filesystem::path& path, char channel) {
@@ -207,11 +206,11 @@ ImageChannel readPngChannel(const std::filesystem::path& path, char channel) {
     case 'r':
       index = 0;
       break;
-    case 'g':
-      index = gray ? 0 : 1;
+    case 'g':  // a gray image has no green or blue: refused, as 'a' without alpha is
+      index = gray ? -1 : 1;
       break;
     case 'b':
-      index = gray ? 0 : 2;
+      index = gray ? -1 : 2;
       break;
     case 'a':
       index = hasAlpha ? channels - 1 : -1;
@@ -221,8 +220,10 @@ ImageChannel readPngChannel(const std::filesystem::path& path, char channel) {
   }
   if (index < 0)
     throw Error(where + ": " +
-                (channel == 'a'
-                     ? std::string("has no alpha channel")
+                (channel == 'a' ? std::string("has no alpha channel")
+                 : gray && (channel == 'g' || channel == 'b')
+                     ? "has no channel '" + std::string(1, channel) + "': a gray image has one " +
+                           "color channel, read as r"
                      : "channel '" + std::string(1, channel) + "' is not one of r, g, b, a"));
   ImageChannel out;
   out.width = width;

@@ -48,6 +48,7 @@ CageMesh loadCage(const std::filesystem::path& path, const LoadOptions& options)
   }();
 
   checkCoordinateRange(mesh.positions, file);  // OFF, PLY, STL (OBJ checks per line)
+  checkExtent(mesh.positions, file);
   validate(mesh);  // the readers check as they go; this is the library's own contract
   noteTopology(mesh);
   return mesh;

@@ -1,5 +1,6 @@
 #include "adapters/scene_assets.h"
 
+#include "adapters/coordinate_limit.h"
 #include "adapters/image_displacement.h"
 #include "adapters/load_mesh.h"
 #include "adapters/load_occluder.h"
@@ -8,7 +9,10 @@
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass_displaced.h"
 #include "osd_cull/frame/draw/triangle_mesh.h"
+#include "osd_cull/scene/loaded_scene.h"
 #include "osd_cull/scene/procedural.h"
+
+#include <vector>
 
 namespace osd_cull::adapters {
 
@@ -47,6 +51,25 @@ void displace(SceneMesh& mesh, const DisplacementDescription& d, size_t index) {
   mesh.validity = {false, frame::kDisplacedBackPatchNote};
 }
 
+// An instance whose transform shrinks its mesh to no size (a scale of 1e-300) is refused
+// by name, with its extent, before a camera framed on it fails for want of a direction.
+void checkInstanceExtents(const LoadedScene& scene) {
+  for (size_t i = 0; i < scene.description.instances.size(); ++i) {
+    const scene::InstanceDescription& inst = scene.description.instances[i];
+    const SceneMesh& mesh = scene.meshes.at(inst.mesh);
+    const glm::dmat4 model = patchModel(scene, i, 0.0);
+    std::vector<glm::dvec3> corners;
+    for (int c = 0; c < 8; ++c)
+      corners.push_back(
+          glm::dvec3(model * glm::dvec4(c & 1 ? mesh.restBounds.hi.x : mesh.restBounds.lo.x,
+                                        c & 2 ? mesh.restBounds.hi.y : mesh.restBounds.lo.y,
+                                        c & 4 ? mesh.restBounds.hi.z : mesh.restBounds.lo.z, 1.0)));
+    if (auto problem = extentProblem(corners, "corners of its box in the world"))
+      throw Error(scene.description.source + ": instance '" + inst.name + "' of mesh '" +
+                  mesh.name + "': " + *problem + ": check the instance's transform and scale");
+  }
+}
+
 }  // namespace
 
 scene::LoadedScene loadScene(scene::SceneDescription description) {
@@ -79,6 +102,7 @@ scene::LoadedScene loadScene(scene::SceneDescription description) {
   for (const OccluderDescription& o : description.occluders)
     scene.occluders.push_back(loadOccluder(o));
   scene.description = std::move(description);
+  checkInstanceExtents(scene);
   return scene;
 }
 

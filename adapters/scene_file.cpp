@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -357,15 +358,81 @@ void checkParents(const SceneDescription& scene, const std::vector<Node>& nodes)
   }
 }
 
+// The JSON pointer of the value the parser is reading, from the parser's events: where a
+// parse error (or a number out of range) is, for the message.
+class JsonPointerTracker {
+ public:
+  void onEvent(json::parse_event_t event, const json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        frames_.push_back({false, 0, std::nullopt});
+        break;
+      case json::parse_event_t::array_start:
+        frames_.push_back({true, 0, std::nullopt});
+        break;
+      case json::parse_event_t::key:
+        frames_.back().key = parsed.get<std::string>();
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        next();
+        break;
+      case json::parse_event_t::value:
+        next();
+        break;
+    }
+  }
+  std::string pointer() const {
+    std::string p;
+    for (const Frame& f : frames_) {
+      if (f.array) {
+        p += "/" + std::to_string(f.index);
+        continue;
+      }
+      if (!f.key) break;  // between an object's members
+      p += "/";
+      for (const char c : *f.key) p += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+    }
+    return p.empty() ? "/" : p;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    size_t index = 0;                // of the element being read, in an array
+    std::optional<std::string> key;  // of the member being read, in an object
+  };
+  // The value of the innermost frame is complete.
+  void next() {
+    if (frames_.empty()) return;
+    if (frames_.back().array)
+      ++frames_.back().index;
+    else
+      frames_.back().key.reset();
+  }
+  std::vector<Frame> frames_;
+};
+
 }  // namespace
 
 scene::SceneDescription parseScene(const std::string& text, const std::string& source,
                                    const fs::path& baseDir) {
   json doc;
+  JsonPointerTracker where;
   try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw Error(source + ": malformed JSON: " + e.what());
+    doc = json::parse(text, [&where](int, json::parse_event_t event, json& parsed) {
+      where.onEvent(event, parsed);
+      return true;
+    });
+  } catch (const json::exception& e) {
+    // A parse error, or a number beyond a double ("1e400": out_of_range 406): the file, the
+    // JSON pointer of the value being read, and the library's message without its prefix.
+    std::string what = e.what();
+    if (const size_t end = what.find("] ");
+        what.rfind("[json.exception.", 0) == 0 && end != std::string::npos)
+      what = what.substr(end + 2);
+    throw Error(source + ": " + where.pointer() + ": malformed JSON: " + what);
   }
   const Node root(doc, "", source);
   root.object({"version", "settings", "meshes", "instances", "occluders", "views"});

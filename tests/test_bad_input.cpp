@@ -107,6 +107,25 @@ TEST(BadInput, NanAndInfCoordinates) {
               5, {"NaN or Inf"});
 }
 
+TEST(BadInput, DegenerateExtentIsNamedAsTheMeshsProblem) {
+  TempDir dir;
+  const std::string faces = "f 1 2 3\n";
+  expectError(dir.write("same.obj", "v 1 2 3\nv 1 2 3\nv 1 2 3\n" + faces), 0,
+              {"degenerate extent", "all 3 vertices coincide at (1, 2, 3)"});
+  // 1e-320 (a subnormal double) is read as 0: the vertices coincide.
+  expectError(dir.write("subnormal.obj", "v 0 0 0\nv 1e-320 0 0\nv 0 1e-320 0\n" + faces), 0,
+              {"degenerate extent"});
+  expectError(dir.write("tiny.obj", "v 0 0 0\nv 1e-300 0 0\nv 0 1e-300 0\n" + faces), 0,
+              {"degenerate extent 1.4", "below 1e-18", "scale the mesh up"});
+  expectError(dir.write("same.off", "OFF\n3 1 0\n5 5 5\n5 5 5\n5 5 5\n3 0 1 2\n"), 0,
+              {"degenerate extent", "coincide"});
+  std::string bpt = "1\n3 3\n";
+  for (int i = 0; i < 16; ++i) bpt += "2 2 2\n";
+  expectError(dir.write("same.bpt", bpt), 0, {"degenerate extent", "16 control points coincide"});
+  // Small but resolvable: loads.
+  EXPECT_NO_THROW(loadCage(dir.write("small.obj", "v 0 0 0\nv 1e-9 0 0\nv 0 1e-9 0\n" + faces)));
+}
+
 TEST(BadInput, EmptyMeshes) {
   TempDir dir;
   expectError(dir.write("a.obj", ""), 0, {"no vertices", "empty"});

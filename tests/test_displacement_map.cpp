@@ -2,9 +2,9 @@
 // the conservative range of the map over texture regions (bound/displaced_map.h).
 #include "adapters/image_channel.h"
 #include "adapters/image_displacement.h"
+#include "adapters/image_png.h"
 #include "osd_cull/bound/displaced_map.h"
 #include "osd_cull/error.h"
-#include "adapters/image_png.h"
 #include "osd_cull/scene/procedural_displacement.h"
 #include "support/temp_dir.h"
 
@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -100,17 +102,28 @@ TEST(DisplacementMap, BadInputIsNamed) {
   }
 }
 
+// A one-channel (gray) PNG of `width` x `height` samples, top row first, written into `dir`.
+std::filesystem::path writeGrayPng(const osd_cull::test::TempDir& dir, const char* name,
+                                   uint32_t width, uint32_t height, int bitDepth,
+                                   const std::vector<uint16_t>& samples) {
+  osd_cull::adapters::PngImage image;
+  image.width = width;
+  image.height = height;
+  image.channels = 1;
+  image.bitDepth = bitDepth;
+  if (bitDepth == 16)
+    image.samples16 = samples;
+  else
+    image.samples8.assign(samples.begin(), samples.end());
+  const auto path = dir.path() / name;
+  osd_cull::adapters::writePng(path, image);
+  return path;
+}
+
 TEST(DisplacementImages, Png16BitGrayIsNormalisedAndFlipped) {
   osd_cull::test::TempDir dir("osd_cull_disp_");
-  osd_cull::adapters::PngImage image;
-  image.width = 2;
-  image.height = 2;
-  image.channels = 1;
-  image.bitDepth = 16;
-  image.samples16 = {0, 65535, 32768, 1000};  // top row first
-  const auto path = dir.path() / "gray16.png";
-  osd_cull::adapters::writePng(path, image);
-  const auto ch = osd_cull::adapters::detail::readPngChannel(path, 'g');
+  const auto path = writeGrayPng(dir, "gray16.png", 2, 2, 16, {0, 65535, 32768, 1000});
+  const auto ch = osd_cull::adapters::detail::readPngChannel(path, 'r');
   ASSERT_EQ(ch.width, 2u);
   EXPECT_EQ(ch.bitDepth, 16);
   EXPECT_TRUE(ch.normalized);
@@ -118,6 +131,25 @@ TEST(DisplacementImages, Png16BitGrayIsNormalisedAndFlipped) {
   EXPECT_FLOAT_EQ(ch.texels[0], 32768.0f / 65535.0f);
   EXPECT_FLOAT_EQ(ch.texels[3], 1.0f);
   EXPECT_THROW(osd_cull::adapters::detail::readPngChannel(path, 'a'), Error);
+}
+
+TEST(DisplacementImages, OneChannelPngRefusesGreenAndBlueAsItRefusesAlpha) {
+  osd_cull::test::TempDir dir("osd_cull_disp_");
+  const auto path = writeGrayPng(dir, "gray8.png", 2, 1, 8, {0, 255});
+  EXPECT_EQ(osd_cull::adapters::detail::readPngChannel(path, 'r').texels[1], 1.0f);
+  for (const char channel : {'g', 'b', 'a'}) {
+    try {
+      osd_cull::adapters::detail::readPngChannel(path, channel);
+      ADD_FAILURE() << "accepted channel " << channel << " of a gray PNG";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("gray8.png"), std::string::npos) << what;
+      EXPECT_NE(what.find(channel == 'a' ? "has no alpha channel"
+                                         : std::string("has no channel '") + channel + "'"),
+                std::string::npos)
+          << what;
+    }
+  }
 }
 
 TEST(DisplacementImages, PngRgbaChannelIsChosen) {

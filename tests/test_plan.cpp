@@ -808,6 +808,21 @@ TEST(Plan, EveryReasonAgreesWithItsDecision) {
   std::printf("%u reasons checked, %u held by the hysteresis\n", checked, held);
 }
 
+// `text` (toText()'s) with `lines` added before its closing 'end' line.
+std::string withLines(std::string text, const std::string& lines) {
+  return text.insert(text.rfind("end\n"), lines);
+}
+
+// The message fromText() throws for `text`; empty when it is accepted.
+std::string refusal(const std::string& text) {
+  try {
+    fromText(text, "cal.txt");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 TEST(Calibration, TextRoundTripAndCacheKey) {
   const Calibration c = syntheticCalibration();
   const Calibration back = fromText(toText(c), "test");
@@ -838,8 +853,9 @@ TEST(Calibration, TextRoundTripAndCacheKey) {
   tight.hizTightMsPerPatch = 0.00001;
   EXPECT_DOUBLE_EQ(*fromText(toText(tight), "test").hizTightMsPerPatch, 0.00001);
   EXPECT_FALSE(fromText(toText(c), "test").hizTightMsPerPatch);
-  EXPECT_THROW(fromText(toText(c) + "cull-listed tcone 8 0.1\ncull-listed tcone 4 0.1\n", "x"),
-               Error);  // levels must ascend
+  EXPECT_THROW(
+      fromText(withLines(toText(c), "cull-listed tcone 8 0.1\ncull-listed tcone 4 0.1\n"), "x"),
+      Error);  // levels must ascend
   test::TempDir dir("osd_cull_plan_");
   setenv("OSD_CULL_CALIBRATION_CACHE", dir.path().c_str(), 1);
   EXPECT_FALSE(loadCachedCalibration(c.key));
@@ -864,7 +880,7 @@ TEST(Calibration, TextRoundTripAndCacheKey) {
 TEST(Calibration, BadFileNamesLineAndProblem) {
   const std::string good = toText(syntheticCalibration());
   try {
-    fromText(good + "draw 2 oops 4\n", "cal.txt");
+    fromText(withLines(good, "draw 2 oops 4\n"), "cal.txt");
     FAIL() << "accepted a bad number";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("cal.txt:"), std::string::npos) << e.what();
@@ -878,13 +894,65 @@ TEST(Calibration, BadFileNamesLineAndProblem) {
     FAIL() << "accepted format 2";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("old.txt:1: calibration file format 2, this library "
-                                         "reads format 6"),
+                                         "reads format 7"),
               std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("osd-cull calibrate --force"), std::string::npos);
   }
-  EXPECT_THROW(fromText(good + "colour blue\n", "x"), Error);
+  EXPECT_THROW(fromText(withLines(good, "colour blue\n"), "x"), Error);
   EXPECT_THROW(syntheticCalibration().cullMs("no-such-stage"), Error);
+}
+
+TEST(Calibration, AFileCutAtAnyLineBoundaryIsRefusedNamingTheFile) {
+  const std::string good = toText(syntheticCalibration());
+  ASSERT_EQ(refusal(good), "");
+  size_t lines = 0;
+  for (size_t end = good.find('\n'); end + 1 < good.size(); end = good.find('\n', end + 1)) {
+    const std::string message = refusal(good.substr(0, end + 1));
+    EXPECT_NE(message.find("cal.txt"), std::string::npos) << "cut after " << end << ": " << message;
+    ++lines;
+  }
+  EXPECT_GT(lines, 20u);
+  // Cut just before its closing line: every measurement is there, and it is still refused.
+  const std::string cut = good.substr(0, good.rfind("end\n"));
+  EXPECT_NE(refusal(cut).find("cal.txt: no 'end' line"), std::string::npos) << refusal(cut);
+  EXPECT_NE(refusal(cut).find("cut short?"), std::string::npos) << refusal(cut);
+}
+
+TEST(Calibration, EveryFieldMustBePresentOnceFiniteAndInRange) {
+  const std::string good = toText(syntheticCalibration());
+  auto replaced = [&](const std::string& line, const std::string& by) {
+    std::string text = good;
+    const size_t at = text.find("\n" + line);
+    EXPECT_NE(at, std::string::npos) << line;
+    const size_t end = text.find('\n', at + 1);
+    return text.replace(at + 1, end - at - 1, by);
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {replaced("submit ", "submit 1e308"),
+       "cal.txt:15: 'submit': ms 1e308 is out of range [0, 10000]"},
+      {replaced("submit ", "submit nan"), "'submit': ms nan is out of range"},
+      {replaced("draw 4 ", "draw 4 inf 25 0.004"), "'draw': ms per patch inf is out of range"},
+      {replaced("draw 4 ", "draw 4 0.005 1e9 0.004"), "'draw': TES invocations per patch 1e9"},
+      {replaced("draw 4 ", "draw 100 0.005 25 0.004"), "'draw': a tessellation level 100"},
+      {replaced("repeats ", "repeats 0"), "'repeats': a count 0 is out of range [1, "},
+      {replaced("gregory-draw-factor ", "gregory-draw-factor 1e308"), "'gregory-draw-factor'"},
+      {replaced("hiz 230400 ", "hiz 230400 -1"), "'hiz': ms -1 is out of range"},
+      {replaced("bounds ", "comment"), "unknown entry 'comment'"},
+      {replaced("bounds ", "point-update-cpu 0.1"), "'point-update-cpu' given twice"},
+      {withLines(good, "patches 1000\n"), "'patches' given twice"},
+      {good + "submit 0.2\n", "'submit' after the closing 'end' line"},
+      {replaced("cull frustum", "cull tcone 0.1"), "no 'cull frustum' line"},
+  };
+  for (const auto& [text, expected] : cases)
+    EXPECT_NE(refusal(text).find(expected), std::string::npos) << expected << "\n" << refusal(text);
+  // A missing entry names it and what it holds.
+  std::string noBounds = good;
+  const size_t at = noBounds.find("\nbounds ");
+  noBounds.erase(at + 1, noBounds.find('\n', at + 1) - at);
+  EXPECT_NE(refusal(noBounds).find("cal.txt: no 'bounds' line (the bounds pass, ms per patch)"),
+            std::string::npos)
+      << refusal(noBounds);
 }
 
 }  // namespace

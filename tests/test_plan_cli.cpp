@@ -85,7 +85,7 @@ TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
   EXPECT_EQ(r.exitCode(), 1) << r.output;
   EXPECT_NE(r.output.find("the calibration cache is off"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("osd-cull calibrate --quick"), std::string::npos) << r.output;
-  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 6\ndevice x\ndraw 1 fast\n");
+  const fs::path bad = dir_.write("bad.txt", "osd_cull-calibration 7\ndevice x\ndraw 1 fast\n");
   const auto b = run("plan --calibration " + bad.string());
   EXPECT_EQ(b.exitCode(), 1) << b.output;
   EXPECT_NE(b.output.find("bad.txt:3: 'draw' needs ms per patch, got '1 fast'"), std::string::npos)
@@ -95,7 +95,7 @@ TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
   const fs::path old = dir_.write("old.txt", "osd_cull-calibration 2\ndevice x\n");
   const auto o = run("plan --calibration " + old.string());
   EXPECT_EQ(o.exitCode(), 1) << o.output;
-  EXPECT_NE(o.output.find("old.txt:1: calibration file format 2, this library reads format 6"),
+  EXPECT_NE(o.output.find("old.txt:1: calibration file format 2, this library reads format 7"),
             std::string::npos)
       << o.output;
   EXPECT_NE(o.output.find("osd-cull calibrate --force"), std::string::npos) << o.output;
@@ -134,7 +134,7 @@ TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
 
 class PlanCommandCache : public test::VkTest {};
 
-TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndMeasuredAgainByRender) {
+TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndMeasuredAgainByPlanAndRenderAlike) {
   if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
   // This device's cache file, written in the previous format (before the displaced kernels).
   test::TempDir cache("osd_cull_plan_cache_");
@@ -149,28 +149,53 @@ TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndMeasuredAgainByRend
   std::ofstream(file, std::ios::binary) << text;
   const std::string program = "OSD_CULL_CALIBRATION_CACHE=" + cache.path().string() + " " +
                               test::osdCullProgram().string() + " ";
-  // plan refuses it, saying why and how to measure it again.
+  // plan says why and measures a quick calibration into the cache, as render does, then
+  // plans with it (before, plan refused it and render measured it again).
   const auto p = test::runCommand(program + "plan");
-  EXPECT_EQ(p.exitCode(), 1) << p.output;
-  EXPECT_NE(p.output.find("measure it again with `osd-cull calibrate --force`"), std::string::npos)
-      << p.output;
-  // render says why and measures a quick calibration into the cache, then plans with it.
-  const auto r = test::runCommand(program + "render --width 64 --height 64 --out " +
-                                  (cache.path() / "r.png").string());
-  EXPECT_EQ(r.exitCode(), 0) << r.output;
-  EXPECT_NE(r.output.find(file.string() + ": calibration file format 2, this library reads format"),
+  EXPECT_EQ(p.exitCode(), 0) << p.output;
+  EXPECT_NE(p.output.find(file.string() + ": calibration file format 2, this library reads format"),
             std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("measuring a quick calibration of this device"), std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("plan: auto, calibration of "), std::string::npos) << r.output;
+      << p.output;
+  EXPECT_NE(p.output.find("measuring a quick calibration of this device"), std::string::npos)
+      << p.output;
   const plan::Calibration stored = plan::loadCalibration(file);
   EXPECT_TRUE(stored.quick);
   EXPECT_EQ(stored.key, measure::calibrationKey(context()));
   EXPECT_GT(stored.drawMs(4.0), 0.0);
-  // ... and plan now uses the stored one.
+  // A damaged cache file (cut short) is said and measured again the same way, by render.
+  text = plan::toText(stored);
+  std::ofstream(file, std::ios::binary) << text.substr(0, text.rfind("end\n"));
+  const auto r = test::runCommand(program + "render --width 64 --height 64 --out " +
+                                  (cache.path() / "r.png").string());
+  EXPECT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find(file.string() + ": no 'end' line"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("measuring a quick calibration of this device"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("plan: auto, calibration of "), std::string::npos) << r.output;
+  // ... and both now use the stored one without measuring.
   const auto p2 = test::runCommand(program + "plan");
   EXPECT_EQ(p2.exitCode(), 0) << p2.output;
+  EXPECT_EQ(p2.output.find("measuring"), std::string::npos) << p2.output;
+}
+
+TEST_F(PlanCommand, ADamagedCalibrationFileIsRefusedAlikeByPlanAndRender) {
+  std::string text = plan::toText(test::syntheticCalibration());
+  const fs::path cut = dir_.write("cut.txt", text.substr(0, text.find("\nhiz ") + 1));
+  std::string huge = text;
+  huge.replace(huge.find("submit "), huge.find('\n', huge.find("submit ")) - huge.find("submit "),
+               "submit 1e308");
+  const fs::path big = dir_.write("huge.txt", huge);
+  for (const auto& [file, expected] :
+       {std::pair{cut, "cut.txt: no 'bounds' line"},
+        std::pair{big, "huge.txt:15: 'submit': ms 1e308 is out of range"}}) {
+    const auto p = run("plan --calibration " + file.string());
+    EXPECT_EQ(p.exitCode(), 1) << p.output;
+    EXPECT_NE(p.output.find(expected), std::string::npos) << expected << "\n" << p.output;
+    const auto r = run("render --width 64 --height 64 --out " + (dir_.path() / "r.png").string() +
+                       " --plan-calibration " + file.string());
+    EXPECT_EQ(r.exitCode(), 1) << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << expected << "\n" << r.output;
+  }
 }
 
 TEST_F(PlanCommand, CalibrateChecksItsOutputBeforeMeasuring) {

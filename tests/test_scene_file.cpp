@@ -6,6 +6,7 @@
 #include "adapters/scene_file.h"
 #include "osd_cull/error.h"
 #include "osd_cull/scene/scene_eval.h"
+#include "support/temp_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -171,7 +172,7 @@ std::string withInstances(const std::string& instances) {
 
 TEST(SceneFile, BadInputNamesThePathAndTheProblem) {
   const std::vector<BadCase> cases = {
-      {"malformed", R"({"version": 1, )", "test.json: malformed JSON"},
+      {"malformed", R"({"version": 1, )", "test.json: /: malformed JSON"},
       {"unknown top-level key", R"({"version": 1, "model": []})", "/model: unknown key"},
       {"wrong version", R"({"version": 2, "meshes": [], "views": []})",
        "/version: version 2 is not supported"},
@@ -187,6 +188,12 @@ TEST(SceneFile, BadInputNamesThePathAndTheProblem) {
        "/instances/0/transform/move: unknown key"},
       {"zero scale", withInstances(R"([{"mesh": "m", "transform": {"scale": [1, 0, 1]}}])"),
        "/instances/0/transform/scale: a scale factor of 0"},
+      {"scale beyond a double",
+       withInstances(R"([{"mesh": "m"}, {"mesh": "m", "transform": {"scale": 1e400}}])"),
+       "test.json: /instances/1/transform/scale: malformed JSON: number overflow parsing '1e400'"},
+      {"scale component beyond a double",
+       withInstances(R"([{"mesh": "m", "transform": {"scale": [1, 1e400, 1]}}])"),
+       "test.json: /instances/0/transform/scale/1: malformed JSON: number overflow"},
       {"parent cycle", withInstances(R"([{"name": "a", "mesh": "m", "parent": "b"},
         {"name": "b", "mesh": "m", "parent": "a"}])"),
        "/instances/0/parent: parent cycle"},
@@ -238,6 +245,41 @@ TEST(SceneFile, BadInputNamesThePathAndTheProblem) {
     EXPECT_NE(message.find(c.expected), std::string::npos)
         << c.what << ": expected '" << c.expected << "' in '" << message << "'";
   }
+}
+
+TEST(SceneFile, AnInstanceScaledToNoSizeNamesItsDegenerateExtent) {
+  const SceneDescription s = parse(withInstances(
+      R"([{"name": "big", "mesh": "m"}, {"name": "speck", "mesh": "m",
+          "transform": {"scale": 1e-300}}])"));
+  try {
+    adapters::loadScene(s);
+    FAIL() << "loaded an instance of extent 1e-300";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("test.json: instance 'speck' of mesh 'm': degenerate extent"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("below 1e-18"), std::string::npos) << what;
+    EXPECT_NE(what.find("check the instance's transform and scale"), std::string::npos) << what;
+    EXPECT_EQ(what.find("camera"), std::string::npos) << what;
+  }
+}
+
+TEST(SceneFile, TheLoadersNotesOnAMeshAreKept) {
+  test::TempDir dir("osd_cull_scene_notes_");
+  dir.write("tagged.obj",
+            "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\n"
+            "v -1 1 1\nf 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 5 6 7 8\n"
+            "t crease 2/1/0 0 1 -2\nt foo 0/0/0\n");
+  const SceneDescription s = adapters::parseScene(R"({"version": 1,
+    "meshes": [{"name": "box", "file": "tagged.obj"}],
+    "views": [{"name": "v", "camera": {"eye": [0, -5, 0], "target": [0, 0, 0]}}]})",
+                                                  "notes.json", dir.path());
+  const scene::LoadedScene loaded = adapters::loadScene(s);
+  std::string notes;
+  for (const std::string& n : loaded.meshes[0].notes) notes += n + "\n";
+  EXPECT_NE(notes.find("unknown tag 'foo'"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("negative sharpness value(s) clamped to 0"), std::string::npos) << notes;
 }
 
 TEST(SceneFile, UnreadableFileIsAnError) {

@@ -444,14 +444,28 @@ TEST_F(ViewerWindow, OpensAMeshFile) {
   EXPECT_EQ(run.image.width, 320u);
 }
 
+TEST(ViewerCommand, UnknownScriptKeyIsAUsageErrorWithAShortMessage) {
+#if !OSD_CULL_HAVE_VIEWER
+  GTEST_SKIP() << "osd-cull was built without the viewer";
+#endif
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  const auto r =
+      test::runCommand(test::osdCullProgram().string() + " view --frames 2 --script 'c bogus'");
+  EXPECT_EQ(r.exitCode(), 2) << r.output;  // a bad command line, as CLI11's errors
+  EXPECT_NE(r.output.find("--script: 'bogus' is not a key"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("`osd-cull view --help` lists the keys"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("tessellation level up"), std::string::npos) << r.output;  // no key list
+  EXPECT_LT(r.output.size(), 400u) << r.output;
+}
+
 TEST_F(ViewerWindow, BadScriptIsAUsageErrorBeforeAnyWindow) {
   const auto r =
       test::runCommand(test::osdCullProgram().string() + " view --frames 2 --script '@3 @1'");
-  EXPECT_NE(r.exitCode(), 0);
+  EXPECT_EQ(r.exitCode(), 2) << r.output;
   EXPECT_NE(r.output.find("frames must not decrease"), std::string::npos) << r.output;
   const auto shot =
       test::runCommand(test::osdCullProgram().string() + " view --frames 2 --script '@1 shot'");
-  EXPECT_NE(shot.exitCode(), 0);
+  EXPECT_EQ(shot.exitCode(), 2) << shot.output;
   EXPECT_NE(shot.output.find("'shot' needs --screenshot"), std::string::npos) << shot.output;
 }
 

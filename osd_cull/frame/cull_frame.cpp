@@ -114,8 +114,7 @@ CullFrame::CullFrame(vulkan::Context& context, Renderer& renderer, RenderTarget&
   // Each mesh reads its adaptive levels from its own slot of its set's tessLevels()
   // (TessLevelsPass), reserved before any descriptor set of the set is written.
   std::map<GpuPatchSet*, uint32_t> levelSlots;
-  for (const CullMesh& m : meshes_)
-    levelSlotOf_.push_back(m.gpu ? levelSlots[m.gpu]++ : 0u);
+  for (const CullMesh& m : meshes_) levelSlotOf_.push_back(m.gpu ? levelSlots[m.gpu]++ : 0u);
   for (const auto& [gpu, slots] : levelSlots) gpu->reserveTessLevelSlots(context, slots);
   for (size_t i = 0; i < meshes_.size(); ++i) {
     const CullMesh& m = meshes_[i];
@@ -242,6 +241,7 @@ void CullFrame::recordMeshDraws(VkCommandBuffer cmd, const Camera& camera, size_
   const GpuPatchSet& g = *meshes_[m].gpu;
   PatchDraw draw{meshes_[m].gpu, meshes_[m].host, itemBases_[m]};
   draw.model = &meshes_[m].model;
+  draw.cullBackFaces = meshes_[m].cullBackFaces;
   draw.tessLevelSlot = levelSlotOf_[m];  // recorded by recordFirstPass when it applies
   if (options_.drawMode == CullDrawMode::TessFactorZero) {
     draw.set = secondPass ? v.secondPassAll() : v.firstPassAll();
@@ -259,8 +259,8 @@ void CullFrame::recordMeshDraws(VkCommandBuffer cmd, const Camera& camera, size_
                            4 * shader::kListDrawsBezier, maxBezier, options_.render);
   renderer_.recordIndirect(cmd, camera, draw, PatchType::Gregory, list.commands,
                            VkDeviceSize{maxBezier} * sizeof(VkDrawIndirectCommand), list.counters,
-                           4 * shader::kListDrawsGregory,
-                           v.maxDraws(PatchType::Gregory, c.gregory), options_.render);
+                           4 * shader::kListDrawsGregory, v.maxDraws(PatchType::Gregory, c.gregory),
+                           options_.render);
 }
 
 CullFrame::StatsSlot& CullFrame::beginFrame(const Camera& camera) {
@@ -491,8 +491,8 @@ FrameStats CullFrame::renderStatusView(RenderTarget& target, const Camera& camer
     for (uint32_t p = 0; p < status.size(); ++p)
       list[p] = p | (drawStatusOf(status[p]) << shader::kDrawListStatusShift);
     vulkan::upload<uint32_t>(context_, statusLists_[m], list);
-    draws.push_back(
-        {meshes_[m].gpu, meshes_[m].host, itemBases_[m], statusSets_[m], &meshes_[m].model});
+    draws.push_back({meshes_[m].gpu, meshes_[m].host, itemBases_[m], statusSets_[m],
+                     &meshes_[m].model, meshes_[m].cullBackFaces});
   }
   RenderOptions o = options_.render;
   o.clear = true;

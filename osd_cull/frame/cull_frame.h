@@ -141,6 +141,10 @@ struct CullMesh {
   /// Back-patch validity of this mesh, instead of CullFrameOptions::cull's (a scene's meshes
   /// differ: closed or not, static or deforming).
   std::optional<bound::BackPatchValidity> backPatchValidity;
+  /// Whether the draws of this mesh cull back-facing triangles (PatchDraw::cullBackFaces),
+  /// instead of CullFrameOptions::render's: a scene culls them per mesh, from the mesh's
+  /// own validity, in every mode.
+  std::optional<bool> cullBackFaces;
   /// A displaced mesh (its GpuPatchSet draws with the map), instead of
   /// CullFrameOptions::cull's: the map and uvCorners (borrowed) and the displaced bound
   /// the frustum and occlusion stages test (CullSettings::displacementMap).
@@ -274,10 +278,10 @@ class CullFrame {
   };
   void recordBatchCull(VkCommandBuffer cmd, const Camera& camera, Batch& batch);
   std::vector<Batch> batches_;
-  std::vector<size_t> batchOf_;     // per mesh
-  std::vector<uint32_t> slotOf_;    // per mesh: its instance in the batch
+  std::vector<size_t> batchOf_;        // per mesh
+  std::vector<uint32_t> slotOf_;       // per mesh: its instance in the batch
   std::vector<uint32_t> levelSlotOf_;  // per mesh: its slot of its set's tessLevels()
-  vulkan::Buffer survivedResults_;  // all kStageNone, used without a pass
+  vulkan::Buffer survivedResults_;     // all kStageNone, used without a pass
   std::unique_ptr<HiZPyramid> pyramid_;
   std::unique_ptr<HiZCullStage> stage_;
   std::vector<std::unique_ptr<StatsSlot>> slots_;  // the statistics ring

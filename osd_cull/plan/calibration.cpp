@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace osd_cull::plan {
@@ -19,15 +20,47 @@ namespace fs = std::filesystem;
 // con-caf ...") and the displaced draw ("draw-displaced"). Format 4: the back-patch
 // accuracies ("cull-surface METHOD MS", "cull-listed METHOD LEVEL MS"). Format 5: the tight
 // Hi-Z lookup ("hiz-tight MS"), a full-resolution Hi-Z build among the "hiz" sizes and the
-// displaced bounds passes ("bounds-method acon|con MS"). Older files are measured again.
+// displaced bounds passes ("bounds-method acon|con MS"). Format 6: the listed test per
+// patch it runs on. Format 7: a closing "end" line, so that a file cut at a line boundary
+// is refused, not read as a calibration with fewer measurements. Older files are measured
+// again.
 constexpr const char* kMagicPrefix = "osd_cull-calibration ";
-constexpr int kFormat = 6;  // 6: the listed test per patch it runs on
+constexpr int kFormat = 7;
 const std::string kMagic = kMagicPrefix + std::to_string(kFormat);
 
 // The format of a calibration file's first line; 0 when it is not one.
 int formatOf(const std::string& firstLine) {
   if (firstLine.rfind(kMagicPrefix, 0) != 0) return 0;
   return std::atoi(firstLine.c_str() + std::string(kMagicPrefix).size());
+}
+
+// The largest time a calibration field may hold, in ms: 10 s for one patch, submission or
+// Hi-Z build is no measurement of a working device (a damaged or hand-edited file), and
+// would make every prediction meaningless ("predicted inf ms").
+constexpr double kMaxMs = 1e4;
+// The largest ratio (gregory-draw-factor, draw-displaced) and TES invocations per patch
+// ((64 + 1)² at the highest level, with margin).
+constexpr double kMaxFactor = 1e3;
+constexpr double kMaxInvocations = 1e5;
+
+// The entries every calibration has, once each, and what they hold (for the errors).
+const std::map<std::string, std::string>& requiredEntries() {
+  static const std::map<std::string, std::string> entries = {
+      {"device", "the device name"},
+      {"driver", "the driver"},
+      {"library", "the library version"},
+      {"quick", "whether it is a quick calibration"},
+      {"repeats", "the repeats behind each median"},
+      {"patches", "the patches of the calibration mesh"},
+      {"gregory-draw-factor", "the Gregory draw factor"},
+      {"draw-zero", "RT0, ms per patch"},
+      {"submit", "one submission, ms"},
+      {"cull-dispatch", "the fixed cost of a cull dispatch, ms"},
+      {"point-update-cpu", "the CPU point update, ms per patch"},
+      {"point-update-gpu", "the GPU point update, ms per patch"},
+      {"bounds", "the bounds pass, ms per patch"},
+      {"end", "the closing line (a file without it was cut short)"}};
+  return entries;
 }
 
 std::string number(double v) {
@@ -144,6 +177,7 @@ std::string toText(const Calibration& c) {
   for (const auto& [method, levels] : c.listedCullMsPerPatch)
     for (const auto& [level, ms] : levels)
       out << "cull-listed " << method << " " << level << " " << number(ms) << "\n";
+  out << "end\n";
   return out.str();
 }
 
@@ -161,19 +195,35 @@ Calibration fromText(const std::string& text, const std::string& source) {
   }
   lineNumber = 1;
   Calibration c;
-  bool sawDevice = false;
+  std::set<std::string> seen;  // of requiredEntries()
+  bool ended = false;
   while (std::getline(in, line)) {
     ++lineNumber;
     if (line.empty()) continue;
     const size_t space = line.find(' ');
     const std::string name = line.substr(0, space);
     const std::string rest = space == std::string::npos ? "" : line.substr(space + 1);
+    if (ended) throw fail("'" + name + "' after the closing 'end' line");
+    if (requiredEntries().count(name) && !seen.insert(name).second)
+      throw fail("'" + name + "' given twice");
     std::istringstream values(rest);
-    auto read = [&](auto& v, const char* what) {
-      if (!(values >> v)) throw fail("'" + name + "' needs " + what + ", got '" + rest + "'");
-      if constexpr (std::is_floating_point_v<std::remove_reference_t<decltype(v)>>)
-        if (!std::isfinite(v) || v < 0)
-          throw fail("'" + name + "': " + what + " must be finite and >= 0");
+    // A value, in [lo, hi] when a number: finite, and not beyond what a device measures.
+    auto read = [&](auto& v, const char* what, double lo = 0.0, double hi = kMaxMs) {
+      std::string token;
+      if (!(values >> token)) throw fail("'" + name + "' needs " + what + ", got '" + rest + "'");
+      using T = std::remove_reference_t<decltype(v)>;
+      if constexpr (std::is_same_v<T, std::string>) {
+        v = token;
+      } else {
+        char* end = nullptr;
+        const double x = std::strtod(token.c_str(), &end);
+        if (token.empty() || *end != '\0' || (std::is_integral_v<T> && x != std::floor(x)))
+          throw fail("'" + name + "' needs " + what + ", got '" + rest + "'");
+        if (!std::isfinite(x) || x < lo || x > hi)
+          throw fail("'" + name + "': " + what + " " + token + " is out of range [" + number(lo) +
+                     ", " + number(hi) + "]");
+        v = static_cast<T>(x);
+      }
     };
     // `NAME ms-per-patch` into a map.
     auto readNamed = [&](std::map<std::string, double>& into, const char* what) {
@@ -185,39 +235,42 @@ Calibration fromText(const std::string& text, const std::string& source) {
     };
     // `KEY VALUE` appended to `into`, whose keys must ascend.
     auto readAscending = [&](auto& into, auto key, auto value, const char* keyWhat,
-                             const char* valueWhat, const char* keys) {
+                             const char* valueWhat, const char* keys, double keyMax,
+                             double valueMax = kMaxMs) {
       typename std::decay_t<decltype(into)>::value_type entry{};
-      read(entry.*key, keyWhat);
-      read(entry.*value, valueWhat);
+      read(entry.*key, keyWhat, 0, keyMax);
+      read(entry.*value, valueWhat, 0, valueMax);
       if (!into.empty() && entry.*key <= into.back().*key)
         throw fail("'" + name + "' " + keys + " must ascend");
       into.push_back(entry);
     };
-    if (name == "device") {
+    if (name == "end") {
+      if (!rest.empty()) throw fail("'end' takes no value, got '" + rest + "'");
+      ended = true;
+    } else if (name == "device")
       c.key.device = rest;
-      sawDevice = true;
-    } else if (name == "driver")
+    else if (name == "driver")
       c.key.driver = rest;
     else if (name == "library")
       c.key.library = rest;
     else if (name == "quick") {
       int q = 0;
-      read(q, "0 or 1");
+      read(q, "0 or 1", 0, 1);
       c.quick = q != 0;
     } else if (name == "repeats")
-      read(c.repeats, "a count");
+      read(c.repeats, "a count", 1, 1e6);
     else if (name == "patches")
-      read(c.patches, "a count");
+      read(c.patches, "a count", 1, 1e9);
     else if (name == "draw") {
       DrawCost d;
-      read(d.tess, "a tessellation level");
+      read(d.tess, "a tessellation level", 1, 64);
       read(d.msPerPatch, "ms per patch");
-      read(d.tesPerPatch, "TES invocations per patch");
+      read(d.tesPerPatch, "TES invocations per patch", 0, kMaxInvocations);
       read(d.backMsPerPatch, "ms per back-facing patch");
       if (!c.draw.empty() && d.tess <= c.draw.back().tess) throw fail("'draw' levels must ascend");
       c.draw.push_back(d);
     } else if (name == "gregory-draw-factor")
-      read(c.gregoryDrawFactor, "a factor");
+      read(c.gregoryDrawFactor, "a factor", 0, kMaxFactor);
     else if (name == "draw-zero")
       read(c.drawZeroMsPerPatch, "ms per patch");
     else if (name == "submit")
@@ -227,7 +280,8 @@ Calibration fromText(const std::string& text, const std::string& source) {
     else if (name == "cull")
       readNamed(c.cullMsPerPatch, "a stage name");
     else if (name == "hiz")
-      readAscending(c.hizBuild, &SizeCost::pixels, &SizeCost::ms, "a pixel count", "ms", "sizes");
+      readAscending(c.hizBuild, &SizeCost::pixels, &SizeCost::ms, "a pixel count", "ms", "sizes",
+                    1e12);
     else if (name == "point-update-cpu")
       read(c.pointUpdateCpuMsPerPatch, "ms per patch");
     else if (name == "point-update-gpu")
@@ -237,7 +291,7 @@ Calibration fromText(const std::string& text, const std::string& source) {
     else if (name == "draw-displaced")
       readAscending(c.displacedDrawFactor, &std::pair<uint32_t, double>::first,
                     &std::pair<uint32_t, double>::second, "a tessellation level", "a factor",
-                    "levels");
+                    "levels", 64, kMaxFactor);
     else if (name == "bounds-method")
       readNamed(c.boundsMsPerMethod, "a back-patch method name");
     else if (name == "hiz-tight") {
@@ -251,13 +305,21 @@ Calibration fromText(const std::string& text, const std::string& source) {
       read(method, "a back-patch method name");
       readAscending(c.listedCullMsPerPatch[method], &std::pair<uint32_t, double>::first,
                     &std::pair<uint32_t, double>::second, "a tessellation level", "ms per patch",
-                    "levels of one method");
+                    "levels of one method", 64);
     } else
       throw fail("unknown entry '" + name + "'");
   }
-  if (!sawDevice) throw Error(source + ": no 'device' line");
+  // Validated whole: a file cut short, or missing a measurement, is refused by name.
+  for (const auto& [entry, what] : requiredEntries())
+    if (!seen.count(entry))
+      throw Error(source + ": no '" + entry + "' line (" + what + ")" +
+                  (ended ? ""
+                         : "; the file ends at line " + std::to_string(lineNumber) +
+                               " without its closing 'end' line: cut short?"));
   if (c.draw.empty()) throw Error(source + ": no 'draw' lines (RT(tf))");
-  if (c.hizBuild.empty()) throw Error(source + ": no 'hiz' lines");
+  if (c.hizBuild.empty()) throw Error(source + ": no 'hiz' lines (the Hi-Z build)");
+  if (!c.cullMsPerPatch.count("frustum"))
+    throw Error(source + ": no 'cull frustum' line (the cull kernel's cost)");
   return c;
 }
 
@@ -293,7 +355,7 @@ std::string outdatedCalibrationMessage(int format) {
   return "calibration file format " + std::to_string(format) + ", this library reads format " +
          std::to_string(kFormat) +
          " (per-method bounds passes, displaced kernels and draw, back-patch accuracies, Hi-Z "
-         "variants, displaced bounds passes): measure "
+         "variants, displaced bounds passes, a closing 'end' line): measure "
          "it again with "
          "`osd-cull calibrate --force`";
 }
@@ -310,9 +372,20 @@ std::optional<Calibration> loadCachedCalibration(const CalibrationKey& key, std:
       return std::nullopt;
     }
   }
-  Calibration c = loadCalibration(file);
-  if (!(c.key == key)) return std::nullopt;
-  return c;
+  if (!outdated) {
+    Calibration c = loadCalibration(file);
+    if (!(c.key == key)) return std::nullopt;
+    return c;
+  }
+  // A damaged file (cut short, a value out of range) is measured again like an old one.
+  try {
+    Calibration c = loadCalibration(file);
+    if (!(c.key == key)) return std::nullopt;
+    return c;
+  } catch (const Error& e) {
+    *outdated = std::string(e.what()) + " (a damaged calibration file)";
+    return std::nullopt;
+  }
 }
 
 void storeCalibration(const Calibration& calibration, const fs::path& file) {

@@ -118,8 +118,11 @@ struct Calibration {
 
 /// \brief The calibration as text: `name value...` lines (stable, diffable, versioned).
 std::string toText(const Calibration& calibration);
-/// \brief Parses toText()'s output. \throws osd_cull::Error naming `source`, the line and
-/// what was expected.
+/// \brief Parses toText()'s output, validated whole: every entry present (the closing `end`
+/// line too, so that a file cut at a line boundary is refused), once, and every number
+/// finite and in range (times in [0, 1e4] ms, counts and levels in their ranges).
+/// \throws osd_cull::Error naming `source`, the line or the missing entry, and what was
+/// expected.
 Calibration fromText(const std::string& text, const std::string& source);
 
 /// \brief The cache directory, or an empty path when disabled (see the file comment).
@@ -128,9 +131,10 @@ std::filesystem::path calibrationCacheDirectory();
 /// itself is stored inside and compared on load).
 std::filesystem::path calibrationCacheFile(const CalibrationKey& key);
 /// \brief The cached calibration of `key`; nullopt when the cache is off, has none, or the
-/// file is of another key. A file of an older format: with `outdated`, nullopt and the
-/// message in *outdated (so that the caller measures again); without, an Error saying so.
-/// \throws osd_cull::Error for a damaged file (named).
+/// file is of another key. A file of an older format or a damaged one (cut short, a field
+/// missing, out of range: fromText()): with `outdated`, nullopt and the message, naming the
+/// file and the field, in *outdated (so that the caller measures again, as every command
+/// does); without, an Error saying so.
 std::optional<Calibration> loadCachedCalibration(const CalibrationKey& key,
                                                  std::string* outdated = nullptr);
 /// \brief "calibration file format N, this library reads format M ...: measure it again".

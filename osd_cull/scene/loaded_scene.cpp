@@ -4,6 +4,7 @@
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/scene/scene_eval.h"
 
+#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace osd_cull::scene {
@@ -27,18 +28,28 @@ std::unique_ptr<CageAnimation> makeProceduralAnimation(const AnimationSource& a,
   throw Error("an OBJ sequence is a file: load it with adapters::loadScene()");
 }
 
+glm::dvec3 recentre(std::span<glm::dvec3> points) {
+  const glm::dvec3 offset = frame::boundsOf(points).center();
+  for (glm::dvec3& p : points) p -= offset;
+  return offset;
+}
+
+glm::dvec3 farMeshOffset(std::span<const glm::dvec3> points) {
+  if (points.empty()) return glm::dvec3(0.0);
+  const frame::Bounds b = frame::boundsOf(points);
+  return glm::length(b.center()) > b.radius() ? b.center() : glm::dvec3(0.0);
+}
+
 SceneMesh makeSceneMesh(std::string name, CageMesh cage, const PatchOptions& options, bool recentre,
                         std::unique_ptr<CageAnimation> animation) {
   SceneMesh m;
   m.name = std::move(name);
-  if (recentre) {
-    m.recentreOffset = frame::boundsOf(cage.positions).center();
-    for (glm::dvec3& p : cage.positions) p -= m.recentreOffset;
-  }
+  if (recentre) m.recentreOffset = scene::recentre(cage.positions);
   bound::CullablePatches patches = bound::cullablePatches(cage, options);
   m.validity = std::move(patches.backPatch);
   m.extraction = std::move(patches.extraction);
   m.restCage = cage.positions;
+  m.notes = cage.notes;
   m.restBounds = frame::boundsOf(m.extraction.patches.points);
   m.animation = std::move(animation);
   return m;

@@ -26,7 +26,10 @@ struct SceneMesh {
   /// Subtracted from every cage position (the animation's too) at load; the instances'
   /// transforms add it back, so world positions are unchanged (SceneMeshDescription::recentre).
   glm::dvec3 recentreOffset{0.0};
-  bound::BackPatchValidity validity;         ///< whether back-patch culling is valid on the cage
+  bound::BackPatchValidity validity;  ///< whether back-patch culling is valid on the cage
+  /// What the loader ignored or found unusual in the cage (CageMesh::notes: unknown tags,
+  /// negative sharpness clamped, ...): the commands print them, as for a mesh file.
+  std::vector<std::string> notes;
   std::unique_ptr<CageAnimation> animation;  ///< null: static
   frame::Bounds restBounds;                  ///< of the rest-pose control points
   /// A displaced (static) mesh: its map, drawn along extraction.uvCorners; culled with the
@@ -48,6 +51,19 @@ struct LoadedScene {
 /// \throws osd_cull::Error for a sequence, or as the deformer factories.
 std::unique_ptr<CageAnimation> makeProceduralAnimation(const AnimationSource& source,
                                                        std::span<const glm::dvec3> rest);
+
+/// \brief Subtracts the bounding-box centre of `points` from each of them and returns it:
+/// the recentring of SceneMeshDescription::recentre, which keeps coordinates near the
+/// origin so that their fp32 copies on the GPU keep the precision of the mesh's size.
+glm::dvec3 recentre(std::span<glm::dvec3> points);
+
+/// \brief The offset the mesh form (render, verify, view and plan MESH) recentres a mesh
+/// by at load: the bounding-box centre of `points` when the origin lies outside their
+/// bounding sphere (a mesh authored far from the origin, whose fp32 coordinates would lose
+/// the precision the cull tests and the rasterizer need), else zero (the coordinates are
+/// already as precise as the mesh's own size allows, and are left as authored). Empty
+/// `points`: zero.
+glm::dvec3 farMeshOffset(std::span<const glm::dvec3> points);
 
 /// \brief Fills a SceneMesh from a cage: recentres it (when `recentre`), refines it with
 /// `options`, and records its validity and rest bounds. `animation` (may be null) must

@@ -112,6 +112,7 @@ frame::CullMesh ScenePlayer::cullMesh(size_t i, const frame::CullStages* stages,
   const SceneMesh& mesh = scene_.meshes[p.mesh];
   frame::CullMesh m{
       .gpu = &p.gpu(), .host = &p.host(), .model = inst.model, .backPatchValidity = mesh.validity};
+  m.cullBackFaces = mesh.validity.enabled;  // per mesh, in every mode (like for like)
   if (stages) m.stages = *stages;
   if (mesh.displacementMap) {
     m.displacementMap = &*mesh.displacementMap;
@@ -377,6 +378,7 @@ frame::FrameStats ScenePlayer::drawUnculled(size_t view, frame::RenderTarget& ta
     Points& p = *points_[i.points];
     frame::PatchDraw draw{&p.gpu(), &p.host(), base};
     draw.model = &i.model;
+    draw.cullBackFaces = scene_.meshes[p.mesh].validity.enabled;
     draws.push_back(draw);
     base += p.host().patchCount();
   }

@@ -72,6 +72,12 @@ int run(const PlanCommandArgs& args) {
   const bool isScene = isSceneArgument(argument);
   if (args.displaced && isScene) throw UsageError("--displaced applies to a MESH, not to a scene");
   vulkan::Context context(args.device);
+  // As render finds it (missingCalibration): an outdated or damaged cached calibration is
+  // measured again, not refused here and re-measured there.
+  PlanArgs planArgs;
+  planArgs.calibration = args.calibration;
+  if (const std::string missing = missingCalibration(planArgs, context); !missing.empty())
+    throw Error("no calibration to plan with: " + missing);
   const plan::Calibration calibration = measure::deviceCalibration(context, args.calibration);
   std::vector<plan::ScenePlanInput> inputs;
   if (isScene) {

@@ -5,6 +5,9 @@
 
 #include "osd_cull/error.h"
 #include "osd_cull/version.h"
+#if OSD_CULL_HAVE_VIEWER
+#include "viewer/view_state.h"
+#endif
 
 #include <opensubdiv/version.h>
 
@@ -108,6 +111,11 @@ int main(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "osd-cull " << chosen->get_name() << ": error: " << e.what() << "\n";
     return 2;
+#if OSD_CULL_HAVE_VIEWER
+  } catch (const osd_cull::viewer::ScriptError& e) {  // a bad --script is a bad command line too
+    std::cerr << "osd-cull " << chosen->get_name() << ": error: " << e.what() << "\n";
+    return 2;
+#endif
   } catch (const std::exception& e) {
     std::cerr << (chosen ? "osd-cull " + chosen->get_name() : std::string("osd-cull"))
               << ": error: " << e.what() << "\n";

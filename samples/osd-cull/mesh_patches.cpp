@@ -2,21 +2,54 @@
 
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
+#include "osd_cull/scene/loaded_scene.h"
+
+#include <cstdio>
+#include <optional>
 
 namespace osd_cull::cli {
+namespace {
+
+/// The note of a recentred mesh: what was removed, and what it means for the user's own
+/// coordinates.
+std::string recentreNote(const glm::dvec3& offset) {
+  char text[256];
+  std::snprintf(text, sizeof(text),
+                "the mesh lies far from the origin: recentred by (%.9g, %.9g, %.9g), its "
+                "bounding-box centre, so that it is drawn and culled in fp32 coordinates near "
+                "the origin",
+                offset.x, offset.y, offset.z);
+  return text;
+}
+
+}  // namespace
 
 MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
   MeshPatches out;
   out.name = mesh.name;
   if (mesh.bezier) {
     out.patches = *mesh.bezier;
+    out.recentreOffset = scene::farMeshOffset(out.patches.points);
+    if (out.recentreOffset != glm::dvec3(0.0)) {
+      for (glm::dvec3& p : out.patches.points) p -= out.recentreOffset;
+      out.notes.push_back(recentreNote(out.recentreOffset));
+    }
     out.backPatch = {false,
                      "a Bezier patch file carries no topology to show that the surface is "
                      "closed and oriented outward"};
     return out;
   }
-  const CageMesh& cage = *mesh.cage;
+  // Recentred before refinement, as scenes are (scene::makeSceneMesh): the patch points are
+  // then computed near the origin too. The cage is copied only when it is far.
+  std::optional<CageMesh> recentred;
+  out.recentreOffset = scene::farMeshOffset(mesh.cage->positions);
+  if (out.recentreOffset != glm::dvec3(0.0)) {
+    recentred = *mesh.cage;
+    for (glm::dvec3& p : recentred->positions) p -= out.recentreOffset;
+  }
+  const CageMesh& cage = recentred ? *recentred : *mesh.cage;
   out.notes = cage.notes;
+  if (recentred) out.notes.push_back(recentreNote(out.recentreOffset));
   // The commands never move the cage: no cage -> point matrix (a fraction of the time and
   // memory at a million patches).
   PatchOptions pointsOnly = options;

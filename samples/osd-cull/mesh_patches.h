@@ -10,6 +10,7 @@
 #include "osd_cull/patch/patch_set.h"
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include <string>
 #include <vector>
@@ -27,11 +28,18 @@ struct MeshPatches {
   /// Texture coordinates of the patch corners, 4 per patch (PatchExtraction::uvCorners);
   /// empty without texture coordinates.
   std::vector<glm::dvec2> uvCorners;
+  /// Subtracted from every position at load when the mesh lies far from the origin
+  /// (scene::recentreFar; zero otherwise): `patches` are in the file's coordinates minus
+  /// this offset, and a camera or occluder given in the file's coordinates must be moved by
+  /// it too. A note says so when it is not zero.
+  glm::dvec3 recentreOffset{0.0};
 };
 
 /// \brief Extracts the patches of a cage (bound::backPatchValidity from its topology and
 /// signed volume) or takes a Bézier patch file as is (back-patch culling off: a patch file
-/// carries no topology to show that it is closed).
+/// carries no topology to show that it is closed). A mesh far from the origin is recentred
+/// first (MeshPatches::recentreOffset), as scenes are, so that it is drawn and culled with
+/// the precision of an origin mesh.
 MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options);
 
 }  // namespace osd_cull::cli

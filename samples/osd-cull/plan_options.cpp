@@ -52,7 +52,8 @@ std::string missingCalibration(const PlanArgs& args, vulkan::Context& context) {
   // `osd-cull calibrate` still gets culling that pays. Without a cache
   // (OSD_CULL_CALIBRATION_CACHE=off, as in the tests) it would be measured on every run.
   if (plan::calibrationCacheDirectory().empty())
-    return why + ": run `osd-cull calibrate --quick`, or give --plan-calibration FILE";
+    return why + " (the calibration cache is off): run `osd-cull calibrate --quick`, or give " +
+           "--plan-calibration FILE";
   const std::filesystem::path file = plan::calibrationCacheFile(key);
   std::cerr << "plan: " << why << "; measuring a quick calibration of this device (under 30 s, "
             << "kept in " << file.string() << "; `osd-cull calibrate` measures the full one)\n";

@@ -33,9 +33,11 @@ void addPlanAccuracyOption(CLI::App& app, std::string& accuracy);
 void addPlanOptions(CLI::App& app, PlanArgs& args);
 
 /// \brief Why there is no calibration to plan with ("" when there is one): no
-/// --plan-calibration and no (current) calibration of this device in the cache. With the
-/// cache on, a missing or outdated calibration is measured (`calibrate --quick`, progress
-/// on stderr) and stored instead, and the answer is "".
+/// --plan-calibration and no (current, valid) calibration of this device in the cache. With
+/// the cache on, a missing, outdated or damaged calibration is measured (`calibrate
+/// --quick`, progress on stderr) and stored instead, and the answer is "". Every command
+/// that plans (render, plan) finds its calibration through this, so all treat a
+/// cache file alike.
 std::string missingCalibration(const PlanArgs& args, vulkan::Context& context);
 
 /// \brief The planner of a render, or null when the plan is off, with one line to `out`

@@ -8,8 +8,8 @@
 #include "plan_options.h"
 #include "scene_source.h"
 
-#include "osd_cull/error.h"
 #include "adapters/image_png.h"
+#include "osd_cull/error.h"
 #include "osd_cull/session/scene_player.h"
 #include "osd_cull/vk/context.h"
 
@@ -113,9 +113,9 @@ int renderScene(const RenderArgs& args) {
   options.render.tessellation.uniformLevel = tess;
   options.render.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
   options.cull = cullSettings(cull, {false, "set per mesh"});
-  // Back faces are culled in the draws exactly when back-patch culling may run: like for
-  // like, the unculled comparison draws the same way.
-  options.render.cullBackFaces = !options.cull.backPatch.empty();
+  // Back faces are culled in the draws per mesh, from the mesh's own validity, in every
+  // mode, --cull none included (session::ScenePlayer sets CullMesh::cullBackFaces and the
+  // unculled comparison's PatchDraw::cullBackFaces): like for like.
   // The plan's point update: on the path the calibration measured cheaper.
   const plan::Calibration* calibration = planner ? &planner->calibration() : nullptr;
   const frame::PointUpdatePath pointUpdate =
@@ -198,8 +198,8 @@ int renderScene(const RenderArgs& args) {
     std::cout << "wrote " << frameCount * player.viewCount() << " frames to " << *outDir << "\n";
   if (out) {
     frame::RenderTarget& target = player.target(0);
-    adapters::writePng(*out,
-                    adapters::colorImage(target.width(), target.height(), target.readColor(context)));
+    adapters::writePng(
+        *out, adapters::colorImage(target.width(), target.height(), target.readColor(context)));
     std::cout << "wrote " << *out << "\n";
   }
   if (statsPath) {

@@ -4,6 +4,8 @@
 #include "adapters/scene_file.h"
 #include "osd_cull/scene/default_scene.h"
 
+#include <iostream>
+
 namespace osd_cull::cli {
 
 namespace {
@@ -11,6 +13,15 @@ namespace {
 bool isSequencePattern(const std::string& a) {
   return a.ends_with(".obj") &&
          (a.find('#') != std::string::npos || a.find('[') != std::string::npos);
+}
+
+// The loader's notes on each mesh (unknown tags, clamped sharpness ...), as the mesh form
+// prints them: unusual input is never accepted silently.
+scene::LoadedScene printNotes(scene::LoadedScene scene) {
+  for (const scene::SceneMesh& m : scene.meshes)
+    for (const std::string& note : m.notes)
+      std::cout << "note: mesh '" << m.name << "': " << note << "\n";
+  return scene;
 }
 
 }  // namespace
@@ -22,7 +33,7 @@ bool isSceneArgument(const std::string& argument) {
 
 scene::LoadedScene loadSceneArgument(const std::string& argument, uint32_t frames) {
   if (argument == "built-in:scene") return scene::builtInScene(frames ? frames : 48);
-  if (adapters::isSceneFile(argument)) return adapters::loadScene(argument);
+  if (adapters::isSceneFile(argument)) return printNotes(adapters::loadScene(argument));
   scene::SceneDescription d;
   d.source = argument;
   scene::MeshDescription m;
@@ -44,7 +55,7 @@ scene::LoadedScene loadSceneArgument(const std::string& argument, uint32_t frame
   v.target = c;
   v.eye = c + glm::normalize(glm::dvec3(0.45, 0.35, 1.0)) * (3.0 * b.radius());
   if (frames == 0) s.description.settings.frameCount = 24;
-  return s;
+  return printNotes(std::move(s));
 }
 
 }  // namespace osd_cull::cli

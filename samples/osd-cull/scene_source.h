@@ -14,7 +14,8 @@ namespace osd_cull::cli {
 bool isSceneArgument(const std::string& argument);
 
 /// \brief Loads the scene `argument` names. A sequence becomes a one-mesh scene with a
-/// view framing its first frame. `frames` > 0 sets the built-in scene's length.
+/// view framing its first frame. `frames` > 0 sets the built-in scene's length. Prints the
+/// loader's notes on each mesh (SceneMesh::notes) as `note: mesh 'NAME': ...`.
 /// \throws osd_cull::Error for files that do not load.
 scene::LoadedScene loadSceneArgument(const std::string& argument, uint32_t frames);
 

@@ -16,7 +16,7 @@ double parseNumber(const std::string& text, const std::string& token) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0' || !std::isfinite(v))
-    throw Error("--script: '" + token + "': '" + text + "' is not a finite number");
+    throw ScriptError("--script: '" + token + "': '" + text + "' is not a finite number");
   return v;
 }
 
@@ -129,18 +129,18 @@ std::vector<ScriptStep> parseScript(std::string_view text) {
     if (token[0] == '@') {
       const double f = parseNumber(token.substr(1), token);
       if (f < 0 || f > 1e7 || f != std::floor(f))
-        throw Error("--script: '" + token + "': a frame number must be a whole number >= 0");
+        throw ScriptError("--script: '" + token + "': a frame number must be a whole number >= 0");
       step.kind = ScriptStep::Kind::WaitFrame;
       step.frame = static_cast<uint32_t>(f);
       if (step.frame < lastFrame)
-        throw Error("--script: '" + token + "' comes after @" + std::to_string(lastFrame) +
-                    ": frames must not decrease");
+        throw ScriptError("--script: '" + token + "' comes after @" + std::to_string(lastFrame) +
+                          ": frames must not decrease");
       lastFrame = step.frame;
     } else if (token.starts_with("orbit:")) {
       const std::string args = token.substr(6);
       const size_t comma = args.find(',');
       if (comma == std::string::npos)
-        throw Error("--script: '" + token + "': expected orbit:YAW,PITCH");
+        throw ScriptError("--script: '" + token + "': expected orbit:YAW,PITCH");
       step.kind = ScriptStep::Kind::Orbit;
       step.a = parseNumber(args.substr(0, comma), token);
       step.b = parseNumber(args.substr(comma + 1), token);
@@ -149,13 +149,14 @@ std::vector<ScriptStep> parseScript(std::string_view text) {
     } else if (token.starts_with("zoom:")) {
       step.kind = ScriptStep::Kind::Zoom;
       step.a = parseNumber(token.substr(5), token);
-      if (!(step.a > 0.0)) throw Error("--script: '" + token + "': the zoom factor must be > 0");
+      if (!(step.a > 0.0))
+        throw ScriptError("--script: '" + token + "': the zoom factor must be > 0");
     } else {
       ViewState scratch = probe;
       if (!pressKey(scratch, token))
-        throw Error("--script: '" + token +
-                    "' is not a key, orbit:YAW,PITCH, zoom:F, shot or @FRAME (keys:\n" + keyHelp() +
-                    ")");
+        throw ScriptError("--script: '" + token +
+                          "' is not a key, orbit:YAW,PITCH, zoom:F, shot or @FRAME "
+                          "(`osd-cull view --help` lists the keys)");
       step.key = token;
     }
     steps.push_back(std::move(step));

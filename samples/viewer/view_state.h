@@ -4,6 +4,8 @@
 /// OpenSubdiv's glViewer), and the `--script` language that presses them, with no window
 /// or device: the window feeds keys in, the frame loop reads the state out.
 
+#include "osd_cull/error.h"
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -100,11 +102,18 @@ struct ScriptStep {
   uint32_t frame = 0;  ///< WaitFrame: the frame the following steps apply before
 };
 
+/// \brief A bad `--script`: a usage error (osd-cull exits with status 2, as for any bad
+/// command line), not a failure of the input files or the device.
+class ScriptError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// \brief Parses a script: whitespace-separated tokens, each a key name (as pressKey
 /// takes), `orbit:YAW,PITCH` (degrees), `zoom:FACTOR`, `shot` (write the image of the coming
 /// frame, see screenshotPath()) or `@N` (the following steps happen before frame N,
 /// counting from 0; frames must not decrease).
-/// \throws osd_cull::Error naming the token and what is wrong with it.
+/// \throws ScriptError naming the token and what is wrong with it.
 std::vector<ScriptStep> parseScript(std::string_view text);
 
 /// \brief Plays a parsed script frame by frame: steps up to the next `@N` with N greater

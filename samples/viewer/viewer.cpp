@@ -138,7 +138,8 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
   const std::vector<ScriptStep> steps = parseScript(options.script);
   ScriptPlayer script(steps);
   if (script.hasShots() && !options.screenshot)
-    throw Error("--script: 'shot' needs --screenshot FILE.png (the shots are named after it)");
+    throw ScriptError(
+        "--script: 'shot' needs --screenshot FILE.png (the shots are named after it)");
   scene::SceneDescription& description = scene.scene.description;
   uint32_t patchTotal = 0;
   for (const scene::InstanceDescription& i : description.instances)

@@ -236,9 +236,10 @@ void Renderer::bindPatches(VkCommandBuffer cmd, const Camera& world, const Patch
   const Camera camera = draw.model ? instanceCamera(world, *draw.model) : world;
   const GpuDisplacement* displacement = gpu.displacement();
   const VkPipelineLayout layout = displacement ? displacedLayout_.get() : patchLayout_.get();
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                    patchPipeline(type, options.cullBackFaces, options.wireframe,
-                                  isMirrored(camera), displacement != nullptr, drawFormat_));
+  vkCmdBindPipeline(
+      cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+      patchPipeline(type, draw.cullBackFaces.value_or(options.cullBackFaces), options.wireframe,
+                    isMirrored(camera), displacement != nullptr, drawFormat_));
   const VkDescriptorSet sets[] = {draw.set ? draw.set : gpu.descriptorSet(),
                                   displacement ? displacement->descriptorSet() : VK_NULL_HANDLE};
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, displacement ? 2 : 1,

@@ -72,6 +72,10 @@ struct PatchDraw {
   /// Object → world matrix of this draw (an instance, scene/scene_eval.h); null: identity.
   /// The draw uses instanceCamera(camera, *model), composed in double.
   const glm::dmat4* model = nullptr;
+  /// Whether the rasterizer culls this draw's back-facing triangles, instead of
+  /// RenderOptions::cullBackFaces (a scene's meshes differ: closed and oriented or not);
+  /// unset: the options'.
+  std::optional<bool> cullBackFaces;
   /// With adaptive tessellation of an undisplaced set: the draw reads its levels from this
   /// slot of GpuPatchSet::tessLevels(), written for the same camera by a TessLevelsPass
   /// earlier in the command buffer (Renderer::recordTessLevels; render() records it
