@@ -59,6 +59,9 @@ struct Scene {
   bound::BackPatchValidity backPatch;
   std::vector<std::string> notes;     ///< the loader's notes on the mesh
   std::vector<glm::dvec2> uvCorners;  ///< 4 per patch, empty without texture coordinates
+  /// Subtracted from the file's coordinates (a far mesh recentred at load): --camera and
+  /// --occluders, given in the file's coordinates, move by it too.
+  glm::dvec3 offset{0.0};
 };
 
 Scene loadScene(const MeshSource& source, const PatchOptions& options) {
@@ -79,6 +82,7 @@ Scene loadScene(const MeshSource& source, const PatchOptions& options) {
   scene.backPatch = mesh.backPatch;
   scene.notes = std::move(mesh.notes);
   scene.uvCorners = std::move(mesh.uvCorners);
+  scene.offset = mesh.recentreOffset;
   if (loaded.bezier) {  // BPT files (the teapot) are z up
     scene.up = {0, 0, 1};
     scene.viewDirection = {0.6, -1.0, 0.5};
@@ -127,7 +131,8 @@ StartView startView(const Scene& scene, const std::vector<double>& cameraNumbers
     return s;
   }
   const auto& v = cameraNumbers;
-  const glm::dvec3 eye(v[0], v[1], v[2]), target(v[3], v[4], v[5]);
+  const glm::dvec3 eye = glm::dvec3(v[0], v[1], v[2]) - scene.offset,
+                   target = glm::dvec3(v[3], v[4], v[5]) - scene.offset;
   s.up = glm::dvec3(v[6], v[7], v[8]);
   const double d = glm::distance(eye, bounds.center()), r = bounds.radius();
   s.camera = frame::Camera::lookAt(eye, target, s.up, v[9], width, height,
@@ -317,7 +322,10 @@ int run(const RenderArgs& args) {
 
   Scene scene = loadScene(source, patchOptions);
   for (const std::string& file : splitList(args.occluders))
-    if (!file.empty()) scene.occluders.push_back(adapters::loadTriangleMesh(file));
+    if (!file.empty()) {
+      scene.occluders.push_back(adapters::loadTriangleMesh(file));
+      for (glm::dvec3& p : scene.occluders.back().positions) p -= scene.offset;
+    }
   const DisplacementChoice displacement = displacementChoice(args.displacement, false);
   // Displacement: the map, and back-patch culling off (kDisplacedBackPatchNote).
   std::optional<bound::DisplacementMap> displacementMap;
