@@ -320,6 +320,25 @@ std::vector<StageChoice> Planner::candidates(const PlanInput& input) const {
 
 double Planner::stageRate(const State& state, const std::string& stage) const {
   if (const auto it = state.rates.find(stage); it != state.rates.end()) return it->second;
+  // Not measured, but another variant of its kind is (another back-patch method or
+  // accuracy, another pyramid): that measurement scaled by the priors' ratio, never above
+  // it. A prior is a figure of other meshes; the sibling's rate is this mesh's, so an
+  // unmeasured variant is never preferred for its prior alone (issue 18: at tess 16 the
+  // plan went from the measured NCONE to tangent-plane-16 and TCONE on their priors, each
+  // a new frame).
+  const std::string base = stage.substr(0, stage.find('/'));
+  const std::vector<std::string> methods = frame::cullMethodNames(frame::CullStage::BackPatch);
+  const bool backPatch = std::find(methods.begin(), methods.end(), base) != methods.end();
+  const std::string& sibling = base == kFrustum ? std::string()
+                               : backPatch      ? state.lastBackPatchKey
+                                                : state.lastOcclusionKey;
+  if (!sibling.empty())
+    if (const auto it = state.rates.find(sibling); it != state.rates.end())
+      return it->second * std::min(1.0, priorRate(stage) / std::max(priorRate(sibling), 1e-9));
+  return priorRate(stage);
+}
+
+double Planner::priorRate(const std::string& stage) const {
   if (const auto it = options_.priorRates.find(stage); it != options_.priorRates.end())
     return it->second;
   // A back-patch method at another accuracy (rateKey), an occlusion kernel on another
@@ -337,7 +356,7 @@ double Planner::stageRate(const State& state, const std::string& stage) const {
                                                          : 1.0;
       at = next;
     }
-    return std::min(1.0, factor * stageRate(State{}, stage.substr(0, slash)));
+    return std::min(1.0, factor * priorRate(stage.substr(0, slash)));
   }
   // A displaced kernel without its own prior: the Hi-Z one.
   const auto hiz = options_.priorRates.find("hiz");
@@ -883,6 +902,7 @@ void Planner::observe(const std::string& key, const Plan& plan, const Observatio
   if (!plan.stages.backPatch.empty()) {
     s.measured.insert(kBackPatch);
     learn(rateKey(plan.stages.backPatch, plan.stages.accuracy), o.culledBackPatch);
+    s.lastBackPatchKey = rateKey(plan.stages.backPatch, plan.stages.accuracy);
   }
   // The occlusion rate of a choice's first frame is not learned: its visibility status has
   // not seen the stage yet (a new frame starts with nothing visible, or from a status some
@@ -891,6 +911,7 @@ void Planner::observe(const std::string& key, const Plan& plan, const Observatio
   if (!plan.stages.occlusion.empty() && warm) {
     s.measured.insert(kOcclusion);
     learn(occlusionRateKey(plan.stages), o.culledOcclusion);
+    s.lastOcclusionKey = occlusionRateKey(plan.stages);
   }
 }
 

@@ -277,11 +277,12 @@ class Planner {
     std::map<std::string, uint32_t> probeInterval;  // stage kind → frames between probes
     std::set<std::string> measured;                 // stage kinds observed at least once
     uint64_t lastFrame = 0;
-    std::string inputs;                  // inputsSignature() of the last plan
-    std::deque<uint64_t> switches;       // frames the choice changed, the last window
-    std::optional<StageChoice> hold;     // an occlusion probe's second frame runs this
-    std::optional<uint64_t> firstFrame;  // the key's first planned frame
-    bool explored = false;               // exploring until the last frame
+    std::string inputs;                              // inputsSignature() of the last plan
+    std::deque<uint64_t> switches;                   // frames the choice changed, the last window
+    std::optional<StageChoice> hold;                 // an occlusion probe's second frame runs this
+    std::optional<uint64_t> firstFrame;              // the key's first planned frame
+    bool explored = false;                           // exploring until the last frame
+    std::string lastBackPatchKey, lastOcclusionKey;  // the last measured variant of each
     // Plan::drawScale and cullScale: the calibration's draw and cull costs can be off by
     // different factors for a given mesh (its screen coverage, its patch shapes); a frame
     // that times its cull work apart tells them apart. Until one is measured it takes the
@@ -306,6 +307,7 @@ class Planner {
   std::vector<Accuracy> accuracies(const PlanInput& input, const std::string& method) const;
   CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
   double stageRate(const State& state, const std::string& stage) const;
+  double priorRate(const std::string& stage) const;
   void explain(Plan& plan, const PlanInput& input, const State& state) const;
 
   Calibration calibration_;
