@@ -48,10 +48,10 @@ std::string SessionSummary::text() const {
   std::string text = line;
   if (predictedMeanMs > 0.0) {
     std::snprintf(line, sizeof line,
-                  "\nsummary: plan changes %u, predicted %.2f ms against measured %.2f ms "
-                  "(mean), %zu configurations built",
-                  planChanges, predictedMeanMs, meanMs, configurations);
+                  "\nsummary: plan changes %u, predicted %.2f ms against measured %.2f ms (mean)",
+                  planChanges, predictedMeanMs, meanMs);
     text += line;
+    if (configurations > 0) text += ", " + std::to_string(configurations) + " configurations built";
   }
   return text;
 }
@@ -200,33 +200,40 @@ SessionFrame MeshSession::render(const frame::Camera& camera) {
     planner_->observe(options_.name + "/" + options_.view, *p, seen);
     f.plan = std::move(p);
   }
-  account(f);
+  summary_.add(f.stats,
+               f.plan
+                   ? std::optional<double>(f.plan->predicted.totalMs() - f.plan->predicted.updateMs)
+                   : std::nullopt,
+               f.planChanged);
+  summary_.setConfigurations(built_);
   ++next_;
   return f;
 }
 
-void MeshSession::account(const SessionFrame& f) {
+void SummaryAccumulator::add(const frame::CullFrameStats& stats, std::optional<double> predictedMs,
+                             bool planChanged) {
   SessionSummary& s = summary_;
   ++s.frames;
-  frameMs_.push_back(f.stats.frameMs);
-  s.meanMs += (f.stats.frameMs - s.meanMs) / s.frames;
+  s.meanMs += (stats.frameMs - s.meanMs) / s.frames;
+  frameMs_.push_back(stats.frameMs);
+  // Keep the per-frame times of long runs bounded: the median of the last 4,096+ frames.
+  if (frameMs_.size() >= 8192) frameMs_.erase(frameMs_.begin(), frameMs_.begin() + 4096);
   std::vector<double> sorted = frameMs_;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   s.medianMs = sorted[sorted.size() / 2];
-  // Keep the per-frame times of long runs bounded: the median of the last 4096 frames.
-  if (frameMs_.size() >= 8192) frameMs_.erase(frameMs_.begin(), frameMs_.begin() + 4096);
-  const uint32_t drawn = f.stats.drawnPass1 + f.stats.drawnPass2;
-  const uint32_t culled = f.stats.patchesTotal - std::min(f.stats.patchesTotal, drawn);
-  s.patches += f.stats.patchesTotal;
+  const uint32_t drawn = stats.drawnPass1 + stats.drawnPass2;
+  const uint32_t culled = stats.patchesTotal - std::min(stats.patchesTotal, drawn);
+  const uint64_t tes =
+      stats.pass1.tessEvaluationInvocations + stats.pass2.tessEvaluationInvocations;
+  s.patches += stats.patchesTotal;
   s.drawn += drawn;
-  s.tesInvocations += f.tesInvocations();
-  if (drawn > 0) s.tesSaved += uint64_t(double(f.tesInvocations()) / drawn * culled + 0.5);
-  if (f.plan) {
-    s.planChanges += f.planChanged && f.index > 0;
-    predictedSum_ += f.plan->predicted.totalMs() - f.plan->predicted.updateMs;
-    s.predictedMeanMs = predictedSum_ / s.frames;
+  s.tesInvocations += tes;
+  if (drawn > 0) s.tesSaved += uint64_t(double(tes) / drawn * culled + 0.5);
+  if (predictedMs) {
+    s.planChanges += planChanged && s.frames > 1;
+    predictedSum_ += *predictedMs;
+    s.predictedMeanMs = predictedSum_ / ++planned_;
   }
-  s.configurations = built_;
 }
 
 }  // namespace osd_cull::session

@@ -116,6 +116,23 @@ struct SessionSummary {
   std::string text() const;
 };
 
+/// \brief Adds frames up into a SessionSummary (MeshSession's, and the scene form's per view).
+class SummaryAccumulator {
+ public:
+  /// \brief One frame: its figures and, with a plan, its predicted time (without point
+  /// update) and whether its stages changed from the frame before.
+  void add(const frame::CullFrameStats& stats, std::optional<double> predictedMs = std::nullopt,
+           bool planChanged = false);
+  void setConfigurations(size_t built) { summary_.configurations = built; }
+  const SessionSummary& summary() const { return summary_; }
+
+ private:
+  SessionSummary summary_;
+  std::vector<double> frameMs_;  // the last frames' times (at most 8,192), for the median
+  double predictedSum_ = 0.0;
+  uint32_t planned_ = 0;
+};
+
 /// \brief The session. Everything passed in must outlive it.
 class MeshSession {
  public:
@@ -142,7 +159,7 @@ class MeshSession {
   /// \brief Configurations built so far (at most options.cachedConfigurations kept).
   size_t configurationsBuilt() const { return built_; }
   size_t configurationsKept() const { return cache_.size(); }
-  const SessionSummary& summary() const { return summary_; }
+  const SessionSummary& summary() const { return summary_.summary(); }
   const MeshSessionOptions& options() const { return options_; }
 
  private:
@@ -155,7 +172,6 @@ class MeshSession {
   Configuration& configuration(const std::string& key, const frame::CullFrameOptions& o);
   SessionFrame draw(Configuration* c, const frame::Camera& camera,
                     const frame::CullFrameOptions& o);
-  void account(const SessionFrame& f);
 
   vulkan::Context& context_;
   frame::Renderer& renderer_;
@@ -172,9 +188,7 @@ class MeshSession {
   size_t built_ = 0;
   uint32_t next_ = 0;
   std::optional<plan::StageChoice> lastStages_;
-  std::vector<double> frameMs_;
-  double predictedSum_ = 0.0;
-  SessionSummary summary_;
+  SummaryAccumulator summary_;
 };
 
 }  // namespace osd_cull::session

@@ -140,11 +140,24 @@ int renderScene(const RenderArgs& args) {
 
   std::unique_ptr<frame::RenderTarget> baseline;
   nlohmann::json jsonFrames = nlohmann::json::array();
+  // The end-of-run summary of each view (session::SummaryAccumulator).
+  std::vector<session::SummaryAccumulator> summaries(player.viewCount());
+  std::vector<std::vector<plan::StageChoice>> lastStages(player.viewCount());
   for (uint32_t f = settings.frameStart; f < settings.frameStart + frameCount; ++f) {
     const std::vector<session::ViewFrame> views = player.render(f);
     for (size_t v = 0; v < views.size(); ++v) {
       const session::ViewFrame& vf = views[v];
       printScenePlans(vf, printed[v]);
+      {
+        std::optional<double> predicted;
+        std::vector<plan::StageChoice> stages;
+        for (const plan::Plan& p : vf.plans) {
+          predicted = predicted.value_or(0.0) + p.predicted.totalMs() - p.predicted.updateMs;
+          stages.push_back(p.stages);
+        }
+        summaries[v].add(vf.stats, predicted, !stages.empty() && stages != lastStages[v]);
+        lastStages[v] = std::move(stages);
+      }
       std::printf("view %s %s\n", vf.view.c_str(), cullFrameLine(f, vf.stats).c_str());
       nlohmann::json j = cullFrameJson(f, vf.stats);
       j["view"] = vf.view;
@@ -194,6 +207,12 @@ int renderScene(const RenderArgs& args) {
     }
     std::fflush(stdout);
   }
+  for (size_t v = 0; v < summaries.size(); ++v) {
+    std::string text = summaries[v].summary().text();
+    for (size_t at = 0; (at = text.find("summary:", at)) != std::string::npos; at += 8)
+      text.replace(at, 8, "summary of view " + loaded.description.views[v].name + ":");
+    std::cout << text << "\n";
+  }
   if (outDir)
     std::cout << "wrote " << frameCount * player.viewCount() << " frames to " << *outDir << "\n";
   if (out) {
@@ -208,6 +227,9 @@ int renderScene(const RenderArgs& args) {
                        {"cull", planner ? std::string("plan") : cull.mode},
                        {"frameCount", frameCount},
                        {"frames", jsonFrames}};
+    doc["summary"] = nlohmann::json::object();
+    for (size_t v = 0; v < summaries.size(); ++v)
+      doc["summary"][loaded.description.views[v].name] = summaryJson(summaries[v].summary());
     std::ofstream file(*statsPath);
     if (!(file << doc.dump(2) << "\n")) throw Error(*statsPath + ": cannot write");
     std::cout << "wrote " << *statsPath << "\n";
