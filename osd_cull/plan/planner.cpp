@@ -327,7 +327,8 @@ double Planner::stageRate(const State& state, const std::string& stage) const {
   // plan went from the measured NCONE to tangent-plane-16 and TCONE on their priors, each
   // a new frame).
   const std::string base = stage.substr(0, stage.find('/'));
-  const std::vector<std::string> methods = frame::cullMethodNames(frame::CullStage::BackPatch);
+  static const std::vector<std::string> methods =
+      frame::cullMethodNames(frame::CullStage::BackPatch);
   const bool backPatch = std::find(methods.begin(), methods.end(), base) != methods.end();
   const std::string& sibling = base == kFrustum ? std::string()
                                : backPatch      ? state.lastBackPatchKey

@@ -210,6 +210,16 @@ SessionFrame MeshSession::render(const frame::Camera& camera) {
   return f;
 }
 
+SessionSummary SummaryAccumulator::summary() const {
+  SessionSummary s = summary_;
+  if (!frameMs_.empty()) {
+    std::vector<double> sorted = frameMs_;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    s.medianMs = sorted[sorted.size() / 2];
+  }
+  return s;
+}
+
 void SummaryAccumulator::add(const frame::CullFrameStats& stats, std::optional<double> predictedMs,
                              bool planChanged) {
   SessionSummary& s = summary_;
@@ -218,9 +228,6 @@ void SummaryAccumulator::add(const frame::CullFrameStats& stats, std::optional<d
   frameMs_.push_back(stats.frameMs);
   // Keep the per-frame times of long runs bounded: the median of the last 4,096+ frames.
   if (frameMs_.size() >= 8192) frameMs_.erase(frameMs_.begin(), frameMs_.begin() + 4096);
-  std::vector<double> sorted = frameMs_;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  s.medianMs = sorted[sorted.size() / 2];
   const uint32_t drawn = stats.drawnPass1 + stats.drawnPass2;
   const uint32_t culled = stats.patchesTotal - std::min(stats.patchesTotal, drawn);
   const uint64_t tes =

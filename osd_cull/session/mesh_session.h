@@ -124,7 +124,8 @@ class SummaryAccumulator {
   void add(const frame::CullFrameStats& stats, std::optional<double> predictedMs = std::nullopt,
            bool planChanged = false);
   void setConfigurations(size_t built) { summary_.configurations = built; }
-  const SessionSummary& summary() const { return summary_; }
+  /// \brief The figures so far, the median taken now (not on every frame).
+  SessionSummary summary() const;
 
  private:
   SessionSummary summary_;
@@ -159,7 +160,7 @@ class MeshSession {
   /// \brief Configurations built so far (at most options.cachedConfigurations kept).
   size_t configurationsBuilt() const { return built_; }
   size_t configurationsKept() const { return cache_.size(); }
-  const SessionSummary& summary() const { return summary_.summary(); }
+  SessionSummary summary() const { return summary_.summary(); }
   const MeshSessionOptions& options() const { return options_; }
 
  private:

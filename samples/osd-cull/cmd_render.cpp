@@ -202,28 +202,26 @@ nlohmann::json printFrame(uint32_t f, const session::SessionFrame& frame) {
   if (frame.kind == session::FrameKind::TwoPass) {
     std::printf("%s\n", cullFrameLine(f, frame.stats).c_str());
     return cullFrameJson(f, frame.stats);
-  } else {
-    const frame::FrameStats& stats = frame.onePass;
-    std::printf(
-        "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
-        "fragment invocations %llu\n",
-        f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
-        static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
-        static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
-    nlohmann::json j = plainFrameJson(f, stats);
-    if (frame.kind == session::FrameKind::OnePass) {
-      const frame::CullFrameStats& c = frame.stats;
-      std::printf("  culled %u of %u: frustum %u, back-patch %u\n", c.patchesTotal - c.survivors,
-                  c.patchesTotal, c.culledFrustum, c.culledBackPatch);
-      j["patches"] = c.patchesTotal;
-      j["drawn"] = c.survivors;
-      j["ms"]["cull"] = nullptr;  // not apart: pass1 spans the dispatch and the draws
-      j["culled"] = {
-          {"frustum", c.culledFrustum}, {"backPatch", c.culledBackPatch}, {"occlusion", 0}};
-    }
-    return j;
   }
-  return {};
+  const frame::FrameStats& stats = frame.onePass;
+  std::printf(
+      "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
+      "fragment invocations %llu\n",
+      f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
+      static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
+      static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
+  nlohmann::json j = plainFrameJson(f, stats);
+  if (frame.kind == session::FrameKind::OnePass) {
+    const frame::CullFrameStats& c = frame.stats;
+    std::printf("  culled %u of %u: frustum %u, back-patch %u\n", c.patchesTotal - c.survivors,
+                c.patchesTotal, c.culledFrustum, c.culledBackPatch);
+    j["patches"] = c.patchesTotal;
+    j["drawn"] = c.survivors;
+    j["ms"]["cull"] = nullptr;  // not apart: pass1 spans the dispatch and the draws
+    j["culled"] = {
+        {"frustum", c.culledFrustum}, {"backPatch", c.culledBackPatch}, {"occlusion", 0}};
+  }
+  return j;
 }
 
 // The frame's image into --out-dir, and the last one into --out (with --ids its item and
