@@ -104,6 +104,41 @@ PlannerOptions fromPriors() {
   return o;
 }
 
+TEST(Plan, RateKeysNameEveryVariantAndParseBack) {
+  // Each learned rate is keyed by its stage, method and variant (issue 22: no string keys).
+  const std::vector<std::pair<RateKey, std::string>> keys = {
+      {RateKey::frustum(), "frustum"},
+      {RateKey::backPatch("tcone"), "tcone"},
+      {RateKey::backPatch("ncone", Accuracy::Listed), "ncone/listed"},
+      {RateKey::backPatch("tangent-plane", Accuracy::Surface), "tangent-plane/surface"},
+      {RateKey::occlusion("hiz"), "hiz"},
+      {RateKey::occlusion("hiz", true, false), "hiz/full"},
+      {RateKey::occlusion("hiz", false, true), "hiz/tight"},
+      {RateKey::occlusion("con-caf", true, true), "con-caf/full/tight"}};
+  for (const auto& [key, name] : keys) {
+    EXPECT_EQ(key.name(), name);
+    EXPECT_TRUE(RateKey::parse(name) == key) << name;
+  }
+  EXPECT_EQ(RateKey::backPatch("ncone", Accuracy::Listed).plain().name(), "ncone");
+  EXPECT_EQ(RateKey::occlusion("hiz", true, true).plain().name(), "hiz");
+  EXPECT_TRUE(RateKey::backPatch("tcone") < RateKey::backPatch("tcone", Accuracy::Listed));
+  for (const char* bad : {"", "frustum/full", "tcone/tight", "tcone/listed/surface",
+                          "hiz/full/full", "hiz/tight/full"})
+    EXPECT_THROW(RateKey::parse(bad), Error) << bad;
+}
+
+TEST(Plan, EveryEffectHasItsKindAndName) {
+  const Plan p;
+  const auto effects = p.effects();
+  ASSERT_EQ(effects.size(), 9u);
+  const char* names[] = {"frustum", "back-patch", "accuracy", "occlusion",   "passes",
+                         "hi-z",    "update",     "bounds",   "displacement"};
+  for (size_t i = 0; i < effects.size(); ++i) {
+    EXPECT_STREQ(toString(effects[i].first), names[i]);
+    EXPECT_EQ(&p.effect(effects[i].first), effects[i].second);
+  }
+}
+
 TEST(Plan, FarAwayLowTessMeshGetsCullingSwitchedOff) {
   Planner planner(syntheticCalibration(), fromPriors());
   const Plan p = planner.plan("main/ball", meshAt(60.0, 1.0), 0);
@@ -165,7 +200,7 @@ TEST(PlanAccuracy, TheListedTestCostsPerPatchItRunsOn) {
   ASSERT_FALSE(method.empty()) << planTable({&first, 1});
   ASSERT_EQ(first.stages.accuracy, Accuracy::Listed) << planTable({&first, 1});
   const double boundRate = planner.rate("m", method);
-  const double listedRate = planner.rate("m", rateKey(method, Accuracy::Listed));
+  const double listedRate = planner.rate("m", RateKey::backPatch(method, Accuracy::Listed));
   EXPECT_GT(listedRate, boundRate);
   EXPECT_NEAR(first.rates.listedRuns, (listedRate - boundRate) / 0.74, 1e-12);
 }
@@ -205,7 +240,7 @@ TEST(PlanAccuracy, BoundAtLowTessListedWhereItPaysSurfaceOnlyWhenAsked) {
     EXPECT_TRUE(o.cull.drawnEnumerate);
     // The listed rate is learned on its own key; the bound's follows it at the priors'
     // ratio (a measured sibling, never above it).
-    const std::string key = rateKey(p.stages.backPatch, Accuracy::Listed);
+    const RateKey key = RateKey::backPatch(p.stages.backPatch, Accuracy::Listed);
     EXPECT_NEAR(planner.rate("main/ball", key), 1.9 * planner.rate("main/ball", p.stages.backPatch),
                 1e-12);
     planner.observe("main/ball", p, 0, 900, 0, 2000);
@@ -792,10 +827,12 @@ TEST(Plan, EveryReasonAgreesWithItsDecision) {
           // The measured rates drift, so that choices change and the hysteresis holds some.
           const double wave = 0.5 + 0.5 * std::sin(0.4 * double(f));
           const Plan p = planner.plan("k", in, f);
-          for (const auto& [name, e] : p.effects()) {
-            const std::string n = name;
-            if (n != "frustum" && n != "back-patch" && n != "occlusion") continue;
-            expectReasonAgrees(p, name, *e, p.probe && e->reason.rfind("re-probe", 0) == 0);
+          for (const auto& [kind, e] : p.effects()) {
+            if (kind != EffectKind::Frustum && kind != EffectKind::BackPatch &&
+                kind != EffectKind::Occlusion)
+              continue;
+            expectReasonAgrees(p, toString(kind), *e,
+                               p.probe && e->reason.rfind("re-probe", 0) == 0);
             ++checked;
             held += e->reason.rfind("kept ", 0) == 0;
           }

@@ -15,9 +15,7 @@
 namespace osd_cull::plan {
 namespace {
 
-const char* const kBackPatch = "back-patch";
-const char* const kOcclusion = "occlusion";
-const char* const kFrustum = "frustum";
+using frame::CullStage;
 
 // The draw work (patch draws, submission, point update) times `draw`, the cull work
 // (kernels, pyramid, status) times `cull`.
@@ -148,10 +146,46 @@ double equivalentUniformLevel(const PatchSet& patches, const frame::Camera& came
   return std::max(1.0, std::sqrt(vertices / count) - 1.0);
 }
 
-std::vector<std::pair<const char*, const Effect*>> Plan::effects() const {
-  return {{"frustum", &frustum},     {"back-patch", &backPatch}, {"accuracy", &accuracy},
-          {"occlusion", &occlusion}, {"passes", &passes},        {"hi-z", &hiz},
-          {"update", &update},       {"bounds", &bounds},        {"displacement", &displacement}};
+const char* toString(EffectKind kind) {
+  switch (kind) {
+    case EffectKind::Frustum:
+      return "frustum";
+    case EffectKind::BackPatch:
+      return "back-patch";
+    case EffectKind::Accuracy:
+      return "accuracy";
+    case EffectKind::Occlusion:
+      return "occlusion";
+    case EffectKind::Passes:
+      return "passes";
+    case EffectKind::HiZ:
+      return "hi-z";
+    case EffectKind::Update:
+      return "update";
+    case EffectKind::Bounds:
+      return "bounds";
+    case EffectKind::Displacement:
+      return "displacement";
+  }
+  return "?";
+}
+
+std::vector<std::pair<EffectKind, const Effect*>> Plan::effects() const {
+  return {{EffectKind::Frustum, &frustum},
+          {EffectKind::BackPatch, &backPatch},
+          {EffectKind::Accuracy, &accuracy},
+          {EffectKind::Occlusion, &occlusion},
+          {EffectKind::Passes, &passes},
+          {EffectKind::HiZ, &hiz},
+          {EffectKind::Update, &update},
+          {EffectKind::Bounds, &bounds},
+          {EffectKind::Displacement, &displacement}};
+}
+
+const Effect& Plan::effect(EffectKind kind) const {
+  for (const auto& [k, e] : effects())
+    if (k == kind) return *e;
+  throw Error(std::string("plan: no effect ") + toString(kind));
 }
 
 Planner::Planner(Calibration calibration, PlannerOptions options)
@@ -170,12 +204,81 @@ Planner::Planner(Calibration calibration, PlannerOptions options)
     throw Error("planner: the listed and surface rate factors must be positive");
 }
 
-std::string occlusionRateKey(const StageChoice& stages) {
-  return stages.occlusion + (stages.hizFull ? "/full" : "") + (stages.hizTight ? "/tight" : "");
+RateKey RateKey::frustum() { return {}; }
+
+RateKey RateKey::backPatch(std::string method, Accuracy accuracy) {
+  RateKey k;
+  k.stage = CullStage::BackPatch;
+  k.method = std::move(method);
+  k.accuracy = accuracy;
+  return k;
 }
 
-std::string rateKey(const std::string& method, Accuracy accuracy) {
-  return accuracy == Accuracy::Bound ? method : method + "/" + toString(accuracy);
+RateKey RateKey::occlusion(std::string kernel, bool hizFull, bool hizTight) {
+  RateKey k;
+  k.stage = CullStage::Occlusion;
+  k.method = std::move(kernel);
+  k.hizFull = hizFull;
+  k.hizTight = hizTight;
+  return k;
+}
+
+RateKey RateKey::occlusion(const StageChoice& stages) {
+  return occlusion(stages.occlusion, stages.hizFull, stages.hizTight);
+}
+
+RateKey RateKey::parse(const std::string& name) {
+  std::vector<std::string> parts;
+  for (size_t at = 0;;) {
+    const size_t slash = name.find('/', at);
+    parts.push_back(name.substr(at, slash == std::string::npos ? slash : slash - at));
+    if (slash == std::string::npos) break;
+    at = slash + 1;
+  }
+  const std::string& method = parts.front();
+  if (method.empty()) throw Error("planner: a stage name is empty");
+  if (method == toString(CullStage::Frustum)) {
+    if (parts.size() > 1) throw Error("planner: the frustum stage has no variant: '" + name + "'");
+    return frustum();
+  }
+  static const std::vector<std::string> methods = frame::cullMethodNames(CullStage::BackPatch);
+  if (std::find(methods.begin(), methods.end(), method) != methods.end()) {
+    if (parts.size() == 1) return backPatch(method);
+    if (parts.size() == 2 && parts[1] == toString(Accuracy::Listed))
+      return backPatch(method, Accuracy::Listed);
+    if (parts.size() == 2 && parts[1] == toString(Accuracy::Surface))
+      return backPatch(method, Accuracy::Surface);
+    throw Error("planner: '" + name + "': a back-patch accuracy is listed or surface");
+  }
+  RateKey k = occlusion(method);
+  for (size_t i = 1; i < parts.size(); ++i) {
+    if (parts[i] == "full" && !k.hizFull && !k.hizTight)
+      k.hizFull = true;
+    else if (parts[i] == "tight" && !k.hizTight)
+      k.hizTight = true;
+    else
+      throw Error("planner: '" + name + "': an occlusion variant is full, tight or full/tight");
+  }
+  return k;
+}
+
+std::string RateKey::name() const {
+  switch (stage) {
+    case CullStage::Frustum:
+      return toString(CullStage::Frustum);
+    case CullStage::BackPatch:
+      return accuracy == Accuracy::Bound ? method : method + "/" + toString(accuracy);
+    case CullStage::Occlusion:
+      return method + (hizFull ? "/full" : "") + (hizTight ? "/tight" : "");
+  }
+  return "?";
+}
+
+RateKey RateKey::plain() const {
+  RateKey k = *this;
+  k.accuracy = Accuracy::Bound;
+  k.hizFull = k.hizTight = false;
+  return k;
 }
 
 std::vector<Accuracy> Planner::accuracies(const PlanInput& input, const std::string& method) const {
@@ -318,75 +421,68 @@ std::vector<StageChoice> Planner::candidates(const PlanInput& input) const {
   return out;
 }
 
-double Planner::stageRate(const State& state, const std::string& stage) const {
+double Planner::stageRate(const State& state, const RateKey& stage) const {
   if (const auto it = state.rates.find(stage); it != state.rates.end()) return it->second;
-  // Not measured, but another variant of its kind is (another back-patch method or
+  // Not measured, but another variant of its stage is (another back-patch method or
   // accuracy, another pyramid): that measurement scaled by the priors' ratio, never above
   // it. A prior is a figure of other meshes; the sibling's rate is this mesh's, so an
   // unmeasured variant is never preferred for its prior alone (issue 18: at tess 16 the
   // plan went from the measured NCONE to tangent-plane-16 and TCONE on their priors, each
   // a new frame).
-  const std::string base = stage.substr(0, stage.find('/'));
-  static const std::vector<std::string> methods =
-      frame::cullMethodNames(frame::CullStage::BackPatch);
-  const bool backPatch = std::find(methods.begin(), methods.end(), base) != methods.end();
-  const std::string& sibling = base == kFrustum ? std::string()
-                               : backPatch      ? state.lastBackPatchKey
-                                                : state.lastOcclusionKey;
-  if (!sibling.empty())
-    if (const auto it = state.rates.find(sibling); it != state.rates.end())
-      return it->second * std::min(1.0, priorRate(stage) / std::max(priorRate(sibling), 1e-9));
+  const std::optional<RateKey>& sibling =
+      stage.stage == CullStage::BackPatch   ? state.lastBackPatchKey
+      : stage.stage == CullStage::Occlusion ? state.lastOcclusionKey
+                                            : std::nullopt;
+  if (sibling)
+    if (const auto it = state.rates.find(*sibling); it != state.rates.end())
+      return it->second * std::min(1.0, priorRate(stage) / std::max(priorRate(*sibling), 1e-9));
   return priorRate(stage);
 }
 
-double Planner::priorRate(const std::string& stage) const {
-  if (const auto it = options_.priorRates.find(stage); it != options_.priorRates.end())
-    return it->second;
-  // A back-patch method at another accuracy (rateKey), an occlusion kernel on another
-  // pyramid (occlusionRateKey): its plain prior times each variant's factor, at most 1.
-  if (const size_t slash = stage.find('/'); slash != std::string::npos) {
-    double factor = 1.0;
-    for (size_t at = slash; at != std::string::npos;) {
-      const size_t next = stage.find('/', at + 1);
-      const std::string variant =
-          stage.substr(at + 1, next == std::string::npos ? next : next - at - 1);
-      factor *= variant == toString(Accuracy::Listed)    ? options_.listedRateFactor
-                : variant == toString(Accuracy::Surface) ? options_.surfaceRateFactor
-                : variant == "full"                      ? options_.fullRateFactor
-                : variant == "tight"                     ? options_.tightRateFactor
-                                                         : 1.0;
-      at = next;
-    }
-    return std::min(1.0, factor * priorRate(stage.substr(0, slash)));
-  }
-  // A displaced kernel without its own prior: the Hi-Z one.
-  const auto hiz = options_.priorRates.find("hiz");
-  return hiz != options_.priorRates.end() ? hiz->second : 0.0;
+double Planner::priorRate(const RateKey& stage) const {
+  const RateKey plain = stage.plain();
+  double rate = 0.0;
+  if (const auto it = options_.priorRates.find(plain.name()); it != options_.priorRates.end())
+    rate = it->second;
+  else if (stage.stage == CullStage::Occlusion)  // a displaced kernel without its own prior
+    rate = options_.priorRates.count("hiz") ? options_.priorRates.at("hiz") : 0.0;
+  // A back-patch method at another accuracy, an occlusion kernel on another pyramid: its
+  // plain prior times each variant's factor, at most 1.
+  const double factor = (stage.accuracy == Accuracy::Listed    ? options_.listedRateFactor
+                         : stage.accuracy == Accuracy::Surface ? options_.surfaceRateFactor
+                                                               : 1.0) *
+                        (stage.hizFull ? options_.fullRateFactor : 1.0) *
+                        (stage.hizTight ? options_.tightRateFactor : 1.0);
+  return std::min(1.0, factor * rate);
 }
 
 CullRates Planner::ratesFor(const State& state, const StageChoice& stages, BoxInView box) const {
   CullRates r;
   r.frustum = box == BoxInView::Outside  ? 1.0
               : box == BoxInView::Inside ? 0.0
-                                         : stageRate(state, kFrustum);
+                                         : stageRate(state, RateKey::frustum());
   if (!stages.backPatch.empty())
-    r.backPatch = stageRate(state, rateKey(stages.backPatch, stages.accuracy));
+    r.backPatch = stageRate(state, RateKey::backPatch(stages.backPatch, stages.accuracy));
   if (stages.accuracy == Accuracy::Listed) {
     // The listed test runs where the surface test culls and the bound keeps; of those it
     // culls 74-100% (docs/results/accuracy-vs-time.md, BigGuy tess 4-16: (listed - bound) /
     // (surface - bound)). Dividing its gain over the bound by 0.74 keeps the share of runs,
     // and so its predicted cost, on the high side.
-    const double bound = stageRate(state, rateKey(stages.backPatch, Accuracy::Bound));
+    const double bound = stageRate(state, RateKey::backPatch(stages.backPatch));
     r.listedRuns = std::clamp((r.backPatch - bound) / 0.74, 0.0, 1.0 - bound);
   }
-  if (!stages.occlusion.empty()) r.occlusion = stageRate(state, occlusionRateKey(stages));
+  if (!stages.occlusion.empty()) r.occlusion = stageRate(state, RateKey::occlusion(stages));
   return r;
 }
 
-double Planner::rate(const std::string& key, const std::string& stage) const {
+double Planner::rate(const std::string& key, const RateKey& stage) const {
   const auto it = states_.find(key);
   static const State empty;
   return stageRate(it == states_.end() ? empty : it->second, stage);
+}
+
+double Planner::rate(const std::string& key, const std::string& stage) const {
+  return rate(key, RateKey::parse(stage));
 }
 
 double Planner::predictedMs(const State& s, const PlanInput& input, const StageChoice& c,
@@ -460,7 +556,7 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   // Re-probe one switched-off stage now and then: its rate is learned only while it runs.
   // The unculled frame is never probed: observe() learns its cost from the culled frames'
   // own draw time (Plan::drawScale), so the visibility status is never thrown away.
-  for (const char* kind : {kFrustum, kBackPatch, kOcclusion})
+  for (CullStage kind : {CullStage::Frustum, CullStage::BackPatch, CullStage::Occlusion})
     if (!s.lastRun.count(kind)) s.lastRun[kind] = frameNumber;
   if (exploring) {
     // Every kind runs already.
@@ -475,34 +571,35 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
     Accuracy probeAccuracy = Accuracy::Bound;
     double probeRate = -1.0;
     for (const StageChoice& c : all)
-      if (!c.backPatch.empty() && stageRate(s, rateKey(c.backPatch, c.accuracy)) > probeRate) {
-        probeRate = stageRate(s, rateKey(c.backPatch, c.accuracy));
+      if (!c.backPatch.empty() &&
+          stageRate(s, RateKey::backPatch(c.backPatch, c.accuracy)) > probeRate) {
+        probeRate = stageRate(s, RateKey::backPatch(c.backPatch, c.accuracy));
         probeBackPatch = c.backPatch;
         probeAccuracy = c.accuracy;
       }
-    auto interval = [&](const char* kind) {
+    auto interval = [&](CullStage kind) {
       const bool prior = !s.measured.count(kind) && options_.firstProbeFrames > 0;
       if (prior) return std::min(options_.firstProbeFrames, options_.reprobeFrames);
       const auto it = s.probeInterval.find(kind);
       return it == s.probeInterval.end() ? options_.reprobeFrames : it->second;
     };
-    auto due = [&](const char* kind) { return frameNumber - s.lastRun[kind] >= interval(kind); };
+    auto due = [&](CullStage kind) { return frameNumber - s.lastRun[kind] >= interval(kind); };
     // A probe doubles the kind's interval (up to maxReprobeFrames): a steady view probes
     // ever more rarely, until its inputs change.
-    auto probed = [&](const char* kind) {
+    auto probed = [&](CullStage kind) {
       if (s.measured.count(kind))
         s.probeInterval[kind] = std::min(
             std::max(options_.maxReprobeFrames, options_.reprobeFrames), 2 * interval(kind));
       p.probe = true;
     };
-    if (!p.stages.frustum && p.box == BoxInView::Crossing && due(kFrustum)) {
+    if (!p.stages.frustum && p.box == BoxInView::Crossing && due(CullStage::Frustum)) {
       p.stages.frustum = true;
-      probed(kFrustum);
-    } else if (p.stages.backPatch.empty() && !probeBackPatch.empty() && due(kBackPatch)) {
+      probed(CullStage::Frustum);
+    } else if (p.stages.backPatch.empty() && !probeBackPatch.empty() && due(CullStage::BackPatch)) {
       p.stages.backPatch = probeBackPatch;
       p.stages.accuracy = probeAccuracy;
-      probed(kBackPatch);
-    } else if (p.stages.occlusion.empty() && offersOcclusion(input) && due(kOcclusion)) {
+      probed(CullStage::BackPatch);
+    } else if (p.stages.occlusion.empty() && offersOcclusion(input) && due(CullStage::Occlusion)) {
       // The occlusion kernel and pyramid predicted cheapest with the other stages as planned
       // (so the probe measures what would be switched on).
       std::optional<StageChoice> with;
@@ -516,13 +613,13 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
       } else {
         p.stages.occlusion = occlusionKernel(input);
       }
-      probed(kOcclusion);
+      probed(CullStage::Occlusion);
       s.hold = p.stages;
     }
   }
-  if (p.stages.frustum) s.lastRun[kFrustum] = frameNumber;
-  if (!p.stages.backPatch.empty()) s.lastRun[kBackPatch] = frameNumber;
-  if (!p.stages.occlusion.empty()) s.lastRun[kOcclusion] = frameNumber;
+  if (p.stages.frustum) s.lastRun[CullStage::Frustum] = frameNumber;
+  if (!p.stages.backPatch.empty()) s.lastRun[CullStage::BackPatch] = frameNumber;
+  if (!p.stages.occlusion.empty()) s.lastRun[CullStage::Occlusion] = frameNumber;
 
   p.rates = ratesFor(s, p.stages, p.box);
   p.drawScale = s.drawScaleNow();
@@ -535,38 +632,65 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   return p;
 }
 
-void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
-  const CostCase base = costCase(input, p.stages);
-  const double n = std::max(1u, base.patches());
-  const double rt = drawMsPerPatch(calibration_, base);
-  const double rtBack = std::min(rt, backDrawMsPerPatch(calibration_, base));
-  const double rt0 = options_.tessFactorZero ? calibration_.drawZeroMsPerPatch : 0.0;
-  auto total = [&](const StageChoice& c) { return predictedMs(s, input, c, p.box); };
-  const double now = total(p.stages);
-  auto source = [&](const std::string& stage) {
+// The reasons of a plan, one function per effect: each returns the effect's on/off and
+// choice (from the plan's stages, decided in plan()), its predicted change of the frame
+// time, and the sentence that opens with the decision those numbers make (decision()), so
+// that the printed reason cannot contradict the effect.
+struct Planner::Explaining {
+  const Planner& planner;
+  const Plan& p;
+  const PlanInput& input;
+  const State& s;
+  const Calibration& calibration;
+  const CostCase base;
+  const double n;   // patches
+  const double rt;  // draw cost of a patch (RT), and of a back-facing one
+  const double rtBack;
+  const double rt0;  // of a culled patch drawn with tessellation factor 0
+  const double now;  // the planned frame, predicted
+  const double k;    // the effects' ms in this machine's measured time
+
+  Explaining(const Planner& of, const Plan& plan, const PlanInput& in, const State& state)
+      : planner(of),
+        p(plan),
+        input(in),
+        s(state),
+        calibration(planner.calibration_),
+        base(planner.costCase(input, plan.stages)),
+        n(std::max(1u, base.patches())),
+        rt(drawMsPerPatch(calibration, base)),
+        rtBack(std::min(rt, backDrawMsPerPatch(calibration, base))),
+        rt0(planner.options_.tessFactorZero ? calibration.drawZeroMsPerPatch : 0.0),
+        now(total(plan.stages)),
+        k(plan.drawScale) {}
+
+  double total(const StageChoice& c) const { return planner.predictedMs(s, input, c, p.box); }
+  const char* source(const RateKey& stage) const {
     return s.rates.count(stage) ? "measured" : "prior";
-  };
+  }
+  double rate(const RateKey& stage) const { return planner.stageRate(s, stage); }
+  std::string tessText() const { return " at tess " + std::to_string(int(input.tess)); }
+
   // The break-even rate of adding `with` to `without` (§6.3), fixed costs spread per patch;
   // a patch the stage culls would have cost `saved` (RT, or RT of a back-facing patch).
-  auto breakEven = [&](const StageChoice& with, const StageChoice& without, double saved) {
-    const Prediction a = predict(calibration_, costCase(input, with), with, {});
-    const Prediction b = predict(calibration_, costCase(input, without), without, {});
+  double breakEven(const StageChoice& with, const StageChoice& without, double saved) const {
+    const Prediction a = predict(calibration, planner.costCase(input, with), with, {});
+    const Prediction b = predict(calibration, planner.costCase(input, without), without, {});
     const double ct = (a.cullMs + a.hizMs + a.updateMs - b.cullMs - b.hizMs - b.updateMs) / n;
     return breakEvenRate(saved, rt0, ct);
-  };
-  auto stageReason = [&](const std::string& stage, double rate, const StageChoice& with,
-                         const StageChoice& without) {
+  }
+  std::string stageReason(const RateKey& stage, double r, const StageChoice& with,
+                          const StageChoice& without) const {
     const bool occlusion = with.occlusion != without.occlusion;
     const double x = breakEven(with, without, occlusion ? rt : rtBack);
-    return std::string(source(stage)) + " rate " + percent(rate) + " against break-even " +
-           (std::isfinite(x) ? percent(x) : std::string("(never)")) + " at tess " +
-           std::to_string(int(input.tess));
-  };
+    return std::string(source(stage)) + " rate " + percent(r) + " against break-even " +
+           (std::isfinite(x) ? percent(x) : std::string("(never)")) + tessText();
+  }
   // The one sentence of a stage's decision, from the numbers that made it (deltaMs: the
-  // predicted change of the frame the stage makes, on; or would make, off), so that the
-  // reason cannot contradict the on/off: it saves, it would cost, it is a re-probe, or the
-  // hysteresis holds the current choice against a prediction that now favours the other.
-  auto decision = [&](bool on, double deltaMs, bool probed) {
+  // predicted change of the frame the stage makes, on; or would make, off): it saves, it
+  // would cost, it is a re-probe, or the hysteresis holds the current choice against a
+  // prediction that now favours the other.
+  std::string decision(bool on, double deltaMs, bool probed) const {
     char text[160];
     if (probed)
       std::snprintf(text, sizeof text, "re-probe: runs once to measure its rate (%+.2f ms)",
@@ -580,259 +704,290 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
                     "kept %s by the hysteresis: %s would save %.2f ms, but a change needs "
                     "%.0f%% of the frame after %u frames held",
                     on ? "on" : "off", on ? "off" : "on", std::abs(deltaMs),
-                    100.0 * options_.margin, options_.holdFrames);
+                    100.0 * planner.options_.margin, planner.options_.holdFrames);
     return std::string(text) + "; ";
-  };
-  const double k = p.drawScale;  // the effects' ms in this machine's measured time
+  }
 
-  // Frustum.
-  {
+  Effect frustum() const {
     StageChoice off = p.stages, on = p.stages;
     off.frustum = false;
     on.frustum = true;
-    p.frustum.on = p.stages.frustum;
-    p.frustum.deltaMs = p.frustum.on ? now - total(off) : total(on) - now;
+    Effect e;
+    e.on = p.stages.frustum;
+    e.deltaMs = e.on ? now - total(off) : total(on) - now;
     if (p.box == BoxInView::Outside)
-      p.frustum.reason = "object box outside the view (Sathe pre-test): culls every patch";
+      e.reason = "object box outside the view (Sathe pre-test): culls every patch";
     else if (p.box == BoxInView::Inside)
-      p.frustum.reason = "object box inside the view (Sathe pre-test): would cull nothing";
+      e.reason = "object box inside the view (Sathe pre-test): would cull nothing";
     else
-      p.frustum.reason =
-          decision(p.frustum.on, p.frustum.deltaMs,
-                   p.probe && p.frustum.on && (s.explored || !s.current->frustum)) +
-          stageReason(kFrustum, p.rates.frustum > 0 ? p.rates.frustum : stageRate(s, kFrustum), on,
-                      off);
+      e.reason =
+          decision(e.on, e.deltaMs, p.probe && e.on && (s.explored || !s.current->frustum)) +
+          stageReason(RateKey::frustum(),
+                      p.rates.frustum > 0 ? p.rates.frustum : rate(RateKey::frustum()), on, off);
+    return e;
   }
-  // Back-patch.
-  {
-    p.backPatch.on = !p.stages.backPatch.empty();
-    p.backPatch.choice = p.stages.backPatch;
+
+  Effect backPatch() const {
+    Effect e;
+    e.on = !p.stages.backPatch.empty();
+    e.choice = p.stages.backPatch;
     StageChoice off = p.stages;
     off.backPatch.clear();
     off.accuracy = Accuracy::Bound;
-    if (input.displaced)
-      p.backPatch.reason = "displaced mesh: the back-patch tests bound the undisplaced surface";
-    else if (!input.backPatchValidity.enabled)
-      p.backPatch.reason = input.backPatchValidity.reason;
-    else if (p.backPatch.on) {
-      p.backPatch.deltaMs = now - total(off);
-      p.backPatch.reason = decision(true, p.backPatch.deltaMs,
-                                    p.probe && (s.explored || s.current->backPatch.empty())) +
-                           stageReason(rateKey(p.stages.backPatch, p.stages.accuracy),
-                                       p.rates.backPatch, p.stages, off);
+    if (input.displaced) {
+      e.reason = "displaced mesh: the back-patch tests bound the undisplaced surface";
+    } else if (!input.backPatchValidity.enabled) {
+      e.reason = input.backPatchValidity.reason;
+    } else if (e.on) {
+      e.deltaMs = now - total(off);
+      e.reason =
+          decision(true, e.deltaMs, p.probe && (s.explored || s.current->backPatch.empty())) +
+          stageReason(RateKey::backPatch(p.stages.backPatch, p.stages.accuracy), p.rates.backPatch,
+                      p.stages, off);
     } else {
       // The best method it could have run.
-      std::string bestMethod;
-      Accuracy bestAccuracy = Accuracy::Bound;
-      double bestTotal = std::numeric_limits<double>::infinity();
-      for (const StageChoice& c : candidates(input))
+      std::optional<StageChoice> best;
+      for (const StageChoice& c : planner.candidates(input))
         if (!c.backPatch.empty() && c.frustum == p.stages.frustum &&
             c.occlusion == p.stages.occlusion && c.aggressive == p.stages.aggressive &&
-            total(c) < bestTotal) {
-          bestTotal = total(c);
-          bestMethod = c.backPatch;
-          bestAccuracy = c.accuracy;
-        }
-      if (bestMethod.empty()) {
-        p.backPatch.reason = input.deforming
-                                 ? "deforming mesh: no calibrated method with a bounds pass "
-                                   "(tcone, ncone, tangent-plane)"
-                                 : "no back-patch method calibrated";
+            (!best || total(c) < total(*best)))
+          best = c;
+      if (!best) {
+        e.reason = input.deforming ? "deforming mesh: no calibrated method with a bounds pass "
+                                     "(tcone, ncone, tangent-plane)"
+                                   : "no back-patch method calibrated";
       } else {
         StageChoice with = p.stages;
-        with.backPatch = bestMethod;
-        with.accuracy = bestAccuracy;
-        const std::string key = rateKey(bestMethod, bestAccuracy);
-        p.backPatch.choice = bestMethod;
-        p.backPatch.deltaMs = bestTotal - now;
-        p.backPatch.reason = decision(false, p.backPatch.deltaMs, false) + bestMethod + " " +
-                             stageReason(key, stageRate(s, key), with, p.stages);
+        with.backPatch = best->backPatch;
+        with.accuracy = best->accuracy;
+        const RateKey key = RateKey::backPatch(best->backPatch, best->accuracy);
+        e.choice = best->backPatch;
+        e.deltaMs = total(*best) - now;
+        e.reason = decision(false, e.deltaMs, false) + best->backPatch + " " +
+                   stageReason(key, rate(key), with, p.stages);
       }
     }
+    return e;
   }
+
   // Accuracy of the back-patch test: the bound or the listed triangles by predicted cost,
   // surface-exact only when asked for.
-  {
-    p.accuracy.on = !p.stages.backPatch.empty();
-    if (!p.accuracy.on) {
-      p.accuracy.reason = "no back-patch stage";
-    } else {
-      const Accuracy a = p.stages.accuracy;
-      p.accuracy.choice = toString(a);
-      auto at = [&](Accuracy other) {
-        StageChoice c = p.stages;
-        c.accuracy = other;
-        return c;
-      };
-      auto line = [&](Accuracy other) {
-        const std::string key = rateKey(p.stages.backPatch, other);
-        return std::string(toString(other)) + " " + source(key) + " " + percent(stageRate(s, key)) +
-               " predicted " + ms(total(at(other)));
-      };
-      const std::string tessText = " at tess " + std::to_string(int(input.tess));
-      if (!input.ownAccuracy) {
-        p.accuracy.reason =
-            "drawn-triangle bound: the scene's one cull frame per view applies "
-            "one accuracy to every instance";
-      } else if (a == Accuracy::Surface) {
-        p.accuracy.reason =
-            "surface-exact asked for (the papers' test): NOT conservative for the drawn chord "
-            "triangles, can lose silhouette pixels; " +
-            line(a);
-      } else if (options_.accuracy != "auto") {
-        p.accuracy.reason = std::string(toString(a)) +
-                            " asked for (conservative for the drawn "
-                            "triangles); " +
-                            line(a);
-      } else if (!calibration_.listedCullMsPerPatch.count(p.stages.backPatch)) {
-        p.accuracy.reason =
-            "drawn-triangle bound: the listed test of " + p.stages.backPatch + " is not calibrated";
-      } else {
-        const Accuracy other = a == Accuracy::Bound ? Accuracy::Listed : Accuracy::Bound;
-        p.accuracy.deltaMs =
-            a == Accuracy::Listed ? now - total(at(other)) : total(at(other)) - now;
-        char ct[96];
-        std::snprintf(ct, sizeof ct, "listed test +%.3f us per patch it runs on",
-                      1e3 * calibration_.listedCullMs(p.stages.backPatch, input.tess));
-        p.accuracy.reason =
-            std::string(a == Accuracy::Listed ? "listed triangles pay" : "the bound is cheaper") +
-            tessText + " (" + ct + "): " + line(a) + " against " + line(other) +
-            "; both conservative for the drawn triangles";
-      }
+  Effect accuracy() const {
+    Effect e;
+    e.on = !p.stages.backPatch.empty();
+    if (!e.on) {
+      e.reason = "no back-patch stage";
+      return e;
     }
+    const Accuracy a = p.stages.accuracy;
+    e.choice = toString(a);
+    auto at = [&](Accuracy other) {
+      StageChoice c = p.stages;
+      c.accuracy = other;
+      return c;
+    };
+    auto line = [&](Accuracy other) {
+      const RateKey key = RateKey::backPatch(p.stages.backPatch, other);
+      return std::string(toString(other)) + " " + source(key) + " " + percent(rate(key)) +
+             " predicted " + ms(total(at(other)));
+    };
+    const std::string& asked = planner.options_.accuracy;
+    if (!input.ownAccuracy) {
+      e.reason =
+          "drawn-triangle bound: the scene's one cull frame per view applies "
+          "one accuracy to every instance";
+    } else if (a == Accuracy::Surface) {
+      e.reason =
+          "surface-exact asked for (the papers' test): NOT conservative for the drawn chord "
+          "triangles, can lose silhouette pixels; " +
+          line(a);
+    } else if (asked != "auto") {
+      e.reason = std::string(toString(a)) + " asked for (conservative for the drawn triangles); " +
+                 line(a);
+    } else if (!calibration.listedCullMsPerPatch.count(p.stages.backPatch)) {
+      e.reason =
+          "drawn-triangle bound: the listed test of " + p.stages.backPatch + " is not calibrated";
+    } else {
+      const Accuracy other = a == Accuracy::Bound ? Accuracy::Listed : Accuracy::Bound;
+      e.deltaMs = a == Accuracy::Listed ? now - total(at(other)) : total(at(other)) - now;
+      char ct[96];
+      std::snprintf(ct, sizeof ct, "listed test +%.3f us per patch it runs on",
+                    1e3 * calibration.listedCullMs(p.stages.backPatch, input.tess));
+      e.reason =
+          std::string(a == Accuracy::Listed ? "listed triangles pay" : "the bound is cheaper") +
+          tessText() + " (" + ct + "): " + line(a) + " against " + line(other) +
+          "; both conservative for the drawn triangles";
+    }
+    return e;
   }
-  // Occlusion, passes, Hi-Z.
-  {
-    p.occlusion.on = !p.stages.occlusion.empty();
-    p.occlusion.choice = p.stages.occlusion;
+
+  Effect occlusion() const {
+    Effect e;
+    e.on = !p.stages.occlusion.empty();
+    e.choice = p.stages.occlusion;
     const std::string kernel =
-        p.occlusion.on ? p.stages.occlusion : bestOcclusionKernel(input, s, p.stages, p.box);
+        e.on ? p.stages.occlusion : planner.bestOcclusionKernel(input, s, p.stages, p.box);
     StageChoice with = p.stages, without = p.stages;
     with.occlusion = kernel;
     without.occlusion.clear();
     if (!input.occluders && !input.selfOccluding) {
-      p.occlusion.reason =
+      e.reason =
           "nothing can hide it in this view (no occluders, no other instance) and its surface "
           "is convex (cannot hide itself)";
-    } else if (!calibration_.cullMsPerPatch.count(kernel)) {
-      p.occlusion.reason = "the cost of kernel " + kernel + " is not in the calibration";
+    } else if (!calibration.cullMsPerPatch.count(kernel)) {
+      e.reason = "the cost of kernel " + kernel + " is not in the calibration";
     } else {
-      p.occlusion.choice = kernel;
-      p.occlusion.deltaMs = p.occlusion.on ? now - total(without) : total(with) - now;
+      e.choice = kernel;
+      e.deltaMs = e.on ? now - total(without) : total(with) - now;
       // Alone in the view, only the mesh itself can hide its patches: the self-occlusion
       // rule (a non-convex surface), learned from its own frames like the other stages.
-      const std::string key = occlusionRateKey(with);
-      const double rate = stageRate(s, key);
-      p.occlusion.reason =
-          decision(p.occlusion.on, p.occlusion.deltaMs,
-                   p.probe && p.occlusion.on && (s.explored || s.current->occlusion.empty())) +
-          (input.occluders ? std::string() : "self-occlusion (non-convex surface): ") +
-          stageReason(key, rate, with, without) + " (Hi-Z build included)";
+      const RateKey key = RateKey::occlusion(with);
+      e.reason = decision(e.on, e.deltaMs,
+                          p.probe && e.on && (s.explored || s.current->occlusion.empty())) +
+                 (input.occluders ? std::string() : "self-occlusion (non-convex surface): ") +
+                 stageReason(key, rate(key), with, without) + " (Hi-Z build included)";
     }
-    p.passes.on = p.occlusion.on;
-    p.passes.choice = p.occlusion.on ? (p.stages.aggressive ? "aggressive" : "two-pass") : "one";
-    p.passes.reason = !p.occlusion.on ? "no occlusion: one pass"
-                      : p.stages.aggressive
-                          ? "aggressive (§3.1): newly visible patches appear a frame late"
-                          : "two-pass (§3): the same image as without culling";
+    return e;
+  }
+
+  Effect passes() const {
+    Effect e;
+    e.on = !p.stages.occlusion.empty();
+    e.choice = e.on ? (p.stages.aggressive ? "aggressive" : "two-pass") : "one";
+    e.reason = !e.on ? "no occlusion: one pass"
+               : p.stages.aggressive
+                   ? "aggressive (§3.1): newly visible patches appear a frame late"
+                   : "two-pass (§3): the same image as without culling";
+    return e;
+  }
+
+  static std::string pyramid(const StageChoice& c) {
+    return std::string(c.hizFull ? "full" : "half") + (c.hizTight ? "/tight" : "/paper");
+  }
+
+  Effect hiz() const {
+    Effect e;
+    e.on = !p.stages.occlusion.empty();
     const uint64_t pixels = uint64_t(input.camera.width) * input.camera.height;
-    p.hiz.on = p.occlusion.on;
-    auto pyramid = [](const StageChoice& c) {
-      return std::string(c.hizFull ? "full" : "half") + (c.hizTight ? "/tight" : "/paper");
-    };
-    p.hiz.choice = p.occlusion.on ? pyramid(p.stages) : "";
-    p.hiz.deltaMs =
-        p.occlusion.on ? calibration_.hizBuildMs(hizPixels(pixels, p.stages.hizFull)) : 0.0;
+    e.choice = e.on ? pyramid(p.stages) : "";
+    e.deltaMs = e.on ? calibration.hizBuildMs(hizPixels(pixels, p.stages.hizFull)) : 0.0;
     const std::string builds = "build half " +
-                               ms(calibration_.hizBuildMs(hizPixels(pixels, false))) + ", full " +
-                               ms(calibration_.hizBuildMs(hizPixels(pixels, true)));
-    if (!p.occlusion.on) {
-      p.hiz.reason = "no occlusion: no pyramid";
+                               ms(calibration.hizBuildMs(hizPixels(pixels, false))) + ", full " +
+                               ms(calibration.hizBuildMs(hizPixels(pixels, true)));
+    if (!e.on) {
+      e.reason = "no occlusion: no pyramid";
     } else if (!input.ownAccuracy) {
-      p.hiz.reason =
+      e.reason =
           "the scene's one pyramid per view: level 0 at half resolution, the paper's "
           "lookup (Niessner & Loop §4.1); " +
           builds;
     } else {
       // Every pyramid variant of the same stages: predicted frame and rate.
       std::string variants;
-      for (const StageChoice& c : candidates(input))
+      for (const StageChoice& c : planner.candidates(input))
         if (c.occlusion == p.stages.occlusion && c.frustum == p.stages.frustum &&
             c.backPatch == p.stages.backPatch && c.accuracy == p.stages.accuracy &&
             c.aggressive == p.stages.aggressive)
           variants += (variants.empty() ? "" : ", ") + pyramid(c) + " " + ms(total(c)) + " (" +
-                      source(occlusionRateKey(c)) + " " +
-                      percent(stageRate(s, occlusionRateKey(c))) + ")";
+                      source(RateKey::occlusion(c)) + " " + percent(rate(RateKey::occlusion(c))) +
+                      ")";
       char tight[64] = "tight lookup not calibrated";
-      if (calibration_.hizTightMsPerPatch)
+      if (calibration.hizTightMsPerPatch)
         std::snprintf(tight, sizeof tight, "tight lookup +%.3f us/patch",
-                      1e3 * *calibration_.hizTightMsPerPatch);
-      p.hiz.reason = "cheapest predicted of " + variants + "; " + builds + ", " + tight;
+                      1e3 * *calibration.hizTightMsPerPatch);
+      e.reason = "cheapest predicted of " + variants + "; " + builds + ", " + tight;
     }
+    return e;
   }
-  // Update and bounds.
-  {
-    p.update.on = base.pointUpdate;
-    p.update.choice = p.update.on ? (base.gpuPointUpdate ? "gpu" : "cpu") : "";
-    if (!input.deforming)
-      p.update.reason = "static mesh: control points computed once, never re-evaluated";
-    else if (!input.cageMoved)
-      p.update.reason = "the cage did not move since the last frame: nothing to update";
-    else {
-      p.update.deltaMs =
+
+  Effect update() const {
+    Effect e;
+    e.on = base.pointUpdate;
+    e.choice = e.on ? (base.gpuPointUpdate ? "gpu" : "cpu") : "";
+    if (!input.deforming) {
+      e.reason = "static mesh: control points computed once, never re-evaluated";
+    } else if (!input.cageMoved) {
+      e.reason = "the cage did not move since the last frame: nothing to update";
+    } else {
+      e.deltaMs =
           k * n *
-          std::min(calibration_.pointUpdateCpuMsPerPatch, calibration_.pointUpdateGpuMsPerPatch);
-      p.update.reason = "cage moved: cpu " + ms(n * calibration_.pointUpdateCpuMsPerPatch) +
-                        ", gpu " + ms(n * calibration_.pointUpdateGpuMsPerPatch) +
-                        " (calibrated); the cheaper runs";
+          std::min(calibration.pointUpdateCpuMsPerPatch, calibration.pointUpdateGpuMsPerPatch);
+      e.reason = "cage moved: cpu " + ms(n * calibration.pointUpdateCpuMsPerPatch) + ", gpu " +
+                 ms(n * calibration.pointUpdateGpuMsPerPatch) + " (calibrated); the cheaper runs";
     }
-    p.bounds.on = base.boundsPass;
-    p.bounds.choice = p.bounds.on ? base.boundsMethod : "";
-    p.bounds.deltaMs = p.bounds.on ? k * n * calibration_.boundsMs(base.boundsMethod) : 0.0;
-    p.bounds.reason =
-        !base.pointUpdate ? "points did not move: the cull data stays valid"
-        : p.bounds.on
-            ? "recomputes the " + base.boundsMethod +
-                  (input.displaced ? " cones of the displaced bound" : " cull data") +
-                  " of the moved points (bounds pass, " +
-                  ms(n * calibration_.boundsMs(base.boundsMethod)) +
-                  " calibrated, charged to the " +
-                  (input.displaced ? "displaced kernel " + displacedBoundsKernel(input, p.stages)
-                                   : std::string("method")) +
-                  ")"
-        : input.displaced ? (p.stages.any() ? "the displaced bound tested (full) needs only the "
-                                              "static ranges: no bounds pass"
-                                            : "no cull stage: no bounds pass")
-                          : "no back-patch method runs: no bounds pass";
+    return e;
   }
-  // Displacement.
-  p.displacement.on = input.displaced;
-  if (!input.displaced)
-    p.displacement.reason = "no displacement map: no displacement kernel compiled or bound";
-  else {
+
+  Effect bounds() const {
+    Effect e;
+    e.on = base.boundsPass;
+    e.choice = e.on ? base.boundsMethod : "";
+    e.deltaMs = e.on ? k * n * calibration.boundsMs(base.boundsMethod) : 0.0;
+    if (!base.pointUpdate)
+      e.reason = "points did not move: the cull data stays valid";
+    else if (e.on)
+      e.reason =
+          "recomputes the " + base.boundsMethod +
+          (input.displaced ? " cones of the displaced bound" : " cull data") +
+          " of the moved points (bounds pass, " + ms(n * calibration.boundsMs(base.boundsMethod)) +
+          " calibrated, charged to the " +
+          (input.displaced ? "displaced kernel " + planner.displacedBoundsKernel(input, p.stages)
+                           : std::string("method")) +
+          ")";
+    else if (input.displaced)
+      e.reason =
+          p.stages.any()
+              ? "the displaced bound tested (full) needs only the static ranges: no bounds pass"
+              : "no cull stage: no bounds pass";
+    else
+      e.reason = "no back-patch method runs: no bounds pass";
+    return e;
+  }
+
+  Effect displacement() const {
+    Effect e;
+    e.on = input.displaced;
+    if (!input.displaced) {
+      e.reason = "no displacement map: no displacement kernel compiled or bound";
+      return e;
+    }
     // The displaced bound the frustum and occlusion stages test: the occlusion stage's, or
     // the one predicted cheapest with occlusion (the frustum test alone is the same test on
-    // any of them).
-    // A deforming mesh whose points moved: the frustum stage alone tests the bound whose
-    // bounds pass costs least (displacedBoundsKernel).
+    // any of them). A deforming mesh whose points moved: the frustum stage alone tests the
+    // bound whose bounds pass costs least (displacedBoundsKernel).
     const std::string kernel = !p.stages.occlusion.empty() ? p.stages.occlusion
-                               : base.pointUpdate          ? displacedBoundsKernel(input, p.stages)
-                                                  : bestOcclusionKernel(input, s, p.stages, p.box);
-    const auto kernels = occlusionKernels(input);
+                               : base.pointUpdate
+                                   ? planner.displacedBoundsKernel(input, p.stages)
+                                   : planner.bestOcclusionKernel(input, s, p.stages, p.box);
+    const auto kernels = planner.occlusionKernels(input);
     const auto measured = std::count_if(
         kernels.begin(), kernels.end(),
-        [&](const std::string& name) { return calibration_.cullMsPerPatch.count(name) > 0; });
-    p.displacement.choice = p.stages.any() ? kernel : "draw only";
+        [&](const std::string& name) { return calibration.cullMsPerPatch.count(name) > 0; });
+    e.choice = p.stages.any() ? kernel : "draw only";
     char factor[32];
-    std::snprintf(factor, sizeof factor, "%.2f", calibration_.displacedDrawFactorAt(input.tess));
-    p.displacement.reason =
-        std::string("draw RT(tf) x") + factor + " (calibrated displacement lookup); " +
-        (p.stages.any() ? "frustum and occlusion test the " + kernel +
-                              " bound: cheapest predicted of " + std::to_string(measured) +
-                              " calibrated displaced bound" + (measured == 1 ? "" : "s") + " at " +
-                              source(kernel) + " rate " + percent(stageRate(s, kernel))
-                        : std::string("no cull stage: the map is used by the draw only"));
+    std::snprintf(factor, sizeof factor, "%.2f", calibration.displacedDrawFactorAt(input.tess));
+    const RateKey key = RateKey::occlusion(kernel);
+    e.reason = std::string("draw RT(tf) x") + factor + " (calibrated displacement lookup); " +
+               (p.stages.any() ? "frustum and occlusion test the " + kernel +
+                                     " bound: cheapest predicted of " + std::to_string(measured) +
+                                     " calibrated displaced bound" + (measured == 1 ? "" : "s") +
+                                     " at " + source(key) + " rate " + percent(rate(key))
+                               : std::string("no cull stage: the map is used by the draw only"));
+    return e;
   }
+};
+
+void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
+  const Explaining e(*this, p, input, s);
+  p.frustum = e.frustum();
+  p.backPatch = e.backPatch();
+  p.accuracy = e.accuracy();
+  p.occlusion = e.occlusion();
+  p.passes = e.passes();
+  p.hiz = e.hiz();
+  p.update = e.update();
+  p.bounds = e.bounds();
+  p.displacement = e.displacement();
 }
 
 void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
@@ -888,7 +1043,7 @@ void Planner::observe(const std::string& key, const Plan& plan, const Observatio
       learnScale(s.cullScale, s.cullMeasured, ratio);
     }
   }
-  auto learn = [&](const std::string& stage, uint32_t culled) {
+  auto learn = [&](const RateKey& stage, uint32_t culled) {
     const double rate = double(culled) / double(o.total);
     const auto it = s.rates.find(stage);
     s.rates[stage] = it == s.rates.end()
@@ -897,22 +1052,22 @@ void Planner::observe(const std::string& key, const Plan& plan, const Observatio
   };
   // The frustum's rate is learned only where the pre-test leaves it open.
   if (plan.stages.frustum && plan.box == BoxInView::Crossing) {
-    learn(kFrustum, o.culledFrustum);
-    s.measured.insert(kFrustum);
+    learn(RateKey::frustum(), o.culledFrustum);
+    s.measured.insert(CullStage::Frustum);
   }
   if (!plan.stages.backPatch.empty()) {
-    s.measured.insert(kBackPatch);
-    learn(rateKey(plan.stages.backPatch, plan.stages.accuracy), o.culledBackPatch);
-    s.lastBackPatchKey = rateKey(plan.stages.backPatch, plan.stages.accuracy);
+    s.measured.insert(CullStage::BackPatch);
+    s.lastBackPatchKey = RateKey::backPatch(plan.stages.backPatch, plan.stages.accuracy);
+    learn(*s.lastBackPatchKey, o.culledBackPatch);
   }
   // The occlusion rate of a choice's first frame is not learned: its visibility status has
   // not seen the stage yet (a new frame starts with nothing visible, or from a status some
   // frames old), so what it culled says little of what the stage culls (the probe's
   // second frame measures it).
   if (!plan.stages.occlusion.empty() && warm) {
-    s.measured.insert(kOcclusion);
-    learn(occlusionRateKey(plan.stages), o.culledOcclusion);
-    s.lastOcclusionKey = occlusionRateKey(plan.stages);
+    s.measured.insert(CullStage::Occlusion);
+    s.lastOcclusionKey = RateKey::occlusion(plan.stages);
+    learn(*s.lastOcclusionKey, o.culledOcclusion);
   }
 }
 
@@ -944,10 +1099,10 @@ std::string planTable(std::span<const Plan> plans) {
       << "|---|---|---:|---|---|---|---|---:|---|\n";
   char line[64];
   for (const Plan& p : plans) {
-    for (const auto& [name, e] : p.effects()) {
+    for (const auto& [kind, e] : p.effects()) {
       std::snprintf(line, sizeof line, "%+.2f", e->deltaMs);
       out << "| " << p.mesh << " | " << p.view << " | " << p.frame << " | " << toString(p.box)
-          << " | " << name << " | " << (e->on ? "on" : "off") << " | "
+          << " | " << toString(kind) << " | " << (e->on ? "on" : "off") << " | "
           << (e->choice.empty() ? "-" : e->choice) << " | " << line << " | " << e->reason << " |\n";
     }
     std::snprintf(line, sizeof line, "%.2f", p.predicted.totalMs());
@@ -966,7 +1121,7 @@ std::string planChange(const Plan& before, const Plan& after) {
   for (size_t i = 0; i < a.size(); ++i)
     if (a[i].second->on != b[i].second->on ||
         (b[i].second->on && a[i].second->choice != b[i].second->choice))
-      text += std::string(b[i].first) + " " + (b[i].second->on ? "on" : "off") +
+      text += std::string(toString(b[i].first)) + " " + (b[i].second->on ? "on" : "off") +
               (b[i].second->choice.empty() ? "" : " (" + b[i].second->choice + ")") + ": " +
               b[i].second->reason + "\n";
   return text;

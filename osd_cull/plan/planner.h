@@ -32,6 +32,7 @@
 
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/frame/camera.h"
+#include "osd_cull/frame/cull/cull_methods.h"
 #include "osd_cull/frame/cull_frame.h"
 #include "osd_cull/patch/patch_set.h"
 #include "osd_cull/plan/cost_model.h"
@@ -107,6 +108,26 @@ double equivalentUniformLevel(const PatchSet& patches, const frame::Camera& came
                               const frame::TessellationOptions& tessellation,
                               uint32_t samples = 2048);
 
+/// \brief The effects of a plan, in print order: the three cull stages, the back-patch
+/// test's accuracy, the passes, the Hi-Z pyramid, the control-point update, the bounds pass
+/// and the displacement kernel. Each has its own function in the planner that produces its
+/// decision and the sentence that gives its reason, so that the two cannot disagree.
+enum class EffectKind {
+  Frustum,
+  BackPatch,
+  Accuracy,
+  Occlusion,
+  Passes,
+  HiZ,
+  Update,
+  Bounds,
+  Displacement
+};
+
+/// \brief "frustum", "back-patch", "accuracy", "occlusion", "passes", "hi-z", "update",
+/// "bounds", "displacement".
+const char* toString(EffectKind kind);
+
 /// \brief One effect of a plan: on or off, the choice made (a method, "cpu"), why, and
 /// the predicted change of the frame time it makes (negative: it saves time).
 struct Effect {
@@ -135,8 +156,10 @@ struct Plan {
   Prediction predictedUnculled;  ///< no stage at all, scaled
   /// \brief Whether anything is culled (else the mesh is drawn by the plain renderer).
   bool culls() const { return stages.any(); }
-  /// \brief The effects with their names, in print order.
-  std::vector<std::pair<const char*, const Effect*>> effects() const;
+  /// \brief The effects with their kinds, in print order.
+  std::vector<std::pair<EffectKind, const Effect*>> effects() const;
+  /// \brief The effect of `kind`.
+  const Effect& effect(EffectKind kind) const;
 };
 
 /// \brief Tuning of the planner.
@@ -213,7 +236,7 @@ struct PlannerOptions {
   /// as a multiple of the paper's (half, paper lookup): docs/results/occlusion.md, the tight
   /// lookup culls 1.07 to 1.18 times as much (default scene 52.3% / 49.1%, BigGuy level 0
   /// 28.3% / 23.9%); full resolution is not measured there: taken as the same one-level-
-  /// finer gain. Learned per variant (occlusionRateKey) as soon as one runs.
+  /// finer gain. Learned per variant (RateKey) as soon as one runs.
   double tightRateFactor = 1.13;
   double fullRateFactor = 1.13;
   /// The displaced kernel for a displaced mesh when the calibration measured none of the
@@ -222,13 +245,34 @@ struct PlannerOptions {
   std::string displacedKernel = "con-caf";
 };
 
-/// \brief The key of a back-patch method's learned rate at `accuracy`: the method's name for
-/// the bound, "tcone/listed", "tcone/surface" (Planner::rate).
-std::string rateKey(const std::string& method, Accuracy accuracy);
+/// \brief The identity of a learned cull rate: a stage and, for a back-patch stage, its
+/// method and accuracy; for an occlusion stage, its kernel and pyramid (level 0 at full
+/// resolution, the tight lookup). Each variant culls differently, so each is learned apart;
+/// an unmeasured one borrows its measured sibling's rate (Planner::rate). Ordered, so that it
+/// keys the planner's maps.
+struct RateKey {
+  frame::CullStage stage = frame::CullStage::Frustum;
+  std::string method;  ///< back-patch method or occlusion kernel; empty for the frustum
+  Accuracy accuracy = Accuracy::Bound;     ///< back-patch
+  bool hizFull = false, hizTight = false;  ///< occlusion
 
-/// \brief The key of an occlusion stage's learned rate: the kernel's name for the paper's
-/// pyramid (half resolution, paper lookup), else "hiz/full", "hiz/tight", "hiz/full/tight".
-std::string occlusionRateKey(const StageChoice& stages);
+  static RateKey frustum();
+  static RateKey backPatch(std::string method, Accuracy accuracy = Accuracy::Bound);
+  /// \brief The occlusion stage of `stages` with its pyramid.
+  static RateKey occlusion(const StageChoice& stages);
+  static RateKey occlusion(std::string kernel, bool hizFull = false, bool hizTight = false);
+  /// \brief The key printed as `name` ("frustum", "tcone", "tcone/listed", "hiz/full/tight").
+  /// \throws osd_cull::Error naming the part it does not know.
+  static RateKey parse(const std::string& name);
+  /// \brief "frustum", the method's name for the bound ("tcone"), "tcone/listed",
+  /// "tcone/surface"; the kernel's name on the paper's pyramid ("hiz"), "hiz/full",
+  /// "hiz/tight", "hiz/full/tight".
+  std::string name() const;
+  /// \brief The same method at the drawn-triangle bound, the same kernel on the paper's
+  /// pyramid: the key of its plain prior.
+  RateKey plain() const;
+  auto operator<=>(const RateKey&) const = default;
+};
 
 /// \brief What a frame that ran a plan measured.
 struct Observation {
@@ -262,8 +306,9 @@ class Planner {
                uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
                double measuredMs = 0.0);
 
-  /// \brief The learned (or prior) rate of `stage` ("frustum", a method name or a rateKey())
-  /// for `key`.
+  /// \brief The learned (or prior) rate of `stage` for `key`.
+  double rate(const std::string& key, const RateKey& stage) const;
+  /// \brief rate() of the stage printed as `stage` (RateKey::parse).
   double rate(const std::string& key, const std::string& stage) const;
   const Calibration& calibration() const { return calibration_; }
   const PlannerOptions& options() const { return options_; }
@@ -272,17 +317,17 @@ class Planner {
   struct State {
     std::optional<StageChoice> current;
     uint64_t since = 0;  // frame the current choice started
-    std::map<std::string, double> rates;
-    std::map<std::string, uint64_t> lastRun;        // stage kind → last frame it ran
-    std::map<std::string, uint32_t> probeInterval;  // stage kind → frames between probes
-    std::set<std::string> measured;                 // stage kinds observed at least once
+    std::map<RateKey, double> rates;
+    std::map<frame::CullStage, uint64_t> lastRun;        // stage → last frame it ran
+    std::map<frame::CullStage, uint32_t> probeInterval;  // stage → frames between probes
+    std::set<frame::CullStage> measured;                 // stages observed at least once
     uint64_t lastFrame = 0;
-    std::string inputs;                              // inputsSignature() of the last plan
-    std::deque<uint64_t> switches;                   // frames the choice changed, the last window
-    std::optional<StageChoice> hold;                 // an occlusion probe's second frame runs this
-    std::optional<uint64_t> firstFrame;              // the key's first planned frame
-    bool explored = false;                           // exploring until the last frame
-    std::string lastBackPatchKey, lastOcclusionKey;  // the last measured variant of each
+    std::string inputs;                  // inputsSignature() of the last plan
+    std::deque<uint64_t> switches;       // frames the choice changed, the last window
+    std::optional<StageChoice> hold;     // an occlusion probe's second frame runs this
+    std::optional<uint64_t> firstFrame;  // the key's first planned frame
+    bool explored = false;               // exploring until the last frame
+    std::optional<RateKey> lastBackPatchKey, lastOcclusionKey;  // last measured variant of each
     // Plan::drawScale and cullScale: the calibration's draw and cull costs can be off by
     // different factors for a given mesh (its screen coverage, its patch shapes); a frame
     // that times its cull work apart tells them apart. Until one is measured it takes the
@@ -306,8 +351,11 @@ class Planner {
   std::string displacedBoundsKernel(const PlanInput& input, const StageChoice& stages) const;
   std::vector<Accuracy> accuracies(const PlanInput& input, const std::string& method) const;
   CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
-  double stageRate(const State& state, const std::string& stage) const;
-  double priorRate(const std::string& stage) const;
+  double stageRate(const State& state, const RateKey& stage) const;
+  double priorRate(const RateKey& stage) const;
+  /// One function per effect (planner.cpp): each returns the effect's decision with its
+  /// reason.
+  struct Explaining;
   void explain(Plan& plan, const PlanInput& input, const State& state) const;
 
   Calibration calibration_;

@@ -108,8 +108,8 @@ void printPlanChange(const plan::Plan* last, const plan::Plan& p, std::ostream& 
     }
     return;
   }
-  for (const auto& [name, e] : p.effects())
-    out << "  " << name << " " << (e->on ? "on" : "off")
+  for (const auto& [kind, e] : p.effects())
+    out << "  " << plan::toString(kind) << " " << (e->on ? "on" : "off")
         << (e->choice.empty() ? "" : " (" + e->choice + ")") << ": " << e->reason << "\n";
 }
 

@@ -317,12 +317,12 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
                       p.mesh.c_str(), p.stages.describe().c_str(), p.probe ? " [re-probe]" : "",
                       p.predicted.totalMs(), p.predictedUnculled.totalMs());
         figures.notes.push_back(line);
-        for (const auto& [name, e] : p.effects()) {
-          const std::string n = name;
-          if (n == "frustum" || n == "back-patch" || n == "occlusion")
-            figures.notes.push_back("  " + n + (e->on ? " on: " : " off: ") +
+        for (const auto& [kind, e] : p.effects())
+          if (kind == plan::EffectKind::Frustum || kind == plan::EffectKind::BackPatch ||
+              kind == plan::EffectKind::Occlusion)
+            figures.notes.push_back(std::string("  ") + plan::toString(kind) +
+                                    (e->on ? " on: " : " off: ") +
                                     e->reason.substr(0, e->reason.find(';')));
-        }
       }
       figures.mode = view.culled ? "culled draw (plan)" : "all patches (the plan culls nothing)";
       if (state.statusColors || state.freezeCull)
