@@ -492,26 +492,12 @@ double Planner::predictedMs(const State& s, const PlanInput& input, const StageC
       .totalMs();
 }
 
-Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t frameNumber) {
-  State& s = states_[key];
-  if (s.current && frameNumber < s.lastFrame)
-    throw Error("planner: frame " + std::to_string(frameNumber) + " of '" + key +
-                "' comes after frame " + std::to_string(s.lastFrame));
-  s.lastFrame = frameNumber;
-  // New inputs (another level, image size, motion): the re-probes start over.
-  if (const std::string inputs = inputsSignature(input); inputs != s.inputs) {
-    s.inputs = inputs;
-    s.probeInterval.clear();
-  }
-  while (!s.switches.empty() && frameNumber - s.switches.front() >= options_.oscillationWindow)
-    s.switches.pop_front();
-  Plan p;
-  p.mesh = input.mesh;
-  p.view = input.view;
-  p.frame = frameNumber;
-  p.box = boxInView(input.objectBounds, input.model, input.camera);
+// Steps 2 and 3 of the plan (planner.h): the cheapest predicted choice, or while exploring
+// the cheapest that runs every stage kind offered; the current one is kept unless the new one
+// is predicted cheaper by the margin after the hold. Returns whether this frame explores.
+bool Planner::choose(State& s, const PlanInput& input, const std::vector<StageChoice>& all, Plan& p,
+                     uint64_t frameNumber) const {
   auto total = [&](const StageChoice& c) { return predictedMs(s, input, c, p.box); };
-  const std::vector<StageChoice> all = candidates(input);
   const StageChoice best = *std::min_element(
       all.begin(), all.end(),
       [&](const StageChoice& a, const StageChoice& b) { return total(a) < total(b); });
@@ -552,8 +538,14 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   }
   p.stages = *s.current;
   p.probe = exploring;
+  return exploring;
+}
 
-  // Re-probe one switched-off stage now and then: its rate is learned only while it runs.
+// Step 4 of the plan: one switched-off stage runs now and then (a re-probe), because its rate
+// is learned only while it runs.
+void Planner::reprobe(State& s, const PlanInput& input, const std::vector<StageChoice>& all,
+                      Plan& p, uint64_t frameNumber, bool exploring) const {
+  auto total = [&](const StageChoice& c) { return predictedMs(s, input, c, p.box); };
   // The unculled frame is never probed: observe() learns its cost from the culled frames'
   // own draw time (Plan::drawScale), so the visibility status is never thrown away.
   for (CullStage kind : {CullStage::Frustum, CullStage::BackPatch, CullStage::Occlusion})
@@ -617,6 +609,29 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
       s.hold = p.stages;
     }
   }
+}
+
+Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t frameNumber) {
+  State& s = states_[key];
+  if (s.current && frameNumber < s.lastFrame)
+    throw Error("planner: frame " + std::to_string(frameNumber) + " of '" + key +
+                "' comes after frame " + std::to_string(s.lastFrame));
+  s.lastFrame = frameNumber;
+  // New inputs (another level, image size, motion): the re-probes start over.
+  if (const std::string inputs = inputsSignature(input); inputs != s.inputs) {
+    s.inputs = inputs;
+    s.probeInterval.clear();
+  }
+  while (!s.switches.empty() && frameNumber - s.switches.front() >= options_.oscillationWindow)
+    s.switches.pop_front();
+  Plan p;
+  p.mesh = input.mesh;
+  p.view = input.view;
+  p.frame = frameNumber;
+  p.box = boxInView(input.objectBounds, input.model, input.camera);
+  const std::vector<StageChoice> all = candidates(input);
+  const bool exploring = choose(s, input, all, p, frameNumber);
+  reprobe(s, input, all, p, frameNumber, exploring);
   if (p.stages.frustum) s.lastRun[CullStage::Frustum] = frameNumber;
   if (!p.stages.backPatch.empty()) s.lastRun[CullStage::BackPatch] = frameNumber;
   if (!p.stages.occlusion.empty()) s.lastRun[CullStage::Occlusion] = frameNumber;

@@ -351,6 +351,10 @@ class Planner {
   std::string displacedBoundsKernel(const PlanInput& input, const StageChoice& stages) const;
   std::vector<Accuracy> accuracies(const PlanInput& input, const std::string& method) const;
   CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
+  bool choose(State& state, const PlanInput& input, const std::vector<StageChoice>& all, Plan& plan,
+              uint64_t frame) const;
+  void reprobe(State& state, const PlanInput& input, const std::vector<StageChoice>& all,
+               Plan& plan, uint64_t frame, bool exploring) const;
   double stageRate(const State& state, const RateKey& stage) const;
   double priorRate(const RateKey& stage) const;
   /// One function per effect (planner.cpp): each returns the effect's decision with its
