@@ -290,13 +290,26 @@ frame::CullFrame& ScenePlayer::plannedFrame(size_t view, const std::vector<plan:
              .emplace(key, std::make_unique<frame::CullFrame>(context_, *renderer_, *v.target,
                                                               meshes, o))
              .first;
+    ++v.built;
   } else if (o.aggressive && it->second.get() != v.frame) {
     // Kept from earlier frames, its status is stale: the aggressive mode draws only what it
     // holds visible, so start over (two passes re-test every patch and need no reset).
     it->second->reset(o.firstFrame);
   }
   v.frame = it->second.get();
+  // Most recent first; the least recently used beyond cachedFrames_ goes (never this one).
+  v.recent.remove(key);
+  v.recent.push_front(key);
+  while (v.recent.size() > cachedFrames_) {
+    v.frames.erase(v.recent.back());
+    v.recent.pop_back();
+  }
   return *v.frame;
+}
+
+void ScenePlayer::setCachedFrames(size_t frames) {
+  if (frames == 0) throw Error("scene player: at least one cull frame per view must be kept");
+  cachedFrames_ = frames;
 }
 
 ViewFrame ScenePlayer::renderPlanned(size_t view, uint64_t frameIndex) {

@@ -22,6 +22,7 @@
 #include "osd_cull/plan/planner.h"
 #include "osd_cull/scene/loaded_scene.h"
 
+#include <list>
 #include <map>
 #include <memory>
 #include <optional>
@@ -116,6 +117,13 @@ class ScenePlayer {
   /// \brief CullFrames built for view `view` so far (with a planner: one per set of stage
   /// choices seen, each kept for reuse).
   size_t cullFrameCount(size_t view) const { return views_.at(view).frames.size(); }
+  /// \brief The planned CullFrames built for `view` so far, those evicted included.
+  size_t cullFramesBuilt(size_t view) const { return views_.at(view).built; }
+  /// \brief How many planned CullFrames (sets of choices) a view keeps, least recently used
+  /// evicted first (default 6; at least 1): memory stays flat however many sets of choices
+  /// a restless plan visits (issue 18). A set met again after its eviction is rebuilt and
+  /// starts with nothing visible, like any new one.
+  void setCachedFrames(size_t frames);
   /// \brief The camera of view `view` at the current frame.
   const frame::Camera& camera(size_t view) const { return views_.at(view).camera; }
   std::span<const frame::GpuTriangleMesh* const> occluders() const { return occluderPtrs_; }
@@ -149,6 +157,8 @@ class ScenePlayer {
     std::unique_ptr<frame::RenderTarget> target;
     // Keyed by the instances' stage choices ("" for the fixed options).
     std::map<std::string, std::unique_ptr<frame::CullFrame>> frames;
+    std::list<std::string> recent;      // keys of the planned frames, most recent first
+    size_t built = 0;                   // planned frames built, evicted ones included
     frame::CullFrame* frame = nullptr;  // the last one rendered
     frame::Camera camera;
   };
@@ -167,6 +177,7 @@ class ScenePlayer {
 
   vulkan::Context& context_;
   LoadedScene& scene_;
+  size_t cachedFrames_ = 6;
   std::unique_ptr<frame::Renderer> renderer_;
   std::vector<std::unique_ptr<Points>> points_;
   std::vector<Instance> instances_;
