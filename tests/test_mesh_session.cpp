@@ -137,6 +137,51 @@ TEST_F(MeshSessionTest, PlanChangesKeepTheImageAndTheStatus) {
   EXPECT_EQ(validationLog().count(), 0u);
 }
 
+TEST_F(MeshSessionTest, TheFirstFrameCountsTheOtherBackPatchVariantsWithoutTouchingTheFrame) {
+  // Issue 18: Plan::countOnly. The first frame runs every other offered back-patch variant
+  // in a counting-only pass: the planner learns each variant's rate (as a cull pass of that
+  // variant counts it), and the frame itself is what it would be without them.
+  frame::RenderTarget counting(context(), 96, 64), plain(context(), 96, 64);
+  plan::Planner a(test::syntheticCalibration());
+  plan::PlannerOptions off;
+  off.countingProbes = false;
+  plan::Planner b(test::syntheticCalibration(), off);
+  const session::MeshSessionOptions so = torusOptions(2);
+  session::MeshSession withCounts(context(), renderer(), counting, gpu(), patches, {}, so, &a);
+  session::MeshSession without(context(), renderer(), plain, gpu(), patches, {}, so, &b);
+  const frame::Bounds box = frame::boundsOf(patches.points);
+  const frame::Camera camera = frame::frameBounds(box, {0.3, -1.0, 0.6}, {0, 0, 1}, 40.0, 96, 64);
+  const session::SessionFrame f = withCounts.render(camera);
+  const session::SessionFrame g = without.render(camera);
+  ASSERT_TRUE(f.plan && g.plan);
+  ASSERT_FALSE(f.plan->countOnly.empty());
+  EXPECT_TRUE(g.plan->countOnly.empty());
+  EXPECT_EQ(f.countingPasses, f.plan->countOnly.size());
+  EXPECT_EQ(g.countingPasses, 0u);
+  EXPECT_TRUE(f.plan->stages == g.plan->stages);
+  EXPECT_EQ(f.stats.drawnPass1 + f.stats.drawnPass2, g.stats.drawnPass1 + g.stats.drawnPass2);
+  EXPECT_EQ(f.stats.culled(), g.stats.culled());
+  const frame::ItemComparison c =
+      frame::compareItems(counting.readItems(context()), plain.readItems(context()));
+  EXPECT_EQ(c.differing, 0u);
+  const std::string key = so.name + "/" + so.view;
+  uint32_t cullingVariants = 0;
+  for (const plan::StageChoice& v : f.plan->countOnly) {
+    plan::Plan variant = *f.plan;
+    variant.stages = v;
+    frame::CullFrameOptions o = plan::applyPlan(variant, so.frame);
+    frame::CullPass pass(context(), gpu(), patches, o.cull);
+    pass.run(camera, o.render.tessellation);
+    const uint32_t culled = session::countByStage(pass.results()).backPatch;
+    cullingVariants += culled > 0;
+    EXPECT_NEAR(a.rate(key, plan::RateKey::backPatch(v.backPatch, v.accuracy)),
+                double(culled) / patches.patchCount(), 1e-12)
+        << v.describe();
+  }
+  EXPECT_GT(cullingVariants, 0u);
+  EXPECT_EQ(validationLog().count(), 0u);
+}
+
 TEST_F(MeshSessionTest, FixedStagesBuildTheirPassUpFrontAndCountPerStage) {
   frame::RenderTarget target(context(), 64, 48);
   session::MeshSessionOptions so = torusOptions(2);

@@ -763,6 +763,46 @@ TEST(Plan, TheFirstFramesMeasureEveryStageAndTheChoiceAfterIsMadeOnMeasuredRates
   EXPECT_FALSE(off.culls()) << planTable({&off, 1});
 }
 
+TEST(Plan, TheFirstFrameCountsEveryOtherBackPatchVariantAndTheChoiceUsesTheirRates) {
+  // Issue 18: with one back-patch method measured in the exploring frames, every other
+  // variant borrowed its rate and was never chosen. The first frame asks for a counting-only
+  // pass of every other offered variant; their measured rates decide frame 2.
+  Planner planner(syntheticCalibration());
+  const PlanInput in = meshAt(60.0, 1.0);
+  const Plan first = planner.plan("k", in, 0);
+  ASSERT_TRUE(first.backPatch.on);
+  ASSERT_FALSE(first.countOnly.empty());
+  std::set<std::string> counted;
+  for (const StageChoice& c : first.countOnly) {
+    EXPECT_FALSE(c.backPatch.empty());
+    EXPECT_TRUE(c.occlusion.empty());
+    EXPECT_EQ(c.frustum, first.stages.frustum);
+    EXPECT_FALSE(c.backPatch == first.stages.backPatch && c.accuracy == first.stages.accuracy);
+    counted.insert(RateKey::backPatch(c.backPatch, c.accuracy).name());
+  }
+  EXPECT_EQ(counted.size(), first.countOnly.size()) << "each variant once";
+  const std::string best = first.stages.backPatch == "tcone" ? "ncone" : "tcone";
+  ASSERT_TRUE(counted.count(best)) << best;
+  for (const StageChoice& c : first.countOnly)
+    planner.observeCount("k", c, c.backPatch == best && c.accuracy == Accuracy::Bound ? 1980 : 200,
+                         2000);
+  EXPECT_NEAR(planner.rate("k", RateKey::backPatch(best)), 0.99, 1e-12);
+  // The exploring frames measure what they run (frame 1 may already run `best`).
+  auto culls = [&](const Plan& p) { return p.stages.backPatch == best ? 1980u : 200u; };
+  planner.observe("k", first, 0, culls(first), 0, 2000);
+  const Plan second = planner.plan("k", in, 1);
+  EXPECT_TRUE(second.countOnly.empty()) << "only the first frame counts";
+  planner.observe("k", second, 0, culls(second), 0, 2000);
+  const Plan after = planner.plan("k", in, 2);
+  EXPECT_EQ(after.stages.backPatch, best) << planTable({&after, 1});
+  EXPECT_NE(after.backPatch.reason.find("measured rate 99.0%"), std::string::npos)
+      << after.backPatch.reason;
+  // Switched off, the plan keeps the borrowed rates (PlannerOptions::countingProbes).
+  PlannerOptions options;
+  options.countingProbes = false;
+  EXPECT_TRUE(Planner(syntheticCalibration(), options).plan("k", in, 0).countOnly.empty());
+}
+
 TEST(Plan, ASteadyViewConvergesAndProbesEverMoreRarely) {
   // A steady view whose measured rates keep culling off: the back-patch re-probes come at
   // 2 (its rate a prior), then 16, 32, 64, 128, 128 frames apart (each doubles the

@@ -53,6 +53,13 @@ std::string displacedExtensionOf(const std::string& kernel) {
   throw Error("planner: '" + kernel + "' is not a displaced kernel");
 }
 
+// A measured rate into the moving average of `stage` (the first measurement replaces the
+// prior).
+void learnRate(std::map<RateKey, double>& rates, const RateKey& stage, double rate, double weight) {
+  const auto it = rates.find(stage);
+  rates[stage] = it == rates.end() ? rate : (1.0 - weight) * it->second + weight * rate;
+}
+
 std::string percent(double rate) {
   char text[32];
   std::snprintf(text, sizeof text, "%.1f%%", 100.0 * rate);
@@ -632,6 +639,12 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   const std::vector<StageChoice> all = candidates(input);
   const bool exploring = choose(s, input, all, p, frameNumber);
   reprobe(s, input, all, p, frameNumber, exploring);
+  if (options_.countingProbes && frameNumber == *s.firstFrame)
+    for (const StageChoice& c : all)
+      if (!c.backPatch.empty() && c.frustum == p.stages.frustum && c.occlusion.empty() &&
+          !(c.backPatch == p.stages.backPatch && c.accuracy == p.stages.accuracy) &&
+          !s.rates.count(RateKey::backPatch(c.backPatch, c.accuracy)))
+        p.countOnly.push_back(c);
   if (p.stages.frustum) s.lastRun[CullStage::Frustum] = frameNumber;
   if (!p.stages.backPatch.empty()) s.lastRun[CullStage::BackPatch] = frameNumber;
   if (!p.stages.occlusion.empty()) s.lastRun[CullStage::Occlusion] = frameNumber;
@@ -1005,6 +1018,15 @@ void Planner::explain(Plan& p, const PlanInput& input, const State& s) const {
   p.displacement = e.displacement();
 }
 
+void Planner::observeCount(const std::string& key, const StageChoice& stages, uint32_t culled,
+                           uint32_t total) {
+  if (total == 0 || stages.backPatch.empty()) return;
+  State& s = states_[key];
+  const RateKey k = RateKey::backPatch(stages.backPatch, stages.accuracy);
+  learnRate(s.rates, k, double(std::min(culled, total)) / total, options_.learnWeight);
+  s.measured.insert(CullStage::BackPatch);
+}
+
 void Planner::observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
                       uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
                       double measuredMs) {
@@ -1059,11 +1081,7 @@ void Planner::observe(const std::string& key, const Plan& plan, const Observatio
     }
   }
   auto learn = [&](const RateKey& stage, uint32_t culled) {
-    const double rate = double(culled) / double(o.total);
-    const auto it = s.rates.find(stage);
-    s.rates[stage] = it == s.rates.end()
-                         ? rate
-                         : (1.0 - options_.learnWeight) * it->second + options_.learnWeight * rate;
+    learnRate(s.rates, stage, double(culled) / double(o.total), options_.learnWeight);
   };
   // The frustum's rate is learned only where the pre-test leaves it open.
   if (plan.stages.frustum && plan.box == BoxInView::Crossing) {

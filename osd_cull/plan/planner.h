@@ -145,7 +145,15 @@ struct Plan {
   StageChoice stages;
   Effect frustum, backPatch, accuracy, occlusion, passes, hiz, update, bounds, displacement;
   bool probe = false;  ///< a re-probe frame (a switched-off stage runs once)
-  CullRates rates;     ///< the rates the prediction used
+  /// Back-patch variants (method and accuracy, with this frame's frustum stage) to run in a
+  /// counting-only pass this frame: their kernels cull nothing that is drawn and the
+  /// visibility status is untouched; their culls go to Planner::observeCount(). Set on a
+  /// key's first frame for every offered variant but the frame's own, so that the choice
+  /// after exploring compares measured rates, not one measured rate and priors (issue 18:
+  /// BigGuy at tess 4 kept NCONE, the one method measured, where the tangent plane culled
+  /// more).
+  std::vector<StageChoice> countOnly;
+  CullRates rates;  ///< the rates the prediction used
   /// Measured / predicted time of the draw work (patch draws, submission, point update) and
   /// of the cull work (kernels, pyramid, status) learned on this key's recent frames (1
   /// before the first): the calibration's costs scaled to what this mesh costs on this
@@ -194,6 +202,9 @@ struct PlannerOptions {
   /// on measured rates, not priors, and needs no probe soon after (0: start from the
   /// priors' choice). Two frames: a new two-pass frame's first one cannot measure occlusion.
   uint32_t exploreFrames = 2;
+  /// Plan::countOnly on a key's first frame (false: an unmeasured back-patch variant borrows
+  /// its measured sibling's rate, Planner::rate).
+  bool countingProbes = true;
   /// Weight of a new measurement in the moving average of a rate.
   double learnWeight = 0.5;
   /// Aggressive culling (§3.1) shows newly visible patches one frame late: only when
@@ -302,6 +313,10 @@ class Planner {
   /// screen coverage: what the calibration did not see).
   void observe(const std::string& key, const Plan& plan, const Observation& frame);
   /// \brief observe() with counts and the frame's wall time only (no split).
+  /// \brief Learns the back-patch rate of `stages` (one of Plan::countOnly) from a
+  /// counting-only pass: `culled` of `total` patches culled by its back-patch stage.
+  void observeCount(const std::string& key, const StageChoice& stages, uint32_t culled,
+                    uint32_t total);
   void observe(const std::string& key, const Plan& plan, uint32_t culledFrustum,
                uint32_t culledBackPatch, uint32_t culledOcclusion, uint32_t total,
                double measuredMs = 0.0);

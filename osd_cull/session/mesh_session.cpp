@@ -7,6 +7,7 @@
 #include "shaders/shared/cull_layout.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -198,6 +199,7 @@ SessionFrame MeshSession::render(const frame::Camera& camera) {
     if (f.kind == FrameKind::TwoPass && f.stats.gpu.measured())
       seen.cullMs = f.stats.gpu.pyramid + f.stats.gpu.cull;
     planner_->observe(options_.name + "/" + options_.view, *p, seen);
+    count(*p, camera, f);
     f.plan = std::move(p);
   }
   summary_.add(f.stats,
@@ -208,6 +210,26 @@ SessionFrame MeshSession::render(const frame::Camera& camera) {
   summary_.setConfigurations(built_);
   ++next_;
   return f;
+}
+
+void MeshSession::count(const plan::Plan& p, const frame::Camera& camera, SessionFrame& f) {
+  const auto start = std::chrono::steady_clock::now();
+  for (const plan::StageChoice& stages : p.countOnly) {
+    plan::Plan variant = p;
+    variant.stages = stages;
+    frame::CullFrameOptions o = plan::applyPlan(variant, options_.frame);
+    o.cull.staticPoints = !options_.deforming;
+    const vulkan::Buffer* data = options_.cullData ? options_.cullData(o.cull.backPatch) : nullptr;
+    const std::unique_ptr<frame::CullPass> pass =
+        data ? std::make_unique<frame::CullPass>(context_, gpu_, host_, o.cull, *data)
+             : std::make_unique<frame::CullPass>(context_, gpu_, host_, o.cull);
+    pass->run(camera, o.render.tessellation);
+    planner_->observeCount(options_.name + "/" + options_.view, stages,
+                           countByStage(pass->results()).backPatch, host_.patchCount());
+    ++f.countingPasses;
+  }
+  f.countingMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 SessionSummary SummaryAccumulator::summary() const {

@@ -90,6 +90,10 @@ struct SessionFrame {
   /// With a planner: this frame's plan, and whether its stages differ from the last frame's.
   std::optional<plan::Plan> plan;
   bool planChanged = false;
+  /// Counting-only passes run after the frame (Plan::countOnly) and their wall time,
+  /// construction included (not in stats.frameMs).
+  uint32_t countingPasses = 0;
+  double countingMs = 0.0;
   /// TES and fragment invocations over both passes.
   uint64_t tesInvocations() const {
     return stats.pass1.tessEvaluationInvocations + stats.pass2.tessEvaluationInvocations;
@@ -173,6 +177,9 @@ class MeshSession {
   Configuration& configuration(const std::string& key, const frame::CullFrameOptions& o);
   SessionFrame draw(Configuration* c, const frame::Camera& camera,
                     const frame::CullFrameOptions& o);
+  // Plan::countOnly: each variant's cull pass run once without drawing, its back-patch culls
+  // given to the planner.
+  void count(const plan::Plan& p, const frame::Camera& camera, SessionFrame& f);
 
   vulkan::Context& context_;
   frame::Renderer& renderer_;
