@@ -58,44 +58,37 @@ std::vector<std::string> allMethods() {
   return methods;
 }
 
-int run(const VerifyArgs& args) {
-  if (args.source.path && isSceneArgument(*args.source.path)) {
-    if (args.adaptive > 0.0) throw UsageError("--adaptive applies to the mesh form (verify MESH)");
-    return verifyScene(args);
-  }
+/// \brief The mesh form's usage checks that need no mesh: --frames, the view set, the
+/// number of views, the oracle against the image check.
+/// \throws UsageError (or the view set's error) naming the option.
+void checkMeshForm(const VerifyArgs& args) {
   if (args.frames) throw UsageError("--frames applies to the scene form (verify SCENE)");
-  const uint32_t views = args.views.value_or(100);
-  const uint64_t seed = args.seed;
-  const frame::ViewSet viewSet = frame::parseViewSet(args.viewSet);
-  const uint32_t tess = args.tess;
-  const PatchOptions& patchOptions = args.patchOptions;
-  const uint32_t width = args.width.value_or(256), height = args.height.value_or(256);
-  const double fov = args.fov;
-  const int sample = args.sample;
-  const bool imageCheck = args.imageCheck;
-  const bool surfaceExact = args.surfaceExact;
-  const MeshSource& source = args.source;
-  if (views == 0) throw UsageError("--views: the mesh form needs at least 1 view");
-  if (imageCheck && args.noOracle)
+  (void)frame::parseViewSet(args.viewSet);  // throws on an unknown set
+  if (args.views.value_or(100) == 0)
+    throw UsageError("--views: the mesh form needs at least 1 view");
+  if (args.imageCheck && args.noOracle)
     throw UsageError("--image-check compares with the oracle's draw; drop --no-oracle");
-  const DisplacementChoice displacement = displacementChoice(args.displacement, true);
+}
+
+/// \brief The methods to verify: --methods, else every registered method and the
+/// displaced kernels --displaced-bound and --displaced-box choose.
+std::vector<std::string> verifiedMethods(const VerifyArgs& args,
+                                         const DisplacementChoice& displacement) {
   std::vector<std::string> methods = args.methods.empty() ? allMethods() : splitList(args.methods);
-  // Without --methods: the displaced kernels --displaced-bound and --displaced-box choose.
   if (args.methods.empty())
     for (const std::string& name : kernelNames(displacement)) methods.push_back(name);
-  if (!args.json.empty()) checkOutputFile(args.json, "--json", {".json"});
+  return methods;
+}
 
-  MeshPatches mesh = meshPatches(loadMeshSource(source), patchOptions);
-  // Displaced: no back-patch culling, and the oracle draws back faces too (the displaced
-  // surface may fold; its holes at UV seams show the inside).
-  if (displacement.map) mesh.backPatch = {false, frame::kDisplacedBackPatchNote};
-  const PatchSet& patches = mesh.patches;
-  std::optional<bound::DisplacementMap> displacementMap;
-  if (displacement.map) displacementMap.emplace(adapters::loadDisplacementMap(*displacement.map));
-  vulkan::Context context(args.device);
-
+/// \brief The verifier's options from the command line: tessellation (uniform or
+/// adaptive), oracle, reference stride, sampling, image check, back-patch test, Hi-Z and
+/// the displacement map when given.
+frame::VerifyOptions verifyOptions(const VerifyArgs& args, const vulkan::Context& context,
+                                   const MeshPatches& mesh,
+                                   const std::optional<bound::DisplacementMap>& displacementMap,
+                                   const DisplacementChoice& displacement) {
   frame::VerifyOptions options;
-  options.tessellation.uniformLevel = tess;
+  options.tessellation.uniformLevel = args.tess;
   if (args.adaptive > 0.0) {
     // The oracle, the image check and the cull kernel all read the levels pass's levels.
     options.tessellation.mode = frame::TessellationOptions::Mode::Adaptive;
@@ -104,9 +97,9 @@ int run(const VerifyArgs& args) {
   options.tessellation.maxLevel = context.info().limits.maxTessellationGenerationLevel;
   options.oracle = !args.noOracle;
   options.referenceStride = args.referenceEvery;
-  options.samplingGrid = sample;
-  options.imageCheck = imageCheck;
-  options.drawnTriangles = !surfaceExact;
+  options.samplingGrid = args.sample;
+  options.imageCheck = args.imageCheck;
+  options.drawnTriangles = !args.surfaceExact;
   options.drawnEnumerate = args.drawnEnumerate;
   options.hiz.fullResolution = args.hizFull;
   options.hiz.lookup = args.hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
@@ -116,27 +109,39 @@ int run(const VerifyArgs& args) {
     options.countCracks = true;  // UV seams open the displaced surface: report them
     options.tessellation.displaced = displacement.tessellation;
   }
-  frame::CullVerifier verifier(context, patches, methods, mesh.backPatch, options);
+  return options;
+}
 
+/// \brief The random views of the mesh (--view-set, --views, --seed, size, fov).
+std::vector<frame::Camera> verifiedViews(const VerifyArgs& args, const PatchSet& patches) {
   frame::ViewSetOptions viewOptions;
-  viewOptions.set = viewSet;
-  viewOptions.count = views;
-  viewOptions.seed = seed;
-  viewOptions.width = width;
-  viewOptions.height = height;
-  viewOptions.fovyDegrees = fov;
-  const auto cameras = frame::randomViews(frame::boundsOf(patches.points), viewOptions);
+  viewOptions.set = frame::parseViewSet(args.viewSet);
+  viewOptions.count = args.views.value_or(100);
+  viewOptions.seed = args.seed;
+  viewOptions.width = args.width.value_or(256);
+  viewOptions.height = args.height.value_or(256);
+  viewOptions.fovyDegrees = args.fov;
+  return frame::randomViews(frame::boundsOf(patches.points), viewOptions);
+}
 
+/// \brief The lines before the table: the mesh, the views, the displacement, the
+/// back-patch test, the oracle's back faces and the methods skipped.
+void printVerifyHeader(const VerifyArgs& args, const MeshPatches& mesh,
+                       const vulkan::Context& context,
+                       const std::optional<bound::DisplacementMap>& displacementMap,
+                       const frame::CullVerifier& verifier) {
+  const PatchSet& patches = mesh.patches;
   std::printf("mesh: %s, %u patches (%u Bezier + %u Gregory), level %d\n", mesh.name.c_str(),
               patches.patchCount(), patches.bezierCount, patches.gregoryCount,
-              patchOptions.isolationLevel);
+              args.patchOptions.isolationLevel);
   for (const std::string& note : mesh.notes) std::printf("note: %s\n", note.c_str());
   const std::string tessText = args.adaptive > 0.0
                                    ? "adaptive " + std::to_string(args.adaptive) + " px/segment"
-                                   : "tess " + std::to_string(tess);
-  std::printf("views: %u %s (seed %llu), %ux%u, fov %.1f, %s, device %s\n", views,
-              frame::toString(viewSet), static_cast<unsigned long long>(seed), width, height, fov,
-              tessText.c_str(), context.info().name.c_str());
+                                   : "tess " + std::to_string(args.tess);
+  std::printf("views: %u %s (seed %llu), %ux%u, fov %.1f, %s, device %s\n",
+              args.views.value_or(100), frame::toString(frame::parseViewSet(args.viewSet)),
+              static_cast<unsigned long long>(args.seed), args.width.value_or(256),
+              args.height.value_or(256), args.fov, tessText.c_str(), context.info().name.c_str());
   if (displacementMap) {
     const bound::DisplacementRange r = displacementMap->displacementRange();
     std::printf(
@@ -148,7 +153,7 @@ int run(const VerifyArgs& args) {
   }
   std::printf("back-patch culling: %s (%s)%s\n", mesh.backPatch.enabled ? "on" : "off",
               mesh.backPatch.reason.c_str(),
-              surfaceExact          ? ", surface-exact"
+              args.surfaceExact     ? ", surface-exact"
               : args.drawnEnumerate ? ", conservative for the drawn triangles (listed)"
                                     : ", conservative for the drawn triangles");
   std::printf("oracle and image draws: back-facing triangles %s\n",
@@ -156,7 +161,11 @@ int run(const VerifyArgs& args) {
   for (const auto& [name, why] : verifier.skipped())
     std::printf("skipped %s: %s\n", name.c_str(), why.c_str());
   std::fflush(stdout);
+}
 
+/// \brief Verifies every view, with progress on stderr about every twentieth.
+void verifyViews(frame::CullVerifier& verifier, const std::vector<frame::Camera>& cameras) {
+  const uint32_t views = uint32_t(cameras.size());
   const auto start = std::chrono::steady_clock::now();
   const uint32_t step = std::max(1u, views / 20);
   for (uint32_t v = 0; v < views; ++v) {
@@ -167,70 +176,97 @@ int run(const VerifyArgs& args) {
       std::fprintf(stderr, "verify: %u/%u views, %.1f s\n", v + 1, views, s);
     }
   }
+}
 
+/// \brief The line on the cracks a displaced surface opens at UV seams (when counted).
+void printCracks(const frame::CrackTotals& cracks, const MeshPatches& mesh) {
+  if (cracks.views == 0) return;
+  std::printf(
+      "cracks (displaced surface open at UV seams, back faces culled): %llu pixels "
+      "over %llu views, %llu views with cracks, at most %llu in one view; %u UV seam "
+      "edges\n",
+      static_cast<unsigned long long>(cracks.pixels), static_cast<unsigned long long>(cracks.views),
+      static_cast<unsigned long long>(cracks.viewsWithCracks),
+      static_cast<unsigned long long>(cracks.worstView),
+      countUVSeamEdges(mesh.patches, mesh.uvCorners));
+}
+
+/// \brief Writes the run's settings, the per-method totals, cracks, skipped methods and
+/// the verdict to --json.
+/// \throws osd_cull::Error when the file cannot be written.
+void writeVerifyJson(const VerifyArgs& args, const MeshPatches& mesh,
+                     const vulkan::Context& context, const frame::CullVerifier& verifier,
+                     bool oracle, const VerifyVerdict& verdict) {
+  const PatchSet& patches = mesh.patches;
+  nlohmann::ordered_json out;
+  out["mesh"] = mesh.name;
+  out["patches"] = patches.patchCount();
+  out["bezier_patches"] = patches.bezierCount;
+  out["gregory_patches"] = patches.gregoryCount;
+  out["level"] = args.patchOptions.isolationLevel;
+  out["views"] = args.views.value_or(100);
+  out["view_set"] = frame::toString(frame::parseViewSet(args.viewSet));
+  out["seed"] = args.seed;
+  out["width"] = args.width.value_or(256);
+  out["height"] = args.height.value_or(256);
+  out["fov"] = args.fov;
+  out["tess"] = args.tess;
+  out["adaptive_pixels"] = args.adaptive;
+  out["device"] = context.info().name;
+  out["back_patch"] = {{"enabled", mesh.backPatch.enabled},
+                       {"reason", mesh.backPatch.reason},
+                       {"drawn_triangles", !args.surfaceExact},
+                       {"drawn_enumerate", args.drawnEnumerate},
+                       {"oracle_culls_back_faces", verifier.cullBackFaces()}};
+  out["methods"] = nlohmann::ordered_json::array();
+  for (const auto& t : verifier.totals())
+    out["methods"].push_back(methodJson(t, patches.patchCount(), oracle));
   const frame::CrackTotals& cracks = verifier.cracks();
   if (cracks.views > 0)
-    std::printf(
-        "cracks (displaced surface open at UV seams, back faces culled): %llu pixels "
-        "over %llu views, %llu views with cracks, at most %llu in one view; %u UV seam "
-        "edges\n",
-        static_cast<unsigned long long>(cracks.pixels),
-        static_cast<unsigned long long>(cracks.views),
-        static_cast<unsigned long long>(cracks.viewsWithCracks),
-        static_cast<unsigned long long>(cracks.worstView),
-        countUVSeamEdges(patches, mesh.uvCorners));
+    out["cracks"] = {{"views", cracks.views},
+                     {"pixels", cracks.pixels},
+                     {"views_with_cracks", cracks.viewsWithCracks},
+                     {"worst_view", cracks.worstView}};
+  finishVerifyJson(std::move(out), verifier.skipped(), verdict, args.json);
+}
 
-  const VerifyVerdict verdict =
-      printVerifyTables(verifier.totals(), patches.patchCount(), options.oracle, surfaceExact,
-                        sample > 0 || imageCheck);
-  const bool ok = verdict.ok, okButSilhouettes = verdict.okButSilhouettes;
-
-  if (!args.json.empty()) {
-    nlohmann::ordered_json out;
-    out["mesh"] = mesh.name;
-    out["patches"] = patches.patchCount();
-    out["bezier_patches"] = patches.bezierCount;
-    out["gregory_patches"] = patches.gregoryCount;
-    out["level"] = patchOptions.isolationLevel;
-    out["views"] = views;
-    out["view_set"] = frame::toString(viewSet);
-    out["seed"] = seed;
-    out["width"] = width;
-    out["height"] = height;
-    out["fov"] = fov;
-    out["tess"] = tess;
-    out["adaptive_pixels"] = args.adaptive;
-    out["device"] = context.info().name;
-    out["back_patch"] = {{"enabled", mesh.backPatch.enabled},
-                         {"reason", mesh.backPatch.reason},
-                         {"drawn_triangles", !surfaceExact},
-                         {"drawn_enumerate", args.drawnEnumerate},
-                         {"oracle_culls_back_faces", verifier.cullBackFaces()}};
-    out["methods"] = nlohmann::ordered_json::array();
-    for (const auto& t : verifier.totals())
-      out["methods"].push_back(methodJson(t, patches.patchCount(), options.oracle));
-    if (cracks.views > 0)
-      out["cracks"] = {{"views", cracks.views},
-                       {"pixels", cracks.pixels},
-                       {"views_with_cracks", cracks.viewsWithCracks},
-                       {"worst_view", cracks.worstView}};
-    out["skipped"] = nlohmann::ordered_json::array();
-    for (const auto& [name, why] : verifier.skipped())
-      out["skipped"].push_back({{"name", name}, {"reason", why}});
-    out["ok"] = ok;
-    out["ok_except_silhouette_chords"] = okButSilhouettes;
-    std::ofstream file(args.json);
-    if (!(file << out.dump(2) << "\n")) throw Error(args.json + ": cannot write");
-    std::printf("\nwrote %s\n", args.json.c_str());
+int run(const VerifyArgs& args) {
+  if (args.source.path && isSceneArgument(*args.source.path)) {
+    if (args.adaptive > 0.0) throw UsageError("--adaptive applies to the mesh form (verify MESH)");
+    return verifyScene(args);
   }
+  checkMeshForm(args);
+  const DisplacementChoice displacement = displacementChoice(args.displacement, true);
+  const std::vector<std::string> methods = verifiedMethods(args, displacement);
+  if (!args.json.empty()) checkOutputFile(args.json, "--json", {".json"});
+
+  MeshPatches mesh = meshPatches(loadMeshSource(args.source), args.patchOptions);
+  // Displaced: no back-patch culling, and the oracle draws back faces too (the displaced
+  // surface may fold; its holes at UV seams show the inside).
+  if (displacement.map) mesh.backPatch = {false, frame::kDisplacedBackPatchNote};
+  std::optional<bound::DisplacementMap> displacementMap;
+  if (displacement.map) displacementMap.emplace(adapters::loadDisplacementMap(*displacement.map));
+  vulkan::Context context(args.device);
+  const frame::VerifyOptions options =
+      verifyOptions(args, context, mesh, displacementMap, displacement);
+  frame::CullVerifier verifier(context, mesh.patches, methods, mesh.backPatch, options);
+  const std::vector<frame::Camera> cameras = verifiedViews(args, mesh.patches);
+
+  printVerifyHeader(args, mesh, context, displacementMap, verifier);
+  verifyViews(verifier, cameras);
+  printCracks(verifier.cracks(), mesh);
+  const VerifyVerdict verdict =
+      printVerifyTables(verifier.totals(), mesh.patches.patchCount(), options.oracle,
+                        args.surfaceExact, args.sample > 0 || args.imageCheck);
+  if (!args.json.empty()) writeVerifyJson(args, mesh, context, verifier, options.oracle, verdict);
   if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
     std::cerr << "validation reported " << log->count() << " messages\n";
     return 1;
   }
-  if (!okButSilhouettes)
+  if (!verdict.okButSilhouettes)
     std::cerr << "verify: FAILED (a GPU cull outside the reference, a false cull, a visible "
                  "sample or a lost pixel; see the tables)\n";
-  return okButSilhouettes ? 0 : 1;
+  return verdict.okButSilhouettes ? 0 : 1;
 }
 
 Runner setup(CLI::App& app) {

@@ -1,6 +1,9 @@
 #include "verify_report.h"
 
+#include "osd_cull/error.h"
+
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -125,6 +128,19 @@ void accumulate(frame::MethodTotals& a, const frame::MethodTotals& b) {
   a.pixelsLost += b.pixelsLost;
   a.pixelsChanged += b.pixelsChanged;
   a.wallMs.insert(a.wallMs.end(), b.wallMs.begin(), b.wallMs.end());
+}
+
+void finishVerifyJson(nlohmann::ordered_json out,
+                      std::span<const std::pair<std::string, std::string>> skipped,
+                      const VerifyVerdict& verdict, const std::string& path) {
+  out["skipped"] = nlohmann::ordered_json::array();
+  for (const auto& [name, why] : skipped)
+    out["skipped"].push_back({{"name", name}, {"reason", why}});
+  out["ok"] = verdict.ok;
+  out["ok_except_silhouette_chords"] = verdict.okButSilhouettes;
+  std::ofstream file(path);
+  if (!(file << out.dump(2) << "\n")) throw Error(path + ": cannot write");
+  std::printf("\nwrote %s\n", path.c_str());
 }
 
 }  // namespace osd_cull::cli

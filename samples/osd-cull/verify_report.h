@@ -32,4 +32,11 @@ nlohmann::ordered_json methodJson(const frame::MethodTotals& t, uint32_t patchCo
 /// scene; the false-cull list keeps its first 64 entries.
 void accumulate(frame::MethodTotals& a, const frame::MethodTotals& b);
 
+/// \brief Ends a verify run's JSON `out` with the methods skipped and the verdict, writes
+/// it to `path` and says so on stdout.
+/// \throws osd_cull::Error when the file cannot be written.
+void finishVerifyJson(nlohmann::ordered_json out,
+                      std::span<const std::pair<std::string, std::string>> skipped,
+                      const VerifyVerdict& verdict, const std::string& path);
+
 }  // namespace osd_cull::cli

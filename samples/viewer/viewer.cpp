@@ -134,261 +134,371 @@ ViewerScene playedScene(scene::LoadedScene loaded) {
   return v;
 }
 
-int runViewer(ViewerScene& scene, const ViewerOptions& options) {
-  const std::vector<ScriptStep> steps = parseScript(options.script);
-  ScriptPlayer script(steps);
-  if (script.hasShots() && !options.screenshot)
-    throw ScriptError(
-        "--script: 'shot' needs --screenshot FILE.png (the shots are named after it)");
-  scene::SceneDescription& description = scene.scene.description;
-  uint32_t patchTotal = 0;
-  for (const scene::InstanceDescription& i : description.instances)
-    patchTotal += scene.scene.meshes.at(i.mesh).extraction.patches.patchCount();
-  if (patchTotal == 0) throw Error(description.source + ": no patches to view");
+namespace {
 
-  Window window(options.width, options.height, "osd-cull view: " + description.source);
-  vulkan::ContextOptions contextOptions;
-  contextOptions.device = options.device;
-  contextOptions.validation = options.validate;
-  contextOptions.instanceExtensions = Window::requiredInstanceExtensions();
-  contextOptions.deviceExtensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
-  vulkan::Context context(contextOptions);
-  std::cout << "device: " << context.info().name << " (" << context.info().driver << ")\n";
-  Surface surface{context.instance(), window.createSurface(context.instance())};
-  uint32_t fbWidth = 0, fbHeight = 0;
-  window.framebufferSize(fbWidth, fbHeight);
-  Swapchain swapchain(context, surface.handle, fbWidth, fbHeight);
-  Hud hud(context, window, swapchain);
+/// \brief The device, window, swapchain and HUD of the viewer, made in the order their
+/// lifetimes need (the surface dies before the Context's instance).
+struct Display {
+  Window window;
+  vulkan::Context context;
+  Surface surface;
+  Swapchain swapchain;
+  Hud hud;
 
-  ViewState state = options.initial;
-  state.maxTessLevel = context.info().limits.maxTessellationGenerationLevel;
-  // The effect plan, as in `osd-cull render`: on by default where the device is calibrated.
-  const std::unique_ptr<plan::Planner> planner =
-      options.makePlanner ? options.makePlanner(context) : nullptr;
-  uint64_t planFrame = 0;  // the plan's frame numbers (the scene frame may stand still)
-  const uint32_t frameCount = std::max(1u, description.settings.frameCount);
-  // The player (its CullFrame and target) is made for one window size and one set of cull
-  // stages; it is made again when either changes. The status view has its own target.
-  std::unique_ptr<session::ScenePlayer> player;
-  std::unique_ptr<frame::RenderTarget> statusTarget;
-  std::string builtCull;                 // the stages the player was made with
-  std::optional<uint32_t> shownFrame;    // the animation frame the player was moved to
-  std::optional<frame::Bounds> framing;  // the orbit camera's, from the first frame
-  PassTiming timing(options.timePassesEvery);
-  auto dropPlayer = [&] {
-    player.reset();
-    statusTarget.reset();
-    builtCull.clear();
-  };
+  Display(const ViewerOptions& options, const std::string& title)
+      : window(options.width, options.height, title),
+        context(contextOptions(options)),
+        surface{context.instance(), window.createSurface(context.instance())},
+        swapchain(context, surface.handle, framebufferExtent(window).width,
+                  framebufferExtent(window).height),
+        hud(context, window, swapchain) {}
 
-  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  poolInfo.queueFamilyIndex = context.queueFamily();
-  VkCommandPool rawPool = VK_NULL_HANDLE;
-  OSD_CULL_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &rawPool));
-  vulkan::UniqueCommandPool pool(context.device(), rawPool);
-  VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  alloc.commandPool = pool.get();
-  alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  alloc.commandBufferCount = 1;
-  VkCommandBuffer cmd = VK_NULL_HANDLE;
-  OSD_CULL_VK(vkAllocateCommandBuffers(context.device(), &alloc, &cmd));
-  VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-  VkSemaphore rawAcquired = VK_NULL_HANDLE, rawRendered = VK_NULL_HANDLE;
-  OSD_CULL_VK(vkCreateSemaphore(context.device(), &semInfo, nullptr, &rawAcquired));
-  vulkan::UniqueSemaphore acquired(context.device(), rawAcquired);
-  OSD_CULL_VK(vkCreateSemaphore(context.device(), &semInfo, nullptr, &rawRendered));
-  vulkan::UniqueSemaphore rendered(context.device(), rawRendered);
-  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkFence rawFence = VK_NULL_HANDLE;
-  OSD_CULL_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &rawFence));
-  vulkan::UniqueFence fence(context.device(), rawFence);
+  /// \brief The Vulkan context the viewer asks for: presentation extensions on top of the
+  /// options' device and validation.
+  static vulkan::ContextOptions contextOptions(const ViewerOptions& options) {
+    vulkan::ContextOptions o;
+    o.device = options.device;
+    o.validation = options.validate;
+    o.instanceExtensions = Window::requiredInstanceExtensions();
+    o.deviceExtensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+    return o;
+  }
 
-  HudFigures figures;
-  figures.device = context.info().name;
-  figures.scene = description.source + ": " + std::to_string(description.instances.size()) +
-                  " instance(s), " + std::to_string(patchTotal) + " patches";
-  figures.patches = patchTotal;
-  const std::string keys = keyHelp();
-  std::cout << "keys:\n" << keys;
-  std::vector<std::string> backPatchNotes;
-  for (const scene::SceneMesh& m : scene.scene.meshes)
-    if (!m.validity.enabled)
-      backPatchNotes.push_back("back-patch culling off for '" + m.name + "': " + m.validity.reason);
-  for (const std::string& note : backPatchNotes) std::cout << "note: " << note << "\n";
-
-  for (uint32_t f = 0; options.frames == 0 || f < options.frames; ++f) {
-    if (!window.poll()) break;
-    const auto start = Clock::now();
-    for (const std::string& line : script.beforeFrame(f, state))
-      std::cout << "key: " << line << "\n";
-    const bool shot = script.takeShot();
-    const WindowInput input = window.takeInput();
-    for (const std::string& k : input.keys)
-      if (auto line = pressKey(state, k)) std::cout << "key: " << *line << "\n";
-    orbitCamera(state, -0.3 * input.orbitX, -0.3 * input.orbitY);
-    zoomCamera(state, std::pow(1.01, input.zoomY) * std::pow(0.9, input.wheel));
-    if (state.quit) break;
-    if (state.turntable) orbitCamera(state, 1.0, 0.0);
-    advanceAnimation(state, frameCount);
-
+  /// \brief The window's framebuffer size now (0 x 0 while minimised).
+  static VkExtent2D framebufferExtent(Window& window) {
     uint32_t w = 0, h = 0;
     window.framebufferSize(w, h);
-    if (w == 0 || h == 0) continue;  // minimised
-    if (w != swapchain.extent().width || h != swapchain.extent().height) {
-      swapchain.recreate(w, h);
-      hud.attach(swapchain);
-      dropPlayer();
-    }
-    const VkExtent2D extent = swapchain.extent();
-    const bool backPatchAllowed = std::any_of(scene.scene.meshes.begin(), scene.scene.meshes.end(),
-                                              [](const auto& m) { return m.validity.enabled; });
-    const frame::RenderOptions render =
-        renderOptions(state, context, state.backPatch && backPatchAllowed);
+    return {w, h};
+  }
+};
 
-    // The cull stages are fixed when a CullFrame is made: make the player again when they
-    // change (with none, its CullFrame culls nothing and draws every patch).
-    if (state.plan && !planner) {
-      state.plan = false;
+/// \brief The command buffer, semaphores and fence of the viewer's one frame in flight.
+struct FrameSync {
+  vulkan::UniqueCommandPool pool;
+  VkCommandBuffer cmd = VK_NULL_HANDLE;
+  vulkan::UniqueSemaphore acquired;
+  vulkan::UniqueSemaphore rendered;
+  vulkan::UniqueFence fence;
+
+  explicit FrameSync(const vulkan::Context& context) {
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    poolInfo.queueFamilyIndex = context.queueFamily();
+    VkCommandPool rawPool = VK_NULL_HANDLE;
+    OSD_CULL_VK(vkCreateCommandPool(context.device(), &poolInfo, nullptr, &rawPool));
+    pool = vulkan::UniqueCommandPool(context.device(), rawPool);
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = pool.get();
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    OSD_CULL_VK(vkAllocateCommandBuffers(context.device(), &alloc, &cmd));
+    VkSemaphoreCreateInfo semInfo{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore rawAcquired = VK_NULL_HANDLE, rawRendered = VK_NULL_HANDLE;
+    OSD_CULL_VK(vkCreateSemaphore(context.device(), &semInfo, nullptr, &rawAcquired));
+    acquired = vulkan::UniqueSemaphore(context.device(), rawAcquired);
+    OSD_CULL_VK(vkCreateSemaphore(context.device(), &semInfo, nullptr, &rawRendered));
+    rendered = vulkan::UniqueSemaphore(context.device(), rawRendered);
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence rawFence = VK_NULL_HANDLE;
+    OSD_CULL_VK(vkCreateFence(context.device(), &fenceInfo, nullptr, &rawFence));
+    fence = vulkan::UniqueFence(context.device(), rawFence);
+  }
+};
+
+/// \brief The number of patches over every instance of the scene.
+/// \throws osd_cull::Error when there are none.
+uint32_t scenePatchTotal(const ViewerScene& scene) {
+  uint32_t total = 0;
+  for (const scene::InstanceDescription& i : scene.scene.description.instances)
+    total += scene.scene.meshes.at(i.mesh).extraction.patches.patchCount();
+  if (total == 0) throw Error(scene.scene.description.source + ": no patches to view");
+  return total;
+}
+
+/// \brief One note per mesh whose back-patch culling is off, with the validity's reason.
+std::vector<std::string> backPatchNotesOf(const ViewerScene& scene) {
+  std::vector<std::string> notes;
+  for (const scene::SceneMesh& m : scene.scene.meshes)
+    if (!m.validity.enabled)
+      notes.push_back("back-patch culling off for '" + m.name + "': " + m.validity.reason);
+  return notes;
+}
+
+/// \brief The viewer's frame loop: each frame reads the input, (re)makes the scene player
+/// when the window size or the cull stages change, draws the view (by the plan or by
+/// hand), blits it under the HUD to the swapchain, presents, prints its figures and writes
+/// the screenshots the options ask for.
+class ViewerLoop {
+ public:
+  ViewerLoop(ViewerScene& scene, const ViewerOptions& options, ScriptPlayer& script)
+      : scene_(scene),
+        description_(scene.scene.description),
+        options_(options),
+        script_(script),
+        patchTotal_(scenePatchTotal(scene)),
+        display_(options, "osd-cull view: " + description_.source),
+        context_(display_.context),
+        frameCount_(std::max(1u, description_.settings.frameCount)),
+        timing_(options.timePassesEvery),
+        sync_(context_),
+        keys_(keyHelp()),
+        backPatchNotes_(backPatchNotesOf(scene)) {
+    std::cout << "device: " << context_.info().name << " (" << context_.info().driver << ")\n";
+    state_ = options.initial;
+    state_.maxTessLevel = context_.info().limits.maxTessellationGenerationLevel;
+    // The effect plan, as in `osd-cull render`: on by default where the device is calibrated.
+    planner_ = options.makePlanner ? options.makePlanner(context_) : nullptr;
+    figures_.device = context_.info().name;
+    figures_.scene = description_.source + ": " + std::to_string(description_.instances.size()) +
+                     " instance(s), " + std::to_string(patchTotal_) + " patches";
+    figures_.patches = patchTotal_;
+    std::cout << "keys:\n" << keys_;
+    for (const std::string& note : backPatchNotes_) std::cout << "note: " << note << "\n";
+  }
+
+  /// \brief Runs the frames; returns the exit code (1 when validation reported messages).
+  int run() {
+    for (uint32_t f = 0; options_.frames == 0 || f < options_.frames; ++f) {
+      if (!display_.window.poll()) break;
+      const auto start = Clock::now();
+      const bool shot = readInput(f);
+      if (state_.quit) break;
+      if (state_.turntable) orbitCamera(state_, 1.0, 0.0);
+      advanceAnimation(state_, frameCount_);
+      const VkExtent2D window = Display::framebufferExtent(display_.window);
+      if (window.width == 0 || window.height == 0) continue;  // minimised
+      const VkExtent2D extent = matchSwapchain(window);
+      const frame::RenderTarget& shown = drawView(f, extent);
+      uint32_t image = 0;
+      VkResult r = vkAcquireNextImageKHR(context_.device(), display_.swapchain.handle(), UINT64_MAX,
+                                         sync_.acquired.get(), VK_NULL_HANDLE, &image);
+      if (r == VK_ERROR_OUT_OF_DATE_KHR) {
+        recreateSwapchain(window);
+        continue;
+      }
+      if (r != VK_SUBOPTIMAL_KHR) OSD_CULL_VK(r);
+      display_.hud.build(figures_, keys_, state_.showHud);
+      display_.window.setUiCapture(display_.hud.wantsMouse(), display_.hud.wantsKeyboard());
+      const bool last = options_.frames != 0 && f + 1 == options_.frames;
+      const bool capture = (last || shot) && options_.screenshot.has_value();
+      vulkan::Buffer readback;
+      if (capture)
+        readback = vulkan::Buffer(context_, VkDeviceSize{extent.width} * extent.height * 4,
+                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, vulkan::MemoryUse::Readback);
+      recordPresentation(shown, image, extent, capture ? &readback : nullptr);
+      r = submitAndPresent(image);
+      if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR)
+        recreateSwapchain(window);
+      else
+        OSD_CULL_VK(r);
+      figures_.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      if (options_.printFrames) printFrame(f);
+      std::fflush(stdout);
+      if (capture) writeScreenshots(readback, extent, f, shot, last);
+    }
+    context_.waitIdle();
+    if (const vulkan::ValidationLog* log = context_.validationLog(); log && log->count() > 0) {
+      std::cerr << "validation reported " << log->count() << " messages\n";
+      return 1;
+    }
+    return 0;
+  }
+
+ private:
+  /// \brief Applies the script's steps and the window's keys and mouse to the state for
+  /// frame `f`; returns whether the script takes a shot of this frame.
+  bool readInput(uint32_t f) {
+    for (const std::string& line : script_.beforeFrame(f, state_))
+      std::cout << "key: " << line << "\n";
+    const bool shot = script_.takeShot();
+    const WindowInput input = display_.window.takeInput();
+    for (const std::string& k : input.keys)
+      if (auto line = pressKey(state_, k)) std::cout << "key: " << *line << "\n";
+    orbitCamera(state_, -0.3 * input.orbitX, -0.3 * input.orbitY);
+    zoomCamera(state_, std::pow(1.01, input.zoomY) * std::pow(0.9, input.wheel));
+    return shot;
+  }
+
+  /// \brief Makes the swapchain again at the window's size (the player with it).
+  void recreateSwapchain(VkExtent2D window) {
+    display_.swapchain.recreate(window.width, window.height);
+    display_.hud.attach(display_.swapchain);
+    dropPlayer();
+  }
+
+  /// \brief The swapchain's extent, after making it again if the window was resized.
+  VkExtent2D matchSwapchain(VkExtent2D window) {
+    const VkExtent2D now = display_.swapchain.extent();
+    if (window.width != now.width || window.height != now.height) recreateSwapchain(window);
+    return display_.swapchain.extent();
+  }
+
+  /// \brief Forgets the player and its status target (made again on the next frame).
+  void dropPlayer() {
+    player_.reset();
+    statusTarget_.reset();
+    builtCull_.clear();
+  }
+
+  /// \brief Draws this frame's view into the player's target (or the status target) and
+  /// fills the HUD's figures; returns the target to show.
+  const frame::RenderTarget& drawView(uint32_t f, VkExtent2D extent) {
+    const bool backPatchAllowed =
+        std::any_of(scene_.scene.meshes.begin(), scene_.scene.meshes.end(),
+                    [](const auto& m) { return m.validity.enabled; });
+    const frame::RenderOptions render =
+        renderOptions(state_, context_, state_.backPatch && backPatchAllowed);
+    if (state_.plan && !planner_) {
+      state_.plan = false;
       std::cout << "note: no effect plan in this viewer (no calibration of this device, or "
                    "--cull given): the stages are chosen by hand\n";
     }
-    if (!player || state.cullLabel() != builtCull) {
-      dropPlayer();
-      scene::ViewDescription& view = description.views.front();
-      view.width = extent.width;
-      view.height = extent.height;
-      frame::CullFrameOptions fo;
-      fo.render = render;
-      fo.cull.frustum = state.frustum;
-      fo.cull.backPatch = state.backPatch ? state.backPatchMethod : "";
-      fo.cull.occlusion = state.occlusion ? "hiz" : "";
-      player = std::make_unique<session::ScenePlayer>(context, scene.scene, fo,
-                                                      frame::PointUpdatePath::Cpu,
-                                                      state.plan ? planner.get() : nullptr);
-      statusTarget = std::make_unique<frame::RenderTarget>(context, extent.width, extent.height);
-      builtCull = state.cullLabel();
-      shownFrame.reset();
-      timing.forget();
+    makePlayerFor(render, extent);
+    const uint32_t sceneFrame = description_.settings.frameStart + state_.sceneFrame;
+    if (shownFrame_ != sceneFrame) {
+      player_->seek(sceneFrame);
+      shownFrame_ = sceneFrame;
     }
-    const uint32_t sceneFrame = description.settings.frameStart + state.sceneFrame;
-    if (shownFrame != sceneFrame) {
-      player->seek(sceneFrame);
-      shownFrame = sceneFrame;
-    }
-    if (!framing) framing = player->bounds();
+    if (!framing_) framing_ = player_->bounds();
     const frame::Camera camera =
-        state.sceneCamera ? player->camera(0)
-                          : viewCamera(state, *framing, scene, extent.width, extent.height);
+        state_.sceneCamera ? player_->camera(0)
+                           : viewCamera(state_, *framing_, scene_, extent.width, extent.height);
+    describeView(render, sceneFrame);
+    const frame::RenderTarget* shown =
+        state_.plan ? drawPlanned(camera) : drawByHand(f, render, camera);
+    if (state_.backPatch || state_.plan)
+      for (const std::string& note : backPatchNotes_) figures_.notes.push_back(note);
+    return *shown;
+  }
 
-    figures.cull = state.cullLabel() + (state.freezeCull ? " (cull camera frozen)" : "");
-    figures.tessellation =
-        state.adaptive ? "adaptive, " + std::to_string(state.pixelsPerSegment) + " px/segment"
-                       : "uniform " + std::to_string(render.tessellation.uniformLevel);
-    figures.animation = frameCount < 2
-                            ? "no animation (one frame)"
-                            : "frame " + std::to_string(sceneFrame) + " (frames " +
-                                  std::to_string(description.settings.frameStart) + "-" +
-                                  std::to_string(description.settings.frameStart + frameCount - 1) +
-                                  "), " + (state.playing ? "playing" : "paused");
-    figures.camera = state.sceneCamera
-                         ? "scene camera '" + description.views.front().name + "'"
-                         : std::string("orbit") + (state.turntable ? " (turntable)" : "");
-    figures.notes.clear();
-    frame::RenderTarget* shown = &player->target(0);
-    if (state.plan) {
-      // The plan draws the frame (session::ScenePlayer with a planner): the stages it chose
-      // for each instance and why, per-stage GPU times from the frame's own timestamps.
-      player->setCamera(0, camera);
-      const session::ViewFrame view = player->renderCurrent(planFrame++).front();
-      const frame::CullFrameStats& s = view.stats;
-      figures.counts(s);
-      const bool timed = s.gpu.measured();
-      figures.pass1Ms = timed ? s.gpu.pass1 : s.frameMs;
-      figures.pyramidMs = timed ? s.gpu.pyramid : 0.0;
-      figures.cullMs = timed ? s.gpu.cull : 0.0;
-      figures.pass2Ms = timed ? s.gpu.pass2 : 0.0;
-      figures.timing =
-          timed ? "GPU timestamps of this frame" : "wall clock (drawn without culling)";
-      figures.cull = "plan";
-      for (const plan::Plan& p : view.plans) {
-        char line[160];
-        std::snprintf(line, sizeof line, "%s: %s%s, predicted %.1f ms (%.1f without culling)",
-                      p.mesh.c_str(), p.stages.describe().c_str(), p.probe ? " [re-probe]" : "",
-                      p.predicted.totalMs(), p.predictedUnculled.totalMs());
-        figures.notes.push_back(line);
-        for (const auto& [kind, e] : p.effects())
-          if (kind == plan::EffectKind::Frustum || kind == plan::EffectKind::BackPatch ||
-              kind == plan::EffectKind::Occlusion)
-            figures.notes.push_back(std::string("  ") + plan::toString(kind) +
-                                    (e->on ? " on: " : " off: ") +
-                                    e->reason.substr(0, e->reason.find(';')));
-      }
-      figures.mode = view.culled ? "culled draw (plan)" : "all patches (the plan culls nothing)";
-      if (state.statusColors || state.freezeCull)
-        figures.notes.push_back(
-            "status colors and the frozen cull camera need the stages by "
-            "hand (1, 2, 3 or c)");
+  /// \brief Makes the player again when it is missing or the cull stages changed: they
+  /// are fixed when a CullFrame is made (with none, it culls nothing and draws every patch).
+  void makePlayerFor(const frame::RenderOptions& render, VkExtent2D extent) {
+    if (player_ && state_.cullLabel() == builtCull_) return;
+    dropPlayer();
+    scene::ViewDescription& view = description_.views.front();
+    view.width = extent.width;
+    view.height = extent.height;
+    frame::CullFrameOptions fo;
+    fo.render = render;
+    fo.cull.frustum = state_.frustum;
+    fo.cull.backPatch = state_.backPatch ? state_.backPatchMethod : "";
+    fo.cull.occlusion = state_.occlusion ? "hiz" : "";
+    player_ = std::make_unique<session::ScenePlayer>(context_, scene_.scene, fo,
+                                                     frame::PointUpdatePath::Cpu,
+                                                     state_.plan ? planner_.get() : nullptr);
+    statusTarget_ = std::make_unique<frame::RenderTarget>(context_, extent.width, extent.height);
+    builtCull_ = state_.cullLabel();
+    shownFrame_.reset();
+    timing_.forget();
+  }
+
+  /// \brief The HUD's lines that describe the view: stages, tessellation, animation and
+  /// camera (the notes start empty).
+  void describeView(const frame::RenderOptions& render, uint32_t sceneFrame) {
+    figures_.cull = state_.cullLabel() + (state_.freezeCull ? " (cull camera frozen)" : "");
+    figures_.tessellation =
+        state_.adaptive ? "adaptive, " + std::to_string(state_.pixelsPerSegment) + " px/segment"
+                        : "uniform " + std::to_string(render.tessellation.uniformLevel);
+    figures_.animation =
+        frameCount_ < 2 ? "no animation (one frame)"
+                        : "frame " + std::to_string(sceneFrame) + " (frames " +
+                              std::to_string(description_.settings.frameStart) + "-" +
+                              std::to_string(description_.settings.frameStart + frameCount_ - 1) +
+                              "), " + (state_.playing ? "playing" : "paused");
+    figures_.camera = state_.sceneCamera
+                          ? "scene camera '" + description_.views.front().name + "'"
+                          : std::string("orbit") + (state_.turntable ? " (turntable)" : "");
+    figures_.notes.clear();
+  }
+
+  /// \brief The plan draws the frame (session::ScenePlayer with a planner): the stages it
+  /// chose for each instance and why, per-stage GPU times from the frame's own timestamps.
+  const frame::RenderTarget* drawPlanned(const frame::Camera& camera) {
+    player_->setCamera(0, camera);
+    const session::ViewFrame view = player_->renderCurrent(planFrame_++).front();
+    const frame::CullFrameStats& s = view.stats;
+    figures_.counts(s);
+    const bool timed = s.gpu.measured();
+    figures_.pass1Ms = timed ? s.gpu.pass1 : s.frameMs;
+    figures_.pyramidMs = timed ? s.gpu.pyramid : 0.0;
+    figures_.cullMs = timed ? s.gpu.cull : 0.0;
+    figures_.pass2Ms = timed ? s.gpu.pass2 : 0.0;
+    figures_.timing = timed ? "GPU timestamps of this frame" : "wall clock (drawn without culling)";
+    figures_.cull = "plan";
+    for (const plan::Plan& p : view.plans) addPlanNotes(p);
+    figures_.mode = view.culled ? "culled draw (plan)" : "all patches (the plan culls nothing)";
+    if (state_.statusColors || state_.freezeCull)
+      figures_.notes.push_back(
+          "status colors and the frozen cull camera need the stages by "
+          "hand (1, 2, 3 or c)");
+    return &player_->target(0);
+  }
+
+  /// \brief The HUD's notes for one instance's plan: its stages and predicted times, then
+  /// the first clause of each cull effect's reason.
+  void addPlanNotes(const plan::Plan& p) {
+    char line[160];
+    std::snprintf(line, sizeof line, "%s: %s%s, predicted %.1f ms (%.1f without culling)",
+                  p.mesh.c_str(), p.stages.describe().c_str(), p.probe ? " [re-probe]" : "",
+                  p.predicted.totalMs(), p.predictedUnculled.totalMs());
+    figures_.notes.push_back(line);
+    for (const auto& [kind, e] : p.effects())
+      if (kind == plan::EffectKind::Frustum || kind == plan::EffectKind::BackPatch ||
+          kind == plan::EffectKind::Occlusion)
+        figures_.notes.push_back(std::string("  ") + plan::toString(kind) +
+                                 (e->on ? " on: " : " off: ") +
+                                 e->reason.substr(0, e->reason.find(';')));
+  }
+
+  /// \brief Draws the frame with the stages chosen by hand (a timed frame now and then
+  /// gives the ms per pass, PassTiming), or the status view colored by what the (frozen)
+  /// cull camera did; returns the target drawn.
+  const frame::RenderTarget* drawByHand(uint32_t f, const frame::RenderOptions& render,
+                                        const frame::Camera& camera) {
+    frame::CullFrame& cullFrame = player_->cullFrame(0);
+    frame::CullFrameOptions fo = cullFrame.options();
+    fo.render = render;
+    if (!state_.freezeCull || !state_.anyCull()) {
+      // Most frames are one submission; a timed one splits the passes (PassTiming).
+      const bool timed = timing_.due(f);
+      fo.timePasses = timed;
+      cullFrame.setOptions(fo);
+      const frame::CullFrameStats s = cullFrame.render(camera, player_->occluders());
+      if (timed) timing_.record(f, s.pass1Ms, s.pyramidMs, s.cullMs, s.pass2Ms);
+      figures_.counts(s);
     } else {
-      frame::CullFrame& cullFrame = player->cullFrame(0);
-      frame::CullFrameOptions fo = cullFrame.options();
-      fo.render = render;
-      if (!state.freezeCull || !state.anyCull()) {
-        // Most frames are one submission; a timed one splits the passes (PassTiming).
-        const bool timed = timing.due(f);
-        fo.timePasses = timed;
-        cullFrame.setOptions(fo);
-        const frame::CullFrameStats s = cullFrame.render(camera, player->occluders());
-        if (timed) timing.record(f, s.pass1Ms, s.pyramidMs, s.cullMs, s.pass2Ms);
-        figures.counts(s);
-      } else {
-        fo.timePasses = false;
-        cullFrame.setOptions(fo);
-      }
-      figures.pass1Ms = timing.pass1Ms();
-      figures.pyramidMs = timing.pyramidMs();
-      figures.cullMs = timing.cullMs();
-      figures.pass2Ms = timing.pass2Ms();
-      figures.timing = timing.describe(f);
-      if (state.anyCull() && (state.statusColors || state.freezeCull)) {
-        // Every patch from the current camera, colored by what the (frozen) cull camera did.
-        cullFrame.renderStatusView(*statusTarget, camera, player->occluders());
-        shown = statusTarget.get();
-        figures.mode = "status colors";
-      } else {
-        figures.mode = state.anyCull() ? "culled draw" : "all patches";
-        if (state.statusColors)
-          figures.notes.push_back("status colors need a cull stage (1, 2, 3 or c)");
-      }
+      fo.timePasses = false;
+      cullFrame.setOptions(fo);
     }
-    if (state.backPatch || state.plan)
-      for (const std::string& note : backPatchNotes) figures.notes.push_back(note);
-
-    uint32_t image = 0;
-    VkResult r = vkAcquireNextImageKHR(context.device(), swapchain.handle(), UINT64_MAX,
-                                       acquired.get(), VK_NULL_HANDLE, &image);
-    if (r == VK_ERROR_OUT_OF_DATE_KHR) {
-      swapchain.recreate(w, h);
-      hud.attach(swapchain);
-      dropPlayer();
-      continue;
+    figures_.pass1Ms = timing_.pass1Ms();
+    figures_.pyramidMs = timing_.pyramidMs();
+    figures_.cullMs = timing_.cullMs();
+    figures_.pass2Ms = timing_.pass2Ms();
+    figures_.timing = timing_.describe(f);
+    if (state_.anyCull() && (state_.statusColors || state_.freezeCull)) {
+      // Every patch from the current camera, colored by what the (frozen) cull camera did.
+      cullFrame.renderStatusView(*statusTarget_, camera, player_->occluders());
+      figures_.mode = "status colors";
+      return statusTarget_.get();
     }
-    if (r != VK_SUBOPTIMAL_KHR) OSD_CULL_VK(r);
-    hud.build(figures, keys, state.showHud);
-    window.setUiCapture(hud.wantsMouse(), hud.wantsKeyboard());
+    figures_.mode = state_.anyCull() ? "culled draw" : "all patches";
+    if (state_.statusColors)
+      figures_.notes.push_back("status colors need a cull stage (1, 2, 3 or c)");
+    return &player_->target(0);
+  }
 
-    const bool last = options.frames != 0 && f + 1 == options.frames;
-    const bool capture = (last || shot) && options.screenshot.has_value();
-    vulkan::Buffer readback;
-    if (capture)
-      readback = vulkan::Buffer(context, VkDeviceSize{extent.width} * extent.height * 4,
-                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, vulkan::MemoryUse::Readback);
+  /// \brief Records the blit of the drawn view to swapchain image `image`, the HUD over
+  /// it and, with `readback`, the copy of the result for a screenshot.
+  void recordPresentation(const frame::RenderTarget& shown, uint32_t image, VkExtent2D extent,
+                          vulkan::Buffer* readback) {
+    const VkCommandBuffer cmd = sync_.cmd;
     OSD_CULL_VK(vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     OSD_CULL_VK(vkBeginCommandBuffer(cmd, &begin));
-    const VkImage target = swapchain.image(image);
-    const VkImage source = shown->color().handle();
+    const VkImage target = display_.swapchain.image(image);
+    const VkImage source = shown.color().handle();
     // The view was drawn and waited for; make its writes visible to the blit.
     imageBarrier(cmd, source, frame::RenderTarget::kColorLayout, frame::RenderTarget::kColorLayout,
                  VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
@@ -398,7 +508,7 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
                  VK_ACCESS_TRANSFER_WRITE_BIT);
     VkImageBlit blit{};
     blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    blit.srcOffsets[1] = {int32_t(shown->width()), int32_t(shown->height()), 1};
+    blit.srcOffsets[1] = {int32_t(shown.width()), int32_t(shown.height()), 1};
     blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     blit.dstOffsets[1] = {int32_t(extent.width), int32_t(extent.height), 1};
     vkCmdBlitImage(cmd, source, frame::RenderTarget::kColorLayout, target,
@@ -407,101 +517,137 @@ int runViewer(ViewerScene& scene, const ViewerOptions& options) {
                  VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                  VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    hud.record(cmd, image);
-    if (capture) {
-      imageBarrier(cmd, target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                   VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_TRANSFER_READ_BIT);
-      VkBufferImageCopy copy{};
-      copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      copy.imageExtent = {extent.width, extent.height, 1};
-      vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.handle(),
-                             1, &copy);
-      VkBufferMemoryBarrier host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
-      host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-      host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-      host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      host.buffer = readback.handle();
-      host.size = VK_WHOLE_SIZE;
-      vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0,
-                           nullptr, 1, &host, 0, nullptr);
-      imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                   VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
-    } else {
+    display_.hud.record(cmd, image);
+    if (readback)
+      recordReadback(target, extent, *readback);
+    else
       imageBarrier(cmd, target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                    VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                    VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
-    }
     OSD_CULL_VK(vkEndCommandBuffer(cmd));
+  }
+
+  /// \brief Records the copy of swapchain image `target` (HUD drawn) into `readback` for
+  /// the host, leaving the image ready to present.
+  void recordReadback(VkImage target, VkExtent2D extent, vulkan::Buffer& readback) {
+    const VkCommandBuffer cmd = sync_.cmd;
+    imageBarrier(
+        cmd, target, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.handle(), 1,
+                           &copy);
+    VkBufferMemoryBarrier host{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    host.srcQueueFamilyIndex = host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    host.buffer = readback.handle();
+    host.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0,
+                         nullptr, 1, &host, 0, nullptr);
+    imageBarrier(cmd, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0);
+  }
+
+  /// \brief Submits the recorded frame, presents swapchain image `image` and waits for the
+  /// frame; returns vkQueuePresentKHR's result.
+  VkResult submitAndPresent(uint32_t image) {
     const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;
-    VkSemaphore waitSem = acquired.get(), signalSem = rendered.get();
+    VkSemaphore waitSem = sync_.acquired.get(), signalSem = sync_.rendered.get();
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
     submit.waitSemaphoreCount = 1;
     submit.pWaitSemaphores = &waitSem;
     submit.pWaitDstStageMask = &waitStage;
     submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &cmd;
+    submit.pCommandBuffers = &sync_.cmd;
     submit.signalSemaphoreCount = 1;
     submit.pSignalSemaphores = &signalSem;
-    VkFence rawF = fence.get();
-    OSD_CULL_VK(vkQueueSubmit(context.queue(), 1, &submit, rawF));
-    VkSwapchainKHR chain = swapchain.handle();
+    VkFence rawF = sync_.fence.get();
+    OSD_CULL_VK(vkQueueSubmit(context_.queue(), 1, &submit, rawF));
+    VkSwapchainKHR chain = display_.swapchain.handle();
     VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
     present.waitSemaphoreCount = 1;
     present.pWaitSemaphores = &signalSem;
     present.swapchainCount = 1;
     present.pSwapchains = &chain;
     present.pImageIndices = &image;
-    r = vkQueuePresentKHR(context.queue(), &present);
-    OSD_CULL_VK(vkWaitForFences(context.device(), 1, &rawF, VK_TRUE, UINT64_MAX));
-    OSD_CULL_VK(vkResetFences(context.device(), 1, &rawF));
-    if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) {
-      swapchain.recreate(w, h);
-      hud.attach(swapchain);
-      dropPlayer();
-    } else {
-      OSD_CULL_VK(r);
-    }
-    figures.frameMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    const VkResult r = vkQueuePresentKHR(context_.queue(), &present);
+    OSD_CULL_VK(vkWaitForFences(context_.device(), 1, &rawF, VK_TRUE, UINT64_MAX));
+    OSD_CULL_VK(vkResetFences(context_.device(), 1, &rawF));
+    return r;
+  }
 
-    if (options.printFrames) {
-      const std::string timedAt =
-          timing.lastTimed() ? "from frame " + std::to_string(*timing.lastTimed()) : "none";
-      std::printf(
-          "frame %u: cull %s, drawn %u of %u patches (pass 1 %u, pass 2 %u), culled frustum %u "
-          "back-patch %u occlusion %u, TES invocations %llu, %.1f ms, scene frame %u of %u %s, "
-          "ms per pass %.3f %.3f %.3f %.3f %s\n",
-          f, figures.cull.c_str(), figures.drawnPass1 + figures.drawnPass2, figures.patches,
-          figures.drawnPass1, figures.drawnPass2, figures.culledFrustum, figures.culledBackPatch,
-          figures.culledOcclusion, static_cast<unsigned long long>(figures.tesInvocations),
-          figures.frameMs, state.sceneFrame, frameCount, state.playing ? "playing" : "paused",
-          figures.pass1Ms, figures.pyramidMs, figures.cullMs, figures.pass2Ms, timedAt.c_str());
-    }
-    std::fflush(stdout);
-    if (capture) {
-      std::span<const uint8_t> bytes = readback.mappedAs<const uint8_t>();
-      std::vector<uint8_t> rgba(bytes.begin(), bytes.end());
-      if (swapchain.bgr())
-        for (size_t i = 0; i + 3 < rgba.size(); i += 4) std::swap(rgba[i], rgba[i + 2]);
-      for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;
-      const adapters::PngImage png = adapters::colorImage(extent.width, extent.height, rgba);
-      for (const std::string& path :
-           {shot ? screenshotPath(*options.screenshot, f) : "", last ? *options.screenshot : ""}) {
-        if (path.empty()) continue;
-        adapters::writePng(path, png);
-        std::cout << "wrote " << path << "\n";
-      }
+  /// \brief The one line of figures for frame `f` on stdout (--print-frames).
+  void printFrame(uint32_t f) const {
+    const std::string timedAt =
+        timing_.lastTimed() ? "from frame " + std::to_string(*timing_.lastTimed()) : "none";
+    std::printf(
+        "frame %u: cull %s, drawn %u of %u patches (pass 1 %u, pass 2 %u), culled frustum %u "
+        "back-patch %u occlusion %u, TES invocations %llu, %.1f ms, scene frame %u of %u %s, "
+        "ms per pass %.3f %.3f %.3f %.3f %s\n",
+        f, figures_.cull.c_str(), figures_.drawnPass1 + figures_.drawnPass2, figures_.patches,
+        figures_.drawnPass1, figures_.drawnPass2, figures_.culledFrustum, figures_.culledBackPatch,
+        figures_.culledOcclusion, static_cast<unsigned long long>(figures_.tesInvocations),
+        figures_.frameMs, state_.sceneFrame, frameCount_, state_.playing ? "playing" : "paused",
+        figures_.pass1Ms, figures_.pyramidMs, figures_.cullMs, figures_.pass2Ms, timedAt.c_str());
+  }
+
+  /// \brief Writes the read-back window image as the script's shot of frame `f` and/or
+  /// the last frame's screenshot.
+  void writeScreenshots(const vulkan::Buffer& readback, VkExtent2D extent, uint32_t f, bool shot,
+                        bool last) const {
+    std::span<const uint8_t> bytes = readback.mappedAs<const uint8_t>();
+    std::vector<uint8_t> rgba(bytes.begin(), bytes.end());
+    if (display_.swapchain.bgr())
+      for (size_t i = 0; i + 3 < rgba.size(); i += 4) std::swap(rgba[i], rgba[i + 2]);
+    for (size_t i = 3; i < rgba.size(); i += 4) rgba[i] = 255;
+    const adapters::PngImage png = adapters::colorImage(extent.width, extent.height, rgba);
+    for (const std::string& path :
+         {shot ? screenshotPath(*options_.screenshot, f) : "", last ? *options_.screenshot : ""}) {
+      if (path.empty()) continue;
+      adapters::writePng(path, png);
+      std::cout << "wrote " << path << "\n";
     }
   }
-  context.waitIdle();
-  if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
-    std::cerr << "validation reported " << log->count() << " messages\n";
-    return 1;
-  }
-  return 0;
+
+  ViewerScene& scene_;
+  scene::SceneDescription& description_;
+  const ViewerOptions& options_;
+  ScriptPlayer& script_;
+  const uint32_t patchTotal_;
+  Display display_;
+  vulkan::Context& context_;
+  ViewState state_;
+  std::unique_ptr<plan::Planner> planner_;
+  uint64_t planFrame_ = 0;  // the plan's frame numbers (the scene frame may stand still)
+  const uint32_t frameCount_;
+  // The player (its CullFrame and target) is made for one window size and one set of cull
+  // stages; it is made again when either changes. The status view has its own target.
+  std::unique_ptr<session::ScenePlayer> player_;
+  std::unique_ptr<frame::RenderTarget> statusTarget_;
+  std::string builtCull_;                 // the stages the player was made with
+  std::optional<uint32_t> shownFrame_;    // the animation frame the player was moved to
+  std::optional<frame::Bounds> framing_;  // the orbit camera's, from the first frame
+  PassTiming timing_;
+  FrameSync sync_;
+  HudFigures figures_;
+  const std::string keys_;
+  const std::vector<std::string> backPatchNotes_;
+};
+
+}  // namespace
+
+int runViewer(ViewerScene& scene, const ViewerOptions& options) {
+  const std::vector<ScriptStep> steps = parseScript(options.script);
+  ScriptPlayer script(steps);
+  if (script.hasShots() && !options.screenshot)
+    throw ScriptError(
+        "--script: 'shot' needs --screenshot FILE.png (the shots are named after it)");
+  ViewerLoop loop(scene, options, script);
+  return loop.run();
 }
 
 }  // namespace osd_cull::viewer

@@ -56,3 +56,24 @@ if(OSD_CULL_PYTHON3)
   add_test(NAME Layers.DocIsCurrent COMMAND ${_layers} --check-doc)
   set_tests_properties(Layers.DocIsCurrent PROPERTIES PASS_REGULAR_EXPRESSION "picture is current")
 endif()
+
+# Issue 22: no function over 120 lines without a written reason (scripts/check_function_length.py),
+# the check fails on a planted long function, lets one with a reason marker through, and its
+# brace scanner reads its known cases.
+function(osd_cull_function_length_test name pass_regex)
+  add_test(NAME FunctionLength.${name} COMMAND ${OSD_CULL_PYTHON3}
+    ${PROJECT_SOURCE_DIR}/scripts/check_function_length.py --root ${PROJECT_SOURCE_DIR} ${ARGN})
+  set_tests_properties(FunctionLength.${name} PROPERTIES PASS_REGULAR_EXPRESSION "${pass_regex}")
+endfunction()
+if(OSD_CULL_PYTHON3)
+  osd_cull_function_length_test(NoLongFunctionWithoutAReason
+    "functions, [0-9]+ long with a reason, [0-9]+ on the allow-list, 0 failing")
+  osd_cull_function_length_test(CheckFailsOnAPlantedLongFunction
+    "osd_cull/measure/calibrate.cpp: plantedLongFunction is 125 lines.*samples/osd-cull/main.cpp: plantedLongFunction is 125 lines.*, 2 failing"
+    --plant osd_cull/measure/calibrate.cpp --plant samples/osd-cull/main.cpp)
+  osd_cull_function_length_test(AReasonMarkerExcusesALongFunction "[1-9][0-9]* long with a reason"
+    --plant osd_cull/measure/calibrate.cpp:r)
+  set_tests_properties(FunctionLength.AReasonMarkerExcusesALongFunction PROPERTIES
+    FAIL_REGULAR_EXPRESSION "plantedLongFunction")
+  osd_cull_function_length_test(ScannerReadsItsKnownCases "self-test: all [0-9]+ cases pass" --self-test)
+endif()
