@@ -10,16 +10,20 @@
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/scene/demo_shapes.h"
 #include "support/cull_test_meshes.h"
+#include "support/run_command.h"
 #include "support/test_data.h"
 #include "support/vk_test_context.h"
 
 #include <osd_cull/shared/draw_layout.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <numeric>
 
 namespace osd_cull {
@@ -278,6 +282,46 @@ TEST_F(ClusteredCullTest, UnsupportedConfigurationsAreNamedErrors) {
   EXPECT_THROW(frame::CullPass(context(), gpu, set, settings), Error) << "tangent plane";
   settings.backPatch = "tcone";
   EXPECT_NO_THROW(frame::CullPass(context(), gpu, set, settings));
+}
+
+TEST(ClustersCommand, RenderWithClustersDrawsTheSameAndReportsTheClusterTests) {
+  namespace fs = std::filesystem;
+  const fs::path program = test::osdCullProgram();
+  if (!fs::exists(program)) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_clusters_cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // --cull all has an occlusion stage, which clusters do not serve: a named error.
+  const test::CommandResult bad =
+      test::runCommand(program.string() + " render --out " + (dir / "bad.png").string() +
+                       " --width 64 --height 64 --cull all --clusters");
+  EXPECT_NE(bad.exitCode(), 0);
+  EXPECT_NE(bad.output.find("occlusion"), std::string::npos) << bad.output;
+  const auto runOnePass = [&](const std::string& name, const std::string& extra) {
+    const test::CommandResult r = test::runCommand(
+        program.string() + " render --out " + (dir / (name + ".png")).string() +
+        " --width 320 --height 180 --frames 2 --orbit 60 --cull backpatch --backpatch-method "
+        "tcone --validate --stats " +
+        (dir / (name + ".json")).string() + extra);
+    EXPECT_EQ(r.exitCode(), 0) << r.output;
+    std::ifstream in(dir / (name + ".json"));
+    return std::pair{r.output, nlohmann::json::parse(in)};
+  };
+  const auto [plainOut, plain] = runOnePass("plain", "");
+  const auto [clusteredOut, clustered] = runOnePass("clustered", " --clusters");
+  EXPECT_NE(clusteredOut.find("clusters "), std::string::npos) << clusteredOut;
+  ASSERT_EQ(clustered["frames"].size(), 2u);
+  for (size_t f = 0; f < 2; ++f) {
+    const auto& a = plain["frames"][f];
+    const auto& b = clustered["frames"][f];
+    EXPECT_EQ(a["drawn"], b["drawn"]) << "frame " << f;
+    EXPECT_FALSE(a.contains("clusters"));
+    const uint32_t tests = b["clusters"]["tests"], culled = b["clusters"]["culled"],
+                   accepted = b["clusters"]["accepted"], undecided = b["clusters"]["undecided"];
+    EXPECT_GT(tests, 0u);
+    EXPECT_EQ(culled + accepted + undecided, tests);
+    EXPECT_LT(b["clusters"]["perPatchInvocations"].get<uint32_t>(), b["patches"].get<uint32_t>());
+  }
 }
 
 }  // namespace
