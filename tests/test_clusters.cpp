@@ -324,5 +324,19 @@ TEST(ClustersCommand, RenderWithClustersDrawsTheSameAndReportsTheClusterTests) {
   }
 }
 
+TEST(ClustersCommand, VerifyWithClustersFindsNoViolation) {
+  namespace fs = std::filesystem;
+  const fs::path program = test::osdCullProgram();
+  if (!fs::exists(program)) GTEST_SKIP() << "osd-cull not built";
+  // verify exits non-zero on any violation (a cull outside the reference, a false cull in
+  // the oracle, a lost pixel).
+  const test::CommandResult r =
+      test::runCommand(program.string() +
+                       " verify --methods frustum,tcone,ncone --views 6 --width 320 --height 180 "
+                       "--image-check --validate --clusters");
+  EXPECT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_NE(r.output.find("ncone"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace osd_cull
