@@ -21,8 +21,9 @@ namespace osd_cull::bound {
 
 /// \brief The lecture's cost model, in units of one per-patch test r = 1.
 struct ClusterCostModel {
-  /// t: one cluster test relative to one per-patch test (measured on lavapipe, BigGuy at
-  /// 1280x720: docs/algorithms/clusters.md).
+  /// t: one cluster test relative to one per-patch test. Default 1: a cluster test does
+  /// the arithmetic of one per-patch box and cone test (docs/algorithms/clusters.md has the
+  /// share of undecided patches for other values and the measured costs).
   double clusterTest = 1.0;
   /// Writing one member's result when the cluster decides (a store and, accepted, an
   /// append to the draw list), relative to one per-patch test.
