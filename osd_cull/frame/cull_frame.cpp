@@ -426,6 +426,15 @@ std::optional<CullFrameStats> CullFrame::stats(uint64_t frame) const {
     s.survivors += st[shader::kStatSurvivors];
   }
   if (!slot.aggressive) s.drawnPass2 = s.newlyVisible;
+  for (const Batch& b : batches_)
+    if (b.pass && b.pass->clustersEnabled()) {
+      const ClusterCounts k = b.pass->clusterCounts();
+      s.clusters.clusters += k.clusters;
+      s.clusters.culled += k.culled;
+      s.clusters.accepted += k.accepted;
+      s.clusters.undecided += k.undecided;
+      s.clusters.perPatchInvocations += k.perPatchInvocations;
+    }
   return s;
 }
 

@@ -116,6 +116,9 @@ struct CullFrameStats {
   /// gpu.total includes the host's time between the submissions).
   CullStageTimes gpu;
   std::string gpuNote;  ///< empty when `gpu` was measured, else why it was not
+  /// With CullSettings::clusters: what the cluster tests decided (CullPass::clusterCounts,
+  /// summed over the meshes' passes; as of the last completed pass).
+  ClusterCounts clusters;
 };
 
 /// \brief The three stages of a cull kernel, as CullSettings names them.

@@ -157,6 +157,7 @@ SessionFrame MeshSession::draw(Configuration* c, const frame::Camera& camera,
     const StageCounts counts = countByStage(c->pass->results());
     f.stats.culledFrustum = counts.frustum;
     f.stats.culledBackPatch = counts.backPatch;
+    f.stats.clusters = c->pass->clusterCounts();
   } else {
     const frame::PatchDraw patches{&gpu_, &host_, 0};
     f.onePass = renderer_.render(target_, camera, {&patches, 1}, occluders_, o.render);

@@ -220,6 +220,16 @@ nlohmann::json printFrame(uint32_t f, const session::SessionFrame& frame) {
     j["ms"]["cull"] = nullptr;  // not apart: pass1 spans the dispatch and the draws
     j["culled"] = {
         {"frustum", c.culledFrustum}, {"backPatch", c.culledBackPatch}, {"occlusion", 0}};
+    if (c.clusters.clusters > 0) {  // --clusters
+      const frame::ClusterCounts& k = c.clusters;
+      std::printf("  clusters %u: culled %u, accepted %u, undecided %u; per-patch invocations %u\n",
+                  k.clusters, k.culled, k.accepted, k.undecided, k.perPatchInvocations);
+      j["clusters"] = {{"tests", k.clusters},
+                       {"culled", k.culled},
+                       {"accepted", k.accepted},
+                       {"undecided", k.undecided},
+                       {"perPatchInvocations", k.perPatchInvocations}};
+    }
   }
   return j;
 }

@@ -101,6 +101,7 @@ frame::VerifyOptions verifyOptions(const VerifyArgs& args, const vulkan::Context
   options.imageCheck = args.imageCheck;
   options.drawnTriangles = !args.surfaceExact;
   options.drawnEnumerate = args.drawnEnumerate;
+  options.clusters = args.clusters;
   options.hiz.fullResolution = args.hizFull;
   options.hiz.lookup = args.hizTight ? bound::HiZLookup::Tight : bound::HiZLookup::Paper;
   if (displacementMap) {
@@ -334,6 +335,9 @@ Runner setup(CLI::App& app) {
                    "every triangle the tessellator can draw for it faces away (tested in the\n"
                    "kernel; docs/algorithms/drawn-triangles.md, \"Enumerated triangles\")");
   enumerate->excludes("--surface-exact");
+  app.add_flag("--clusters", args->clusters,
+               "run frustum, tcone and ncone with clusters tested first\n"
+               "(docs/algorithms/clusters.md)");
   app.add_option("--json", args->json, "write the results as JSON")->type_name("FILE.json");
   addDeviceOptions(app, args->device);
   addDisplacementOptions(app, args->displacement, true);

@@ -33,6 +33,13 @@ void addCullOptions(CLI::App& app, CullArgs& args) {
                "which culls less but never takes a pixel; docs/algorithms/\n"
                "drawn-triangles.md)")
       ->group(group);
+  app.add_flag("--clusters", args.clusters,
+               "test clusters of patches first (Zachmann's clustered back-face\n"
+               "culling): clusters outside the frustum or back-facing are culled\n"
+               "whole, inside and front-facing ones drawn untested, only the rest\n"
+               "tested patch by patch (docs/algorithms/clusters.md); static meshes,\n"
+               "tcone or ncone, no occlusion")
+      ->group(group);
   app.add_flag("--aggressive", args.aggressive,
                "occlusion: skip the second pass (newly visible patches appear one\n"
                "frame late)")
@@ -81,6 +88,10 @@ CullChoice cullChoice(const CullArgs& args) {
       throw UsageError("--surface-exact needs --cull backpatch or --cull all");
     c.surfaceExact = true;
   }
+  if (args.clusters) {
+    if (!c.enabled()) throw UsageError("--clusters needs --cull frustum, backpatch or all");
+    c.clusters = true;
+  }
   frame::CullFrameOptions& f = c.frame;
   f.aggressive = args.aggressive;
   if (args.drawMode == "tf0") f.drawMode = frame::CullDrawMode::TessFactorZero;
@@ -108,6 +119,10 @@ frame::CullSettings cullSettings(const CullChoice& choice,
   if (choice.occlusion()) s.occlusion = "hiz";
   s.backPatchValidity = validity;
   s.drawnTriangles = !choice.surfaceExact;
+  if (choice.clusters) {  // the cluster bounds are built once: the points must not move
+    s.clusters = true;
+    s.staticPoints = true;
+  }
   return s;
 }
 

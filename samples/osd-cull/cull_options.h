@@ -22,6 +22,8 @@ struct CullChoice {
   bool backPatchMethodGiven = false;
   /// Back-patch tests exact for the surface only (CullSettings::drawnTriangles = false).
   bool surfaceExact = false;
+  /// Clusters tested first (CullSettings::clusters; static points).
+  bool clusters = false;
   /// The two-pass frame's options (used when occlusion() is true): aggressive, draw mode,
   /// first-frame policy, pyramid options.
   frame::CullFrameOptions frame;
@@ -36,6 +38,7 @@ struct CullArgs {
   std::string mode;             ///< empty: not given (none, unless a form has its own default)
   std::string backPatchMethod;  ///< empty: not given (tangent-plane)
   bool surfaceExact = false;
+  bool clusters = false;
   bool aggressive = false;
   std::string drawMode;
   std::string firstFrame;

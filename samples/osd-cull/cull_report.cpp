@@ -68,7 +68,14 @@ std::string cullFrameLine(uint32_t frame, const frame::CullFrameStats& s) {
                   s.totalMs(), s.gpu.pass1, s.gpu.pyramid, s.gpu.cull, s.gpu.pass2);
   else
     std::snprintf(times, sizeof(times), "total %.2f (one submission)", s.totalMs());
-  return std::string(line) + times;
+  std::string clusters;
+  if (s.clusters.clusters > 0)
+    clusters = "; clusters " + std::to_string(s.clusters.clusters) + ": culled " +
+               std::to_string(s.clusters.culled) + ", accepted " +
+               std::to_string(s.clusters.accepted) + ", undecided " +
+               std::to_string(s.clusters.undecided) + ", per-patch invocations " +
+               std::to_string(s.clusters.perPatchInvocations);
+  return std::string(line) + times + clusters;
 }
 
 nlohmann::json cullFrameJson(uint32_t frame, const frame::CullFrameStats& s) {
@@ -90,7 +97,13 @@ nlohmann::json cullFrameJson(uint32_t frame, const frame::CullFrameStats& s) {
             {"occlusion", s.culledOcclusion}}},
           {"pass1", pass(s.pass1)},
           {"pass2", pass(s.pass2)},
-          {"ms", cullFrameMs(s)}};
+          {"ms", cullFrameMs(s)},
+          {"clusters",
+           {{"tests", s.clusters.clusters},
+            {"culled", s.clusters.culled},
+            {"accepted", s.clusters.accepted},
+            {"undecided", s.clusters.undecided},
+            {"perPatchInvocations", s.clusters.perPatchInvocations}}}};
 }
 
 nlohmann::json plainFrameJson(uint32_t frame, const frame::FrameStats& s) {

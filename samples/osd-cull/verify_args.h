@@ -39,6 +39,7 @@ struct VerifyArgs {
   std::string json;
   bool surfaceExact = false;
   bool drawnEnumerate = false;
+  bool clusters = false;
 };
 
 }  // namespace osd_cull::cli

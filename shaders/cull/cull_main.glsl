@@ -19,8 +19,17 @@
 //                     when every triangle the tessellator can draw for it faces away
 //                     (drawn_triangle_set.glsl, exact levels only: uniform or precomputed),
 //                     for patches whose outer levels are at most CULL_DRAWN_LIST_LEVEL
+//   CULL_CLUSTERS     1: only the patches the cluster test left undecided
+//                     (cluster_cull.comp lists them in clusterWork), one instance, by an
+//                     indirect dispatch
 // and includes the stage files before this one.
 #include "frustum.glsl"
+#if CULL_CLUSTERS
+#include <shared/cluster_layout.h>
+layout(std430, set = 0, binding = kCullBindingClusterWork) readonly buffer Work {
+  uint clusterWork[];
+};
+#endif
 #if CULL_DRAWN && CULL_DRAWN_ENUMERATE
 #include "drawn_triangle_set.glsl"
 #endif
@@ -48,8 +57,14 @@ void main() {
 #if CULL_DISPLACED
   dview = dviews[instanceInRange ? instance : 0u];
 #endif
+#if CULL_CLUSTERS
+  const uint listed = group * kPatchesPerGroup + slot;
+  const bool inRange = instanceInRange && listed < clusterWork[kClusterWorkListed];
+  const uint patchIndex = inRange ? clusterWork[kClusterWorkHeader + listed] : 0u;
+#else
   const uint patchIndex = (group - instance * groupsPerInstance) * kPatchesPerGroup + slot;
   const bool inRange = instanceInRange && patchIndex < pc.patchCount;
+#endif
   const uint base = instance * pc.patchCount;  // the instance's results and draw list
   const uint counterBase = instance * kCounterCount;
   uint result = kResultInitial;

@@ -14,6 +14,7 @@
 #include "osd_cull/vk/shader_compiler.h"
 #include "osd_cull/vk/transfer.h"
 
+#include <osd_cull/shared/cluster_layout.h>
 #include <osd_cull/shared/draw_layout.h>
 
 #include <algorithm>
@@ -43,7 +44,11 @@ const vulkan::DescriptorBinding kBindings[] = {
     {sh::kCullBindingDisplacedView, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingInstances, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingTessLevels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
-    {sh::kCullBindingBoxes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT}};
+    {sh::kCullBindingBoxes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingClusterWork, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingClusters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingClusterMembers, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+     VK_SHADER_STAGE_COMPUTE_BIT}};
 
 // What the outputs are read by after the pass: indirect draws, the patch draw shaders (draw
 // list) and the host (results, counters).
@@ -136,7 +141,7 @@ namespace {
 std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
                           bool drawnTriangles, bool drawnEnumerate,
                           const CullMethod::Displaced* displaced, bool pointsByAddress,
-                          bool patchBoxes, bool listing = true) {
+                          bool patchBoxes, bool listing = true, bool clusters = false) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
@@ -162,6 +167,7 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
             std::to_string(drawnEnumerate ? 64u : bound::kDrawnListLowLevel) + "\n";
   text += std::string("#define CULL_DISPLACED ") + (displaced ? "1" : "0") + "\n";
   text += std::string("#define CULL_PATCH_BOXES ") + (patchBoxes ? "1" : "0") + "\n";
+  text += std::string("#define CULL_CLUSTERS ") + (clusters ? "1" : "0") + "\n";
   if (displaced)
     text += "#define DISPLACED_BOX " + std::to_string(static_cast<uint32_t>(displaced->box)) + "\n";
   for (const CullMethod* m : stages)
@@ -175,6 +181,13 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
 
 constexpr const char* kCullKernelName = "cull/cull_kernel.comp";
 const vulkan::ShaderSource kWriteDraws{"cull/write_draws.comp", {}};
+const vulkan::ShaderSource kClusterCull{"cull/cluster_cull.comp", {}};
+
+// The back-patch methods the cluster test serves: their per-patch test is the cone test of
+// the cones the clusters are built from (bound/patch_clusters.h).
+bool clusterMethod(const CullMethod* backPatch) {
+  return backPatch == nullptr || backPatch->name == "tcone" || backPatch->name == "ncone";
+}
 
 }  // namespace
 
@@ -190,7 +203,8 @@ std::vector<vulkan::ShaderVariant> cullPassShaderVariants() {
       if (m.stage == stage) list.push_back(&m);
     return list;
   };
-  std::vector<vulkan::ShaderVariant> variants = {vulkan::ShaderVariant::file(kWriteDraws)};
+  std::vector<vulkan::ShaderVariant> variants = {vulkan::ShaderVariant::file(kWriteDraws),
+                                                 vulkan::ShaderVariant::file(kClusterCull)};
   std::set<std::string> texts;
   for (const CullMethod* frustum : methods(CullStage::Frustum))
     for (const CullMethod* backPatch : methods(CullStage::BackPatch))
@@ -217,15 +231,21 @@ std::vector<vulkan::ShaderVariant> cullPassShaderVariants() {
                   displaced.box = static_cast<bound::DisplacedBox>(std::max(box, 0));
                   // With the listed-triangle test and, for the views where it cannot run,
                   // without (CullPass::leanKernelApplies).
-                  for (const bool listing : {true, false}) {
-                    if (!listing && (enumerate || !(drawn && backPatch))) continue;
-                    std::string text =
-                        composeKernel(stages, lanes, drawn, enumerate,
-                                      box >= 0 ? &displaced : nullptr, bda, boxes, listing);
-                    if (texts.insert(text).second)
-                      variants.push_back(vulkan::ShaderVariant::glsl(text, kCullKernelName,
-                                                                     VK_SHADER_STAGE_COMPUTE_BIT));
-                  }
+                  // Clustered (CullSettings::clusters): static points, undisplaced, no
+                  // occlusion, a cone method or none.
+                  for (const bool listing : {true, false})
+                    for (const bool clusters : {false, true}) {
+                      if (!listing && (enumerate || !(drawn && backPatch))) continue;
+                      if (clusters &&
+                          (!boxes || occlusion || box >= 0 || !clusterMethod(backPatch)))
+                        continue;
+                      std::string text = composeKernel(stages, lanes, drawn, enumerate,
+                                                       box >= 0 ? &displaced : nullptr, bda, boxes,
+                                                       listing, clusters);
+                      if (texts.insert(text).second)
+                        variants.push_back(vulkan::ShaderVariant::glsl(
+                            text, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
+                    }
                 }
   return variants;
 }
@@ -314,6 +334,7 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
   const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   const VkBufferUsageFlags indirect = storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
   if (cullData_ == &conesBuffer_) uploadHostCones(context);
+  buildClusters(context);
   const std::vector<float> boxes = patchBoxes() ? packPatchBoxes(host) : std::vector<float>(1);
   boxes_ = vulkan::Buffer(context, boxes.size() * sizeof(float), storage);
   vulkan::upload<float>(context, boxes_, boxes);
@@ -386,6 +407,76 @@ void CullPass::uploadHostCones(vulkan::Context& context) {
   vulkan::upload<float>(context, conesBuffer_, packed);
 }
 
+void CullPass::buildClusters(vulkan::Context& context) {
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  if (!settings_.clusters) {  // the bindings exist in every kernel's set: placeholders
+    clusterWork_ = vulkan::Buffer(context, sh::kClusterWorkHeader * 4, storage);
+    clusterData_ = vulkan::Buffer(context, 16, storage);
+    clusterMembers_ = vulkan::Buffer(context, 16, storage);
+    return;
+  }
+  const std::string why = "CullPass: clusters (CullSettings::clusters) on " + host_.source;
+  if (settings_.instanceCount != 1)
+    throw Error(why + " cull one instance, not " + std::to_string(settings_.instanceCount));
+  if (displaced()) throw Error(why + " need an undisplaced mesh");
+  if (!settings_.occlusion.empty())
+    throw Error(why + " do not combine with the occlusion stage '" + settings_.occlusion + "'");
+  if (!settings_.staticPoints || cullData_ != &conesBuffer_)
+    throw Error(why +
+                " need static points (CullSettings::staticPoints, host-built cones): "
+                "the cluster bounds are built once");
+  for (const CullMethod* m : stages_)
+    if (m->stage == CullStage::BackPatch && !clusterMethod(m))
+      throw Error(why + " serve the tcone and ncone back-patch methods, not '" + m->name + "'");
+  clusters_ = bound::buildPatchClusters(host_, cones_, settings_.clusterModel);
+  const size_t k = clusters_.clusters.size();
+  std::vector<float> data(std::max<size_t>(1, k) * sh::kClusterVec4s * 4, 0.0f);
+  std::vector<uint32_t> members(4 * k + clusters_.members.size() + 1, 0u);
+  for (size_t i = 0; i < k; ++i) {
+    const bound::PatchCluster& c = clusters_.clusters[i];
+    float* v = &data[i * sh::kClusterVec4s * 4];
+    for (int j = 0; j < 3; ++j) {
+      v[j] = roundDown(c.boxMin[j]);
+      v[4 + j] = roundUp(c.boxMax[j]);
+      v[8 + j] = static_cast<float>(c.apex[j]);
+      v[12 + j] = static_cast<float>(c.axis[j]);
+    }
+    v[3] = roundUp(c.sinAngle);
+    v[7] = roundUp(c.cullSinAngle);
+    v[11] = c.coneValid ? 1.0f : 0.0f;
+    members[4 * i] = c.first;
+    members[4 * i + 1] = c.bezierCount;
+    members[4 * i + 2] = c.gregoryCount;
+  }
+  std::copy(clusters_.members.begin(), clusters_.members.end(), members.begin() + 4 * k);
+  clusterData_ = vulkan::Buffer(context, data.size() * sizeof(float), storage);
+  vulkan::upload<float>(context, clusterData_, data);
+  clusterMembers_ = vulkan::Buffer(context, members.size() * 4, storage);
+  vulkan::upload<uint32_t>(context, clusterMembers_, members);
+  clusterWork_ =
+      vulkan::Buffer(context, (sh::kClusterWorkHeader + size_t{host_.patchCount()}) * 4,
+                     storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, vulkan::MemoryUse::Readback);
+  std::fill_n(clusterWork_.mappedAs<uint32_t>().begin(), sh::kClusterWorkHeader, 0u);
+}
+
+bound::ClusterTests CullPass::clusterTests() const {
+  bound::ClusterTests t;
+  t.frustum = settings_.frustum;
+  t.backPatch = backPatchEnabled();
+  // Back-facing clusters are culled whole only where the per-patch test is the surface cone
+  // test: the drawn-triangle test widens each cone per view (bound::widenCone).
+  t.backCull = backPatchEnabled() && !drawnTriangles();
+  t.accept = settings_.occlusion.empty();
+  return t;
+}
+
+ClusterCounts CullPass::clusterCounts() const {
+  if (!settings_.clusters) return {};
+  const auto w = clusterWork_.mappedAs<const uint32_t>();
+  return {uint32_t(clusters_.clusters.size()), w[sh::kClusterWorkCulled],
+          w[sh::kClusterWorkAccepted], w[sh::kClusterWorkUndecided], w[sh::kClusterWorkListed]};
+}
+
 // The layouts and pipelines of one kernel configuration. Creating a pipeline runs the
 // driver's compiler (lavapipe: LLVM, up to 0.4 s for the tangent-plane kernel), so passes with
 // the same kernel on the same device share one: a scene with many instances of a mesh has a
@@ -399,6 +490,7 @@ struct CullPipelines {
   /// where it cannot run (CullPass::leanKernelApplies).
   vulkan::UniquePipeline cullLean;
   vulkan::UniquePipeline draws;
+  vulkan::UniquePipeline clusters;  ///< cluster_cull.comp, for clustered kernels only
 };
 
 namespace {
@@ -406,7 +498,8 @@ namespace {
 std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
                                                      const std::string& kernel,
                                                      const std::string& leanKernel,
-                                                     const std::vector<const CullMethod*>& stages) {
+                                                     const std::vector<const CullMethod*>& stages,
+                                                     bool clusters) {
   static std::mutex mutex;
   static std::map<std::pair<VkDevice, std::string>, std::weak_ptr<const CullPipelines>> cache;
   const std::lock_guard<std::mutex> lock(mutex);
@@ -431,6 +524,9 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
         vulkan::compileGlsl(leanKernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
   p->draws =
       vulkan::createComputePipeline(context, p->layout.get(), vulkan::compileShader(kWriteDraws));
+  if (clusters)
+    p->clusters = vulkan::createComputePipeline(context, p->layout.get(),
+                                                vulkan::compileShader(kClusterCull));
   slot = p;
   return p;
 }
@@ -441,11 +537,12 @@ void CullPass::buildPipelines(vulkan::Context& context) {
   const auto kernel = [&](bool listing) {
     return composeKernel(stages_, lanes_, settings_.drawnTriangles, settings_.drawnEnumerate,
                          displaced() ? &displacedKernel_ : nullptr, gpu_.pointsByAddress(),
-                         patchBoxes(), listing);
+                         patchBoxes(), listing, settings_.clusters);
   };
   // With drawnEnumerate the listing runs at every level: no lean kernel.
   pipelines_ = sharedPipelines(context, kernel(true),
-                               settings_.drawnEnumerate ? std::string() : kernel(false), stages_);
+                               settings_.drawnEnumerate ? std::string() : kernel(false), stages_,
+                               settings_.clusters);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(pipelines_->setLayout.get());
   vulkan::DescriptorWriter()
@@ -461,8 +558,30 @@ void CullPass::buildPipelines(vulkan::Context& context) {
       .buffer(sh::kCullBindingInstances, instances_)
       .buffer(sh::kCullBindingTessLevels, gpu_.tessLevels())
       .buffer(sh::kCullBindingBoxes, boxes_)
+      .buffer(sh::kCullBindingClusterWork, clusterWork_)
+      .buffer(sh::kCullBindingClusters, clusterData_)
+      .buffer(sh::kCullBindingClusterMembers, clusterMembers_)
       .update(context.device(), set_);
   boundTessLevels_ = gpu_.tessLevels().handle();
+}
+
+void CullPass::recordClusters(VkCommandBuffer cmd) {
+  const bound::ClusterTests t = clusterTests();
+  const uint32_t flags =
+      (t.frustum ? sh::kClusterFlagFrustum : 0u) | (t.backPatch ? sh::kClusterFlagBackPatch : 0u) |
+      (t.backCull ? sh::kClusterFlagBackCull : 0u) | (t.accept ? sh::kClusterFlagAccept : 0u);
+  const uint32_t k = uint32_t(clusters_.clusters.size());
+  uint32_t header[sh::kClusterWorkHeader] = {0u, 1u, 1u, 0u, 0u, 0u, 0u, 0u, k, 0u, flags, 0u};
+  header[sh::kClusterWorkPatchesPerGroup] = sh::kCullGroupSize / lanes_;
+  vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
+  vkCmdUpdateBuffer(cmd, clusterWork_.handle(), 0, sizeof(header), header);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kTransferWrite, vulkan::scope::kComputeReadWrite);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->clusters.get());
+  vkCmdDispatch(cmd, vulkan::groupCount(k, sh::kClusterGroupSize), 1, 1);
+  vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite,
+                        {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                             VK_ACCESS_INDIRECT_COMMAND_READ_BIT});
 }
 
 bool CullPass::leanKernelApplies(const TessellationOptions& tessellation) const {
@@ -616,12 +735,17 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   vkCmdPushConstants(cmd, pipelines_->layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(c), &c);
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
+    if (settings_.clusters) recordClusters(cmd);
     const bool lean = pipelines_->cullLean && leanKernelApplies(tessellation);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                       lean ? pipelines_->cullLean.get() : pipelines_->cull.get());
-    const vulkan::DispatchSize groups = vulkan::checkedGroups2D(
-        context_, cullGroups(n, lanes_, settings_.instanceCount), "CullPass: the cull dispatch");
-    vkCmdDispatch(cmd, groups.x, groups.y, 1);
+    if (settings_.clusters) {  // the undecided clusters' patches (cluster_cull.comp)
+      vkCmdDispatchIndirect(cmd, clusterWork_.handle(), 0);
+    } else {
+      const vulkan::DispatchSize groups = vulkan::checkedGroups2D(
+          context_, cullGroups(n, lanes_, settings_.instanceCount), "CullPass: the cull dispatch");
+      vkCmdDispatch(cmd, groups.x, groups.y, 1);
+    }
     ++dispatches_;
   }
   vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite, vulkan::scope::kComputeReadWrite);

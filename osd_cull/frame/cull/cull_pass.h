@@ -19,6 +19,7 @@
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/bound/cone_of_normals.h"
 #include "osd_cull/bound/cull_reference.h"
+#include "osd_cull/bound/patch_clusters.h"
 #include "osd_cull/frame/cull/cull_methods.h"
 #include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/vk/buffer.h"
@@ -77,6 +78,24 @@ struct CullSettings {
   /// the points). Used only without an occlusion stage (which needs the points' NDC box)
   /// and on undisplaced meshes; off by default, since a pass cannot see points change.
   bool staticPoints = false;
+  /// Clustered, hierarchical culling (bound/patch_clusters.h, docs/algorithms/clusters.md):
+  /// a dispatch over clusters of patches first culls clusters outside the frustum (and,
+  /// without drawnTriangles, back-facing ones) whole and accepts those inside and
+  /// front-facing; the per-patch kernel then runs only on the patches of the undecided
+  /// clusters (an indirect dispatch). Needs staticPoints (the cluster boxes and cones are
+  /// built once), one instance, an undisplaced mesh, no occlusion stage and the tcone or
+  /// ncone back-patch method (or none). Off by default.
+  bool clusters = false;
+  bound::ClusterCostModel clusterModel;  ///< the cluster sizes' cost model
+};
+
+/// \brief What the cluster dispatch of the last completed pass decided (CullSettings::clusters).
+struct ClusterCounts {
+  uint32_t clusters = 0;             ///< cluster tests
+  uint32_t culled = 0;               ///< clusters culled whole
+  uint32_t accepted = 0;             ///< clusters drawn without per-patch tests
+  uint32_t undecided = 0;            ///< clusters whose patches were tested one by one
+  uint32_t perPatchInvocations = 0;  ///< patches the per-patch kernel tested
 };
 
 struct CullPipelines;
@@ -147,6 +166,13 @@ class CullPass {
   /// are the same. On lavapipe the listing's code costs every invocation even when no patch
   /// reaches it: 4x the NCONE kernel at uniform level 4 (docs/results/cull-kernel-floor.md).
   bool leanKernelApplies(const TessellationOptions& tessellation) const;
+  /// \brief Whether the pass tests clusters first (CullSettings::clusters), its clusters,
+  /// the tests the cluster kernel runs (bound::testCluster is its reference), and the
+  /// counts of the last completed pass.
+  bool clustersEnabled() const { return settings_.clusters; }
+  const bound::PatchClusters& clusters() const { return clusters_; }
+  bound::ClusterTests clusterTests() const;
+  ClusterCounts clusterCounts() const;
   /// \brief Host copies (double) of the uploaded cones, empty when none are used.
   std::span<const bound::ConeOfNormals> cones() const { return cones_; }
   /// \brief Whether back-patch culls respect the drawn triangles (CullSettings::
@@ -236,6 +262,8 @@ class CullPass {
   void buildPipelines(vulkan::Context& context);
   void checkLimits(uint32_t patchCount) const;
   void uploadHostCones(vulkan::Context& context);
+  void buildClusters(vulkan::Context& context);
+  void recordClusters(VkCommandBuffer cmd);
   shader::CullConstants constants(const Camera& camera,
                                   const TessellationOptions& tessellation) const;
   shader::CullInstance instanceValues(const Camera& camera) const;
@@ -262,6 +290,10 @@ class CullPass {
   vulkan::Buffer drawList_;
   vulkan::Buffer counters_;
   vulkan::Buffer commands_;
+  bound::PatchClusters clusters_;  // empty without CullSettings::clusters
+  vulkan::Buffer clusterWork_;     // shared/cluster_layout.h (a header only without clusters)
+  vulkan::Buffer clusterData_;
+  vulkan::Buffer clusterMembers_;
   std::shared_ptr<const CullPipelines> pipelines_;  // shared by passes with the same kernel
   std::unique_ptr<vulkan::DescriptorPool> pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;

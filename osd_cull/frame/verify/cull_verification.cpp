@@ -92,6 +92,10 @@ CullVerifier::CullVerifier(vulkan::Context& context, const PatchSet& host,
     settings.displacementMap = options.displacementMap;
     settings.uvCorners = options.uvCorners;
     const auto data = options.cullData.find(run[i]->reference);
+    settings.clusters =
+        options.clusters && !options.displacementMap && data == options.cullData.end() &&
+        (run[i]->stage == CullStage::Frustum || run[i]->name == "tcone" || run[i]->name == "ncone");
+    settings.staticPoints = settings.clusters;
     if (run[i]->displaced) {
       const auto d = options.displacedCullData.find(run[i]->displaced->extension);
       if (d != options.displacedCullData.end()) m->displacedData = d->second;

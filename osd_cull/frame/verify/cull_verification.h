@@ -51,6 +51,9 @@ struct VerifyOptions {
   /// With drawnTriangles: the tightened test that lists the drawn triangles
   /// (CullSettings::drawnEnumerate).
   bool drawnEnumerate = false;
+  /// The methods clustered culling serves (frustum, tcone, ncone) run with
+  /// CullSettings::clusters (static points, host-built cull data), the others as always.
+  bool clusters = false;
   /// Oracle and image draws cull back-facing triangles, as a renderer does on a closed,
   /// outward-oriented mesh. Default: on exactly when back-patch culling is valid for the
   /// mesh. Then a patch culled with the drawn-triangle bound has no triangle that is drawn
