@@ -8,26 +8,16 @@
 #include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/session/mesh_session.h"
 #include "support/plan_calibration.h"
+#include "support/process_memory.h"
 #include "support/vk_test_context.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
 #include <set>
-
-#include <unistd.h>
 
 namespace osd_cull {
 namespace {
-
-// Resident set size in KB (/proc/self/statm), 0 where there is none.
-uint64_t residentKb() {
-  std::ifstream statm("/proc/self/statm");
-  uint64_t size = 0, resident = 0;
-  if (!(statm >> size >> resident)) return 0;
-  return resident * (uint64_t(sysconf(_SC_PAGESIZE)) / 1024);
-}
 
 PatchSet torus() {
   scene::TorusOptions o;
@@ -224,11 +214,11 @@ TEST_F(MeshSessionTest, MemoryStaysBoundedOverThousandsOfPlannedFrames) {
   for (uint32_t f = 0; f < 2000; ++f) {
     s.render(frame::orbit(start, b.center(), {0, 0, 1}, 1.0 * f));
     if (f == 199) {
-      at200 = residentKb();
+      at200 = test::residentKb();
       builtAt200 = s.configurationsBuilt();
     }
   }
-  const uint64_t at2000 = residentKb();
+  const uint64_t at2000 = test::residentKb();
   std::printf(
       "resident: %llu KB at frame 200, %llu KB at frame 2000; %u plan changes, %zu "
       "configurations built (%zu by frame 200)\n",
@@ -254,9 +244,9 @@ TEST_F(MeshSessionTest, MemoryStaysBoundedOverThousandsOfPlannedFrames) {
     }
   };
   run(0, 1000);
-  const uint64_t before = residentKb();
+  const uint64_t before = test::residentKb();
   run(1000, 10000);
-  EXPECT_LT(residentKb(), before + 1024);
+  EXPECT_LT(test::residentKb(), before + 1024);
   EXPECT_EQ(validationLog().count(), 0u);
 }
 
@@ -279,9 +269,9 @@ TEST(MeshSessionMemory, FlatOverTenThousandFramesWithoutTheLayer) {
   uint64_t at1000 = 0;
   for (uint32_t f = 0; f < 10000; ++f) {
     s.render(frame::orbit(start, b.center(), {0, 0, 1}, 1.0 * f));
-    if (f == 999) at1000 = residentKb();
+    if (f == 999) at1000 = test::residentKb();
   }
-  const uint64_t at10000 = residentKb();
+  const uint64_t at10000 = test::residentKb();
   std::printf("resident: %llu KB at frame 1000, %llu KB at frame 10000; %u plan changes\n",
               static_cast<unsigned long long>(at1000), static_cast<unsigned long long>(at10000),
               s.summary().planChanges);

@@ -17,6 +17,7 @@
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/session/scene_player.h"
 #include "support/plan_calibration.h"
+#include "support/process_memory.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 #include "support/test_data.h"
@@ -27,10 +28,7 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <set>
-
-#include <unistd.h>
 
 namespace osd_cull {
 namespace {
@@ -301,20 +299,14 @@ TEST(ScenePlanMemory, FlatWhileCullFramesAreBuiltAndEvictedWithoutTheLayer) {
   session::ScenePlayer player(context, s, planOptions(1), frame::PointUpdatePath::Cpu, &planner);
   player.setCachedFrames(2);
   EXPECT_THROW(player.setCachedFrames(0), Error);
-  auto residentKb = [] {
-    std::ifstream statm("/proc/self/statm");
-    uint64_t size = 0, resident = 0;
-    statm >> size >> resident;
-    return resident * (uint64_t(sysconf(_SC_PAGESIZE)) / 1024);
-  };
   const uint32_t frames = s.description.settings.frameCount;
   uint64_t at100 = 0;
   for (uint32_t f = 0; f < 250; ++f) {
     player.seek(f % frames);
     player.renderCurrent(f);
-    if (f == 99) at100 = residentKb();
+    if (f == 99) at100 = test::residentKb();
   }
-  const uint64_t at250 = residentKb();
+  const uint64_t at250 = test::residentKb();
   std::printf(
       "resident: %llu KB at frame 100, %llu KB at frame 250; %zu cull frames built, %zu kept\n",
       static_cast<unsigned long long>(at100), static_cast<unsigned long long>(at250),

@@ -105,6 +105,16 @@ plan::PlanInput MeshSession::planInput(const frame::Camera& camera) const {
   return in;
 }
 
+const vulkan::Buffer* MeshSession::cullData(const frame::CullSettings& cull) const {
+  return options_.cullData && !cull.backPatch.empty() ? options_.cullData(cull.backPatch) : nullptr;
+}
+
+std::unique_ptr<frame::CullPass> MeshSession::makePass(const frame::CullSettings& cull) const {
+  if (const vulkan::Buffer* data = cullData(cull))
+    return std::make_unique<frame::CullPass>(context_, gpu_, host_, cull, *data);
+  return std::make_unique<frame::CullPass>(context_, gpu_, host_, cull);
+}
+
 MeshSession::Configuration& MeshSession::configuration(const std::string& key,
                                                        const frame::CullFrameOptions& o) {
   const auto it = std::find_if(cache_.begin(), cache_.end(),
@@ -119,20 +129,15 @@ MeshSession::Configuration& MeshSession::configuration(const std::string& key,
   // A static mesh's points never move under the session: the one-pass stages may test the
   // precomputed per-patch boxes (CullSettings::staticPoints, docs/results/cull-kernel-floor.md).
   c.options.cull.staticPoints = !options_.deforming;
-  const vulkan::Buffer* data = options_.cullData && !o.cull.backPatch.empty()
-                                   ? options_.cullData(o.cull.backPatch)
-                                   : nullptr;
   if (!o.cull.occlusion.empty()) {
     // A planned configuration met for the first time starts with nothing visible: its
     // second pass draws the other stages' survivors (never every patch, as AllVisible's
     // first pass would); the fixed one keeps the options' policy.
     if (planner_) c.options.firstFrame = frame::FirstFrame::NoneVisible;
-    const frame::CullMesh mesh[] = {{&gpu_, &host_, data}};
+    const frame::CullMesh mesh[] = {{&gpu_, &host_, cullData(o.cull)}};
     c.frame = std::make_unique<frame::CullFrame>(context_, renderer_, target_, mesh, c.options);
-  } else if (data) {
-    c.pass = std::make_unique<frame::CullPass>(context_, gpu_, host_, c.options.cull, *data);
   } else {
-    c.pass = std::make_unique<frame::CullPass>(context_, gpu_, host_, c.options.cull);
+    c.pass = makePass(c.options.cull);
   }
   cache_.push_front(std::move(c));
   ++built_;
@@ -220,10 +225,7 @@ void MeshSession::count(const plan::Plan& p, const frame::Camera& camera, Sessio
     variant.stages = stages;
     frame::CullFrameOptions o = plan::applyPlan(variant, options_.frame);
     o.cull.staticPoints = !options_.deforming;
-    const vulkan::Buffer* data = options_.cullData ? options_.cullData(o.cull.backPatch) : nullptr;
-    const std::unique_ptr<frame::CullPass> pass =
-        data ? std::make_unique<frame::CullPass>(context_, gpu_, host_, o.cull, *data)
-             : std::make_unique<frame::CullPass>(context_, gpu_, host_, o.cull);
+    const std::unique_ptr<frame::CullPass> pass = makePass(o.cull);
     pass->run(camera, o.render.tessellation);
     planner_->observeCount(options_.name + "/" + options_.view, stages,
                            countByStage(pass->results()).backPatch, host_.patchCount());

@@ -175,6 +175,10 @@ class MeshSession {
     std::unique_ptr<frame::CullPass> pass;    // without
   };
   Configuration& configuration(const std::string& key, const frame::CullFrameOptions& o);
+  // The back-patch method's cull data the options' functor lends (null: the pass's own), and
+  // a one-pass CullPass of `cull` with it.
+  const vulkan::Buffer* cullData(const frame::CullSettings& cull) const;
+  std::unique_ptr<frame::CullPass> makePass(const frame::CullSettings& cull) const;
   SessionFrame draw(Configuration* c, const frame::Camera& camera,
                     const frame::CullFrameOptions& o);
   // Plan::countOnly: each variant's cull pass run once without drawing, its back-patch culls
