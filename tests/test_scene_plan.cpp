@@ -11,6 +11,7 @@
 #include "adapters/scene_file.h"
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/verify/item_comparison.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/plan/planner.h"
 #include "osd_cull/plan/scene_inputs.h"
@@ -277,6 +278,52 @@ TEST_F(ScenePlan, RatesAreLearnedAndFramesOfAChoiceAreReused) {
       learned = learned ||
                 planner.rate(plan::scenePlanKey(s, 0, i), m) != planner.options().priorRates.at(m);
   EXPECT_TRUE(learned);
+}
+
+TEST_F(ScenePlan, TheFirstFrameCountsOtherBackPatchVariantsOfStaticInstancesOnly) {
+  // Issue 18, scene form of Plan::countOnly: on a key's first frame every static instance runs
+  // the other offered back-patch variants in counting-only passes (no occlusion, no status),
+  // the planner learns their rates from them, and the frame drawn is the one without them.
+  // A deforming instance is left out (its other cone methods would need bounds passes of
+  // their own); no counting pass runs on the next frame.
+  scene::LoadedScene s = scene::builtInScene(8);
+  s.description.settings.width = 128;
+  s.description.settings.height = 96;
+  plan::Planner a(test::syntheticCalibration());
+  plan::PlannerOptions off;
+  off.countingProbes = false;
+  plan::Planner b(test::syntheticCalibration(), off);
+  session::ScenePlayer counting(context(), s, planOptions(4), frame::PointUpdatePath::Cpu, &a);
+  session::ScenePlayer plain(context(), s, planOptions(4), frame::PointUpdatePath::Cpu, &b);
+  const std::vector<session::ViewFrame> f = counting.render(0);
+  const std::vector<session::ViewFrame> g = plain.render(0);
+  ASSERT_EQ(f.size(), g.size());
+  uint32_t expected = 0;
+  bool staticCounted = false;
+  for (size_t i = 0; i < counting.instanceCount(); ++i) {
+    EXPECT_TRUE(g[0].plans[i].countOnly.empty());
+    EXPECT_TRUE(f[0].plans[i].stages == g[0].plans[i].stages) << f[0].plans[i].mesh;
+    if (counting.dynamicMesh(i)) continue;
+    expected += uint32_t(f[0].plans[i].countOnly.size());
+    for (const plan::StageChoice& v : f[0].plans[i].countOnly) {
+      staticCounted = true;
+      EXPECT_NE(
+          a.rate(plan::scenePlanKey(s, 0, i), plan::RateKey::backPatch(v.backPatch, v.accuracy)),
+          b.rate(plan::scenePlanKey(s, 0, i), plan::RateKey::backPatch(v.backPatch, v.accuracy)))
+          << f[0].plans[i].mesh << " " << v.describe() << ": learned, not the prior";
+    }
+  }
+  ASSERT_TRUE(staticCounted) << describe(f[0].plans);
+  EXPECT_EQ(f[0].countingPasses, expected);
+  EXPECT_EQ(g[0].countingPasses, 0u);
+  for (size_t v = 0; v < f.size(); ++v) {
+    const frame::ItemComparison c = frame::compareItems(counting.target(v).readItems(context()),
+                                                        plain.target(v).readItems(context()));
+    EXPECT_EQ(c.differing, 0u) << "view " << v;
+  }
+  const std::vector<session::ViewFrame> next = counting.render(1);
+  EXPECT_EQ(next[0].countingPasses, 0u);
+  EXPECT_EQ(validationLog().count(), 0u);
 }
 
 TEST(ScenePlanMemory, FlatWhileCullFramesAreBuiltAndEvictedWithoutTheLayer) {

@@ -72,6 +72,14 @@ std::string ms(double v) {
   return text;
 }
 
+/// The median of `values` (the mean of the two middle ones for an even count).
+double median(const std::deque<double>& values) {
+  std::vector<double> v(values.begin(), values.end());
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 }  // namespace
 
 const char* toString(BoxInView box) {
@@ -202,6 +210,7 @@ Planner::Planner(Calibration calibration, PlannerOptions options)
   if (!(options_.learnWeight > 0.0 && options_.learnWeight <= 1.0))
     throw Error("planner: learnWeight must be in (0, 1], got " +
                 std::to_string(options_.learnWeight));
+  if (options_.scaleWindow == 0) throw Error("planner: scaleWindow must be at least 1 frame");
   calibration_.drawMs(1.0);  // throws without draw costs
   if (options_.accuracy != "auto" && options_.accuracy != "bound" &&
       options_.accuracy != "listed" && options_.accuracy != "surface")
@@ -1056,28 +1065,46 @@ void Planner::observe(const std::string& key, const Plan& plan, const Observatio
   measured.backPatch = double(o.culledBackPatch) / o.total;
   measured.occlusion = double(o.culledOcclusion) / o.total;
   const Prediction model = predict(calibration_, plan.cost, plan.stages, measured);
-  const double drawModel = model.drawMs + model.fixedMs, cullModel = model.cullMs + model.hizMs;
-  // The first measurement replaces the calibration's figure (as a measured rate replaces
-  // its prior); later ones move the scale by learnWeight.
-  auto learnScale = [&](double& scale, bool& known, double ratio) {
+  // The draw work follows the patches the frame drew, which the cull counts tell only in a
+  // steady view: while the visibility status lags it (the first frames of a choice, a
+  // turning camera) pass 1 draws patches that this frame's test then calls occluded, and
+  // the frame costs what it drew (issue 18: BigGuy's first culled frames taught a draw
+  // scale of 1.6 and every later prediction was 20% high).
+  CullRates drawnRates = measured;
+  if (o.drawn && !plan.stages.occlusion.empty()) {
+    const double notDrawn = 1.0 - double(std::min(*o.drawn, o.total)) / o.total;
+    const double facingAway = (plan.stages.frustum ? measured.frustum : 0.0) +
+                              (plan.stages.backPatch.empty() ? 0.0 : measured.backPatch);
+    drawnRates.occlusion = std::max(0.0, notDrawn - facingAway);
+  }
+  const Prediction drawnModel = predict(calibration_, plan.cost, plan.stages, drawnRates);
+  const double drawModel = drawnModel.drawMs + drawnModel.fixedMs,
+               cullModel = model.cullMs + model.hizMs;
+  // A scale is the median of the last PlannerOptions::scaleWindow measured ratios: the first
+  // replaces the calibration's figure (as a measured rate replaces its prior), and one slow
+  // frame (lavapipe runs a frame after a heavy one up to 1.5x slower) moves it not at all.
+  auto learnScale = [&](double& scale, bool& known, std::deque<double>& recent, double ratio) {
     if (!std::isfinite(ratio)) return;
-    ratio = std::clamp(ratio, 0.05, 20.0);
-    scale = known ? (1.0 - options_.learnWeight) * scale + options_.learnWeight * ratio : ratio;
+    recent.push_back(std::clamp(ratio, 0.05, 20.0));
+    while (recent.size() > options_.scaleWindow) recent.pop_front();
+    scale = median(recent);
     known = true;
   };
   if (warm && o.ms > 0.0 && std::isfinite(o.ms) && drawModel > 0.0) {
     if (!culls) {
-      learnScale(s.drawScale, s.drawMeasured, o.ms / drawModel);
+      learnScale(s.drawScale, s.drawMeasured, s.drawRatios, o.ms / drawModel);
     } else if (std::isfinite(o.cullMs) && o.cullMs >= 0.0 && o.cullMs < o.ms) {
-      learnScale(s.drawScale, s.drawMeasured, (o.ms - o.cullMs) / drawModel);
-      if (cullModel > 0.0) learnScale(s.cullScale, s.cullMeasured, o.cullMs / cullModel);
+      learnScale(s.drawScale, s.drawMeasured, s.drawRatios, (o.ms - o.cullMs) / drawModel);
+      if (cullModel > 0.0)
+        learnScale(s.cullScale, s.cullMeasured, s.cullRatios, o.cullMs / cullModel);
     } else if (s.drawMeasured && cullModel > 0.0) {
       // Only the total: the draw scale as learned, the rest is the cull work's.
-      learnScale(s.cullScale, s.cullMeasured, (o.ms - s.drawScale * drawModel) / cullModel);
+      learnScale(s.cullScale, s.cullMeasured, s.cullRatios,
+                 (o.ms - s.drawScale * drawModel) / cullModel);
     } else {
       const double ratio = o.ms / (drawModel + cullModel);
-      learnScale(s.drawScale, s.drawMeasured, ratio);
-      learnScale(s.cullScale, s.cullMeasured, ratio);
+      learnScale(s.drawScale, s.drawMeasured, s.drawRatios, ratio);
+      learnScale(s.cullScale, s.cullMeasured, s.cullRatios, ratio);
     }
   }
   auto learn = [&](const RateKey& stage, uint32_t culled) {

@@ -207,6 +207,8 @@ struct PlannerOptions {
   bool countingProbes = true;
   /// Weight of a new measurement in the moving average of a rate.
   double learnWeight = 0.5;
+  /// Plan::drawScale and cullScale are the median of this many last measured frames.
+  size_t scaleWindow = 5;
   /// Aggressive culling (§3.1) shows newly visible patches one frame late: only when
   /// allowed.
   bool allowAggressive = false;
@@ -296,6 +298,10 @@ struct Observation {
   /// (CullFrameStats::gpu.pyramid + gpu.cull). NaN where the frame did not time it apart
   /// (one-pass culling): then `ms` corrects the two scales together.
   double cullMs = std::numeric_limits<double>::quiet_NaN();
+  /// Patches the frame drew, both passes (CullFrameStats::drawnPass1 + drawnPass2); unset
+  /// where not counted. The draw scale is learned against the drawn count: while the
+  /// visibility status lags the view, pass 1 draws patches the occlusion test then culls.
+  std::optional<uint32_t> drawn;
 };
 
 /// \brief The planner. One per program; it keeps a state per key (instance and view).
@@ -349,7 +355,8 @@ class Planner {
     // other's.
     double drawScale = 1.0, cullScale = 1.0;
     bool drawMeasured = false, cullMeasured = false;
-    std::vector<StageChoice> observed;  // the stage choices observed at least once
+    std::deque<double> drawRatios, cullRatios;  // the last measured / model ratios
+    std::vector<StageChoice> observed;          // the stage choices observed at least once
     double drawScaleNow() const { return drawMeasured || !cullMeasured ? drawScale : cullScale; }
     double cullScaleNow() const { return cullMeasured || !drawMeasured ? cullScale : drawScale; }
   };

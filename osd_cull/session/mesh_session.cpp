@@ -202,6 +202,7 @@ SessionFrame MeshSession::render(const frame::Camera& camera) {
     seen.culledOcclusion = f.stats.culledOcclusion;
     seen.total = f.stats.patchesTotal;
     seen.ms = f.stats.frameMs;
+    seen.drawn = f.stats.drawnPass1 + f.stats.drawnPass2;
     if (f.kind == FrameKind::TwoPass && f.stats.gpu.measured())
       seen.cullMs = f.stats.gpu.pyramid + f.stats.gpu.cull;
     planner_->observe(options_.name + "/" + options_.view, *p, seen);

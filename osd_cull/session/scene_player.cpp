@@ -10,6 +10,7 @@
 #include "osd_cull/scene/scene_eval.h"
 
 #include <array>
+#include <chrono>
 #include <map>
 #include <optional>
 
@@ -376,7 +377,47 @@ ViewFrame ScenePlayer::renderPlanned(size_t view, uint64_t frameIndex) {
       seen.cullMs = share / out.stats.frameMs * (out.stats.gpu.pyramid + out.stats.gpu.cull);
     planner_->observe(plan::scenePlanKey(scene_, view, i), p, seen);
   }
+  count(view, out);
   return out;
+}
+
+void ScenePlayer::count(size_t view, ViewFrame& out) {
+  const auto start = std::chrono::steady_clock::now();
+  const View& v = views_.at(view);
+  for (size_t i = 0; i < instances_.size(); ++i) {
+    const plan::Plan& p = out.plans[i];
+    // A deforming mesh's cull data of another cone method would need a bounds pass of its
+    // own on every frame from then on: its variants keep borrowing a sibling's rate
+    // (Planner::rate).
+    if (p.countOnly.empty() || points_[instances_[i].points]->dynamic) continue;
+    for (const plan::StageChoice& stages : p.countOnly) {
+      plan::Plan variant = p;
+      variant.stages = stages;
+      const frame::CullSettings planned = plan::applyPlan(variant, options_).cull;
+      const frame::CullStages s = cullStages(stages);
+      const frame::CullMesh m = cullMesh(i, &s, nullptr);
+      // The settings CullFrame gives this mesh's batch, without occlusion: the pass culls
+      // nothing that is drawn and touches no visibility status.
+      frame::CullSettings settings = planned;
+      settings.frustum = stages.frustum;
+      settings.backPatch = stages.backPatch;
+      settings.occlusion.clear();
+      if (m.backPatchValidity) settings.backPatchValidity = *m.backPatchValidity;
+      if (m.displacementMap) {
+        settings.displacementMap = m.displacementMap;
+        settings.uvCorners = m.uvCorners;
+        settings.displacedKernel = m.displacedKernel;
+      }
+      settings.staticPoints = m.displacementMap == nullptr;
+      frame::CullPass pass(context_, *m.gpu, *m.host, settings);
+      pass.run(frame::instanceCamera(v.camera, m.model), options_.render.tessellation);
+      planner_->observeCount(plan::scenePlanKey(scene_, view, i), stages,
+                             countByStage(pass.results()).backPatch, m.host->patchCount());
+      ++out.countingPasses;
+    }
+  }
+  out.countingMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 frame::FrameStats ScenePlayer::renderUnculled(size_t view, frame::RenderTarget& target) {

@@ -47,6 +47,10 @@ struct ViewFrame {
   std::vector<plan::Plan> plans;
   /// With a planner: false when no instance culls and the plain renderer drew the view.
   bool culled = true;
+  /// Counting-only passes run after the frame (plan::Plan::countOnly of the static
+  /// instances) and their wall time: outside `stats`, they draw nothing.
+  uint32_t countingPasses = 0;
+  double countingMs = 0.0;
 };
 
 /// \brief Work done for one set of shared control points (a mesh, or a deforming mesh at
@@ -173,6 +177,9 @@ class ScenePlayer {
   frame::CullFrame& fixedFrame(size_t view);  // the options' stages, built on first use
   frame::CullFrame& plannedFrame(size_t view, const std::vector<plan::Plan>& plans, bool& built);
   ViewFrame renderPlanned(size_t view, uint64_t frameIndex);
+  // Runs the plans' counting-only passes of `out` (Plan::countOnly) and feeds their
+  // back-patch culls to the planner.
+  void count(size_t view, ViewFrame& out);
   frame::FrameStats drawUnculled(size_t view, frame::RenderTarget& target);
 
   vulkan::Context& context_;
