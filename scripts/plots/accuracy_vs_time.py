@@ -27,6 +27,7 @@ import os
 import re
 import sys
 
+import plot_cli
 import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
@@ -372,7 +373,13 @@ def agreement(best, plan):
 
 
 def main():
-    folder, out = sys.argv[1], sys.argv[2]
+    parser = plot_cli.parser(__doc__)
+    parser.add_argument("folder", help="what scripts/study.sh left (docs/results/accuracy-vs-time)")
+    parser.add_argument("out", help="the Markdown page to write")
+    args = parser.parse_args()
+    folder, out = args.folder, args.out
+    if not os.path.isdir(folder):
+        parser.error(f"{folder}: not a folder")
     points = load_points(folder)
     if not points:
         sys.exit(f"accuracy_vs_time.py: no *-tessN.json in {folder}")

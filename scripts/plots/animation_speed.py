@@ -10,6 +10,7 @@ BigGuy with the limb skinning rig, the joints turning by up to the x value per f
 import csv
 import sys
 
+import plot_cli
 import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
@@ -23,6 +24,8 @@ def main(out, path):
         for r in csv.DictReader(f):
             series.setdefault(r["stages"], []).append(
                 (float(r["joint_deg"]), 100 * float(r["cull_rate"]), 100 * float(r["not_drawn"])))
+    if not series:
+        sys.exit(f"animation_speed.py: {path}: no bench-animation row")
     fig, ax = plt.subplots(figsize=(7, 4.2))
     colors = ["#1f77b4", "#d62728", "#2ca02c"]
     for (name, pts), color in zip(sorted(series.items()), colors):
@@ -40,6 +43,8 @@ def main(out, path):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    parser = plot_cli.parser(__doc__)
+    parser.add_argument("out", help="image to write (.png or .svg)")
+    parser.add_argument("csv", help="bench-animation's section-1 CSV (animation_speed.csv)")
+    args = parser.parse_args()
+    main(args.out, args.csv)

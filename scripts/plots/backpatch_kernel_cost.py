@@ -10,8 +10,8 @@ per method, the median over runs of each run's median ns/patch (log scale).
 """
 import re
 import statistics
-import sys
 
+import plot_cli
 import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
@@ -37,7 +37,13 @@ def load(path):
 
 
 def main():
-    runs = load(sys.argv[1])
+    parser = plot_cli.parser(__doc__)
+    parser.add_argument("runs", help="bench-cull tables, runs separated by '== table N' / '== factored N'")
+    parser.add_argument("out", help="image to write (.svg or .png)")
+    args = parser.parse_args()
+    runs = load(args.runs)
+    if not runs:
+        parser.error(f"{args.runs}: no '== table N' or '== factored N' run with a method row")
     fig, ax = plt.subplots(figsize=(8, 4))
     width = 0.38
     for k, (kernel, color) in enumerate([("table", "#7f7f7f"), ("factored", "#d62728")]):
@@ -51,7 +57,7 @@ def main():
     ax.set_title("Cull kernel cost, BigGuy level 2 (5554 patches), lavapipe, 2 shared cores")
     ax.legend()
     fig.tight_layout()
-    fig.savefig(sys.argv[2])
+    fig.savefig(args.out)
 
 
 if __name__ == "__main__":

@@ -9,8 +9,9 @@ Reads DIR/surface-level2-tessN.json and DIR/drawn-level2-tessN.json for every N 
 """
 import json
 import re
-import sys
 from pathlib import Path
+
+import plot_cli
 
 METHODS = [("tcone", "#1f77b4"), ("ncone", "#2ca02c"), ("tangent-plane", "#d62728")]
 
@@ -72,9 +73,13 @@ def svg(rates):
 
 
 def main():
-    if len(sys.argv) != 3:
-        raise SystemExit(__doc__)
-    Path(sys.argv[2]).write_text(svg(load(sys.argv[1])))
+    parser = plot_cli.parser(__doc__)
+    parser.add_argument("dir", help="folder of {surface,drawn}-level2-tessN.json (osd-cull verify --json)")
+    parser.add_argument("out", help="SVG to write")
+    args = parser.parse_args()
+    if not Path(args.dir).is_dir():
+        parser.error(f"{args.dir}: not a folder")
+    Path(args.out).write_text(svg(load(args.dir)))
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ The JSON files are `osd-cull verify --displaced-bound all --json` outputs.
 import json
 import sys
 
+import plot_cli
 import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
@@ -23,13 +24,25 @@ PAPER = {  # Table 1, percent
 
 
 def rates(path):
-    doc = json.load(open(path))
-    by = {m["name"]: 100.0 * m["cull_rate"] for m in doc["methods"]}
+    try:
+        doc = json.load(open(path))
+        by = {m["name"]: 100.0 * m["cull_rate"] for m in doc["methods"]}
+    except (json.JSONDecodeError, KeyError, TypeError) as e:
+        sys.exit(f"displacement_table1.py: {path}: not `osd-cull verify --json` output ({e})")
+    missing = [k for k in KERNELS if k not in by]
+    if missing:
+        sys.exit(f"displacement_table1.py: {path}: no method {', '.join(missing)} "
+                 "(run verify with --displaced-bound all)")
     return [by[k] for k in KERNELS]
 
 
 def main():
-    out, level0, level1 = sys.argv[1:4]
+    parser = plot_cli.parser(__doc__)
+    parser.add_argument("out", help="image to write (.svg or .png)")
+    parser.add_argument("level0", help="osd-cull verify --displaced-bound all --json, level 0")
+    parser.add_argument("level1", help="the same at level 1")
+    args = parser.parse_args()
+    out, level0, level1 = args.out, args.level0, args.level1
     rows = dict(PAPER)
     rows["BigGuy (ours, level 0)"] = rates(level0)
     rows["BigGuy (ours, level 1)"] = rates(level1)

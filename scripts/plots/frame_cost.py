@@ -12,6 +12,7 @@ break-even line at 1.
 import csv
 import sys
 
+import plot_cli
 import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
@@ -23,10 +24,14 @@ COLORS = {"frustum": "#1f77b4", "frustum + back-patch": "#2ca02c",
 
 
 def main():
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    with open(sys.argv[1], newline="") as f:
+    parser = plot_cli.parser(__doc__)
+    parser.add_argument("csv", help="bench-frame-cost --csv output (or frame_cost_tables.py's)")
+    parser.add_argument("out", help="image to write (.svg or .png)")
+    args = parser.parse_args()
+    with open(args.csv, newline="") as f:
         rows = list(csv.DictReader(f))
+    if not rows:
+        sys.exit(f"frame_cost.py: {args.csv}: no bench-frame-cost row")
     paths = list(dict.fromkeys(r["path"] for r in rows))
     fig, axes = plt.subplots(1, len(paths), figsize=(4.2 * len(paths), 4.0), sharey=True,
                              squeeze=False)
@@ -49,7 +54,7 @@ def main():
     axes[0][0].set_ylabel("frame time culled / unculled (dashed: ideal 1 - x)")
     axes[0][-1].legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(sys.argv[2])
+    fig.savefig(args.out)
 
 
 if __name__ == "__main__":

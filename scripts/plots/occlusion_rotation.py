@@ -13,9 +13,10 @@ last frame are still drawn in pass 1). The paper gives only the end points of it
 the text (25.5% at rest, 20.4% at 10 degrees per frame); they are drawn as two black dots
 joined by a dotted line.
 """
-import argparse
 import csv
 import sys
+
+import plot_cli
 from xml.sax.saxutils import escape
 
 PAPER = [(0.0, 25.5), (10.0, 20.4)]
@@ -35,6 +36,8 @@ def read_rows(paths):
         scenes.setdefault(r["scene"], []).append(
             (float(r["degrees_per_frame"]), float(r["occlusion_cull_rate_percent"]),
              float(r["not_drawn_percent"])))
+    if not scenes:
+        sys.exit(f"occlusion_rotation.py: no bench-occlusion row in {', '.join(paths)}")
     for points in scenes.values():
         points.sort()
     return scenes
@@ -114,7 +117,7 @@ def svg(scenes):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = plot_cli.parser(__doc__)
     parser.add_argument("svg", help="output file")
     parser.add_argument("csv", nargs="+", help="bench-occlusion --csv files")
     parser.add_argument("--scenes", help="scene names separated by semicolons (default: all in the CSVs)")

@@ -20,6 +20,7 @@ import csv
 import re
 import sys
 
+import plot_cli
 import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
@@ -50,19 +51,19 @@ def splice(bench_md, page_md):
 
 
 def main():
-    args = sys.argv[1:]
-    if "--splice" in args:
-        i = args.index("--splice")
-        if len(args) != i + 3:
-            sys.exit(__doc__)
-        splice(args[i + 1], args[i + 2])
-        args = args[:i]
-    if len(args) != 2:
-        sys.exit(__doc__)
-    sys.argv[1:] = args
-    with open(sys.argv[1], newline="") as f:
+    parser = plot_cli.parser(__doc__)
+    parser.add_argument("csv", help="bench-plan --csv output (runs concatenated)")
+    parser.add_argument("out", help="image to write (.png or .svg)")
+    parser.add_argument("--splice", nargs=2, metavar=("BENCH_MD", "PAGE_MD"),
+                        help="also put BENCH_MD between the bench-plan markers of PAGE_MD")
+    args = parser.parse_args()
+    if args.splice:
+        splice(*args.splice)
+    with open(args.csv, newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["case"] != "case"]
     cases = list(dict.fromkeys(r["case"] for r in rows))
+    if not cases:
+        sys.exit(f"{args.csv}: no bench-plan row")
     columns = len(cases) if len(cases) <= 3 else (len(cases) + 1) // 2
     lines = (len(cases) + columns - 1) // columns
     fig, axes = plt.subplots(lines, columns, figsize=(4.4 * columns, 4.0 * lines), squeeze=False)
@@ -85,7 +86,7 @@ def main():
         row[0].set_ylabel("frame ms (median, lavapipe)")
     axes[0][0].legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(sys.argv[2], dpi=110)
+    fig.savefig(args.out, dpi=110)
 
 
 if __name__ == "__main__":

@@ -10,8 +10,8 @@ Every table row of the input whose first cell is a number is a measurement; rows
 patch count (several runs) are reduced to their median.
 """
 import statistics
-import sys
 
+import plot_cli
 import plot_env  # noqa: F401  (first: finds matplotlib, selects Agg)
 import matplotlib
 
@@ -37,6 +37,8 @@ def main(src, dst):
     for r in rows(src):
         by_count.setdefault(int(r["patches"]), []).append(r)
     counts = sorted(by_count)
+    if not counts:
+        raise SystemExit(f"{src}: no bench-scale table (a header row starting 'grid')")
     series = {
         "cull ns/patch": "cull ns/patch",
         "peak RSS bytes/patch": "bytes/patch",
@@ -64,6 +66,8 @@ def main(src, dst):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    parser = plot_cli.parser(__doc__)
+    parser.add_argument("src", help="bench-scale's Markdown output")
+    parser.add_argument("dst", help="image to write (.svg or .png)")
+    args = parser.parse_args()
+    main(args.src, args.dst)

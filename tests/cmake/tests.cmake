@@ -77,3 +77,58 @@ if(OSD_CULL_PYTHON3)
     FAIL_REGULAR_EXPRESSION "plantedLongFunction")
   osd_cull_function_length_test(ScannerReadsItsKnownCases "self-test: all [0-9]+ cases pass" --self-test)
 endif()
+
+# Issue 22: every plot script of docs/results answers --help, draws its picture from the
+# committed inputs and refuses an empty input with a one-line error (scripts/plots/check_plots.py).
+if(OSD_CULL_PYTHON3)
+  foreach(_plot accuracy_vs_time animation_speed backpatch_kernel_cost backpatch_tess
+          displacement_table1 frame_cost frame_cost_tables large_coordinates occlusion_rotation
+          plan scale)
+    add_test(NAME Plots.${_plot} COMMAND ${OSD_CULL_PYTHON3}
+      ${PROJECT_SOURCE_DIR}/scripts/plots/check_plots.py --root ${PROJECT_SOURCE_DIR} --only ${_plot})
+    set_tests_properties(Plots.${_plot} PROPERTIES PASS_REGULAR_EXPRESSION "plot ${_plot}: ok"
+      FAIL_REGULAR_EXPRESSION "FAILED")
+  endforeach()
+endif()
+
+# Issue 22: every benchmark runs end to end at its smallest size (label bench-smoke): it exits 0
+# and prints at least one row of figures (a Markdown table row, or its own table's row or
+# summary line where it prints no Markdown). The figures themselves are not checked
+# here (benchmarks, not timed tests); a benchmark that no longer starts, or prints no table,
+# fails. Meshes from ../shared/data where the default is a shipped mesh.
+set(_shapes ${PROJECT_SOURCE_DIR}/../shared/data/shapes)
+function(osd_cull_bench_smoke name)
+  if(NOT TARGET ${name})
+    return()
+  endif()
+  if(NOT DEFINED OSD_CULL_SMOKE_ROW)
+    set(OSD_CULL_SMOKE_ROW "\n\\|[^\n]*\\| [0-9][0-9.]*%? \\|")  # a table row with a figure
+  endif()
+  add_test(NAME BenchSmoke.${name} COMMAND ${name} ${ARGN})
+  set_tests_properties(BenchSmoke.${name} PROPERTIES LABELS bench-smoke TIMEOUT 600
+    PASS_REGULAR_EXPRESSION "${OSD_CULL_SMOKE_ROW}" FAIL_REGULAR_EXPRESSION "rror:|Validation")
+endfunction()
+if(EXISTS ${_shapes}/catmark_cube.obj)
+  osd_cull_bench_smoke(bench-cull --width 64 --height 64 --repeats 1 --mesh ${_shapes}/catmark_cube.obj
+    --levels 1 --tess 1 --views 1 --methods frustum,tcone --frame-modes all --kernel-tess 1
+    --break-even-tess 1 --break-even-views 1 --floor-grids 10 --floor-views 1 --parts 1)
+  osd_cull_bench_smoke(bench-displaced --mesh ${_shapes}/catmark_cube.obj --levels 1 --views 1 --repeats 1)
+  osd_cull_bench_smoke(bench-displaced-tess --mesh ${_shapes}/catmark_cube.obj --level 1 --views 1
+    --repeats 1 --size 64 --pixels 8)
+  osd_cull_bench_smoke(bench-draw --width 64 --height 64 --repeats 1 --mesh ${_shapes}/catmark_cube.obj
+    --max-one-draw-level 2 --nu 4 --nv 4)
+  osd_cull_bench_smoke(bench-extraction --mesh ${_shapes}/catmark_cube.obj --levels 1 --repeats 1)
+  osd_cull_bench_smoke(bench-update ${_shapes}/catmark_cube.obj --frames 2 --levels 1)
+endif()
+osd_cull_bench_smoke(bench-animation --only 1 --size 64 --frames 2)
+osd_cull_bench_smoke(bench-frame-cost --width 64 --height 64 --repeats 1 --frames 2 --bigguy-level 0
+  --tess 1 --paths default-orbit --only F)
+set(OSD_CULL_SMOKE_ROW "\n +2 +192 +1 +2 +[0-9.]+ +[0-9.]+ +[0-9.]+")
+osd_cull_bench_smoke(bench-instances --counts 1,2 --frames 2 --tess 1)
+set(OSD_CULL_SMOKE_ROW "frames failing [^\n]*: 0 of 3")
+osd_cull_bench_smoke(bench-scene-image --frames 3 --width 32 --height 32 --tess 1 --every 1)
+unset(OSD_CULL_SMOKE_ROW)
+osd_cull_bench_smoke(bench-occlusion --width 64 --height 64 --repeats 1 --views 2 --sequence 2
+  --scenes default --only 1)
+osd_cull_bench_smoke(bench-plan --cases builtin --tess 1 --frames 1 --warmup 1 --width 64 --height 64)
+osd_cull_bench_smoke(bench-scale --grids 10,20 --views 1 --tess 1 --width 32 --height 32 --repeats 1)
