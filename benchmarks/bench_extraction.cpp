@@ -195,6 +195,122 @@ std::string machineNote() {
   return s.str();
 }
 
+// One level: set-up of both sides (interleaved), then their per-frame updates (interleaved),
+// table sizes and the largest difference of the two float outputs relative to `diag`.
+Row measureLevel(const CageMesh& cage, const std::vector<float>& cageXyz, double diag, int level,
+                 int setupRepeats, int repeats) {
+  std::cerr << "level " << level << ": extraction..." << std::flush;
+  Row row;
+  row.level = level;
+  PatchOptions options;
+  options.isolationLevel = level;
+  PatchExtraction ex;
+  std::unique_ptr<OsdPath> osd;
+  const std::vector<double> setup =
+      interleavedMedianMs(setupRepeats, {[&] { ex = extractPatches(cage, options); },
+                                         [&] { osd = std::make_unique<OsdPath>(cage, level); }});
+  row.oursSetupMs = setup[0];
+  row.osdSetupMs = setup[1];
+  row.stats = ex.stats;
+
+  std::cerr << " per-frame update..." << std::flush;
+  std::vector<float> ours(3 * ex.patches.points.size()), theirs(ours.size());
+  std::vector<glm::dvec3> oursDouble(ex.patches.points.size());
+  const std::vector<double> frame =
+      interleavedMedianMs(repeats, {[&] { ex.matrix.update(cageXyz, ours); },
+                                    [&] { ex.matrix.update(cage.positions, oursDouble); },
+                                    [&] { osd->update(cageXyz, theirs); }});
+  row.oursFloatMs = frame[0];
+  row.oursDoubleMs = frame[1];
+  row.osdFrameMs = frame[2];
+  row.oursTableMb =
+      (4.0 * ex.matrix.rowCount() + 8.0 * static_cast<double>(ex.matrix.nonZeroCount())) / 1e6;
+  row.osdTableMb = osd->tableMegabytes();
+  for (size_t i = 0; i < ours.size(); ++i)
+    row.maxDiff = std::max(row.maxDiff, double(std::abs(ours[i] - theirs[i])));
+  row.maxDiff /= diag;
+  std::cerr << " done\n";
+  return row;
+}
+
+// The Markdown table of the rows.
+std::string formatTable(const std::vector<Row>& rows) {
+  std::ostringstream table;
+  table << "| level | patches | Bézier | Gregory | control points | matrix non-zeros "
+           "| set-up ms, ours | set-up ms, OpenSubdiv | ratio "
+           "| per frame ms, ours (float) | per frame ms, ours (double) | per frame ms, "
+           "OpenSubdiv (float) | ratio (float) "
+           "| tables MB, ours / OpenSubdiv | max diff / diag |\n";
+  table << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Row& r : rows) {
+    const uint32_t bezier =
+        r.stats.regular + r.stats.boundary + r.stats.corner + r.stats.bsplineEndCaps;
+    char diff[32];
+    std::snprintf(diff, sizeof diff, "%.1e", r.maxDiff);
+    table << "| " << r.level << " | " << r.stats.patches() << " | " << bezier << " | "
+          << r.stats.gregory << " | " << r.stats.controlPoints << " | " << r.stats.matrixNonZeros
+          << " | " << fmt(r.oursSetupMs) << " | " << fmt(r.osdSetupMs) << " | "
+          << fmt(r.oursSetupMs / r.osdSetupMs) << " | " << fmt(r.oursFloatMs, 3) << " | "
+          << fmt(r.oursDoubleMs, 3) << " | " << fmt(r.osdFrameMs, 3) << " | "
+          << fmt(r.oursFloatMs / r.osdFrameMs) << " | " << fmt(r.oursTableMb, 1) << " / "
+          << fmt(r.osdTableMb, 1) << " | " << diff << " |\n";
+  }
+  return table.str();
+}
+
+// What --write puts on the page around the table.
+struct PageFacts {
+  std::filesystem::path mesh;
+  int vertices = 0, faces = 0;
+  int setupRepeats = 0, repeats = 0, maxLevel = 0;
+  std::string loadBefore, loadAfter;
+};
+
+void writePage(const std::string& path, const std::string& table, const PageFacts& f) {
+  std::ofstream out(path);
+  if (!out) throw Error("bench-extraction: cannot write " + path);
+  out << "# Patch extraction and per-frame update: osd_cull vs OpenSubdiv\n\n"
+      << "Mesh: `" << f.mesh.filename().string() << "` (" << f.vertices << " cage vertices, "
+      << f.faces << " faces), Gregory-basis end caps, infinitely sharp patches on.\n"
+      << "Medians of " << f.setupRepeats << " set-ups and " << f.repeats
+      << " per-frame updates, both sides in the same run, interleaved round by round.\n\n"
+      << table << "\n"
+      << "- *set-up, ours*: `extractPatches` — topology refiner, adaptive refinement, "
+         "`Far::PatchTable`, "
+         "double-precision refinement and local-point stencils, the composed cage → "
+         "control-point matrix "
+         "and the points.\n"
+      << "- *set-up, OpenSubdiv*: topology refiner, adaptive refinement, `Far::PatchTable`, "
+         "float "
+         "`Far::StencilTable` (what an OpenSubdiv program builds before its first frame).\n"
+      << "- *per frame, ours*: one pass of `PatchPointMatrix::update` over all control points "
+         "(float xyz "
+         "arrays; the double column uses `glm::dvec3`).\n"
+      << "- *per frame, OpenSubdiv*: `StencilTable::UpdateValues`, "
+         "`PatchTable::ComputeLocalPointValues`, then "
+         "per regular patch the boundary extrapolation and B-spline → Bézier conversion and "
+         "per Gregory "
+         "patch a gather of its 20 points, into the same layout.\n"
+      << "- *ratio* = ours / OpenSubdiv (below 1: ours is faster).\n"
+      << "- *tables MB*: what one frame reads besides the cage and the output: for ours the "
+         "row "
+         "sizes, column indices and float weights of the matrix; for OpenSubdiv the refinement "
+         "and local-point stencil tables, patch point indices and patch params. The composed "
+         "matrix saves the intermediate refined vertices and the per-patch conversion "
+         "arithmetic, but it reads more memory, so its per-frame time suffers more when "
+         "other processes compete for the caches (see the load average below).\n"
+      << "- *max diff / diag*: largest coordinate difference between the two float outputs, "
+         "relative to "
+         "the bounding-box diagonal.\n\n"
+      << "Machine: " << machineNote() << " Load average (1 min) " << f.loadBefore << " before and "
+      << f.loadAfter << " after the run."
+      << " Run-to-run variation on this VM is up to 1.5x; compare "
+         "within a run.\n\n"
+      << "Command (from the build directory):\n\n"
+      << "    ./benchmarks/bench-extraction --repeats " << f.repeats << " --levels " << f.maxLevel
+      << " --write ../docs/results/extraction.md\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -232,108 +348,14 @@ int main(int argc, char** argv) {
     const std::string loadBefore = loadAverage();
 
     std::vector<Row> rows;
-    for (int level = 1; level <= maxLevel; ++level) {
-      std::cerr << "level " << level << ": extraction..." << std::flush;
-      Row row;
-      row.level = level;
-      PatchOptions options;
-      options.isolationLevel = level;
-      PatchExtraction ex;
-      std::unique_ptr<OsdPath> osd;
-      const std::vector<double> setup = interleavedMedianMs(
-          setupRepeats, {[&] { ex = extractPatches(cage, options); },
-                         [&] { osd = std::make_unique<OsdPath>(cage, level); }});
-      row.oursSetupMs = setup[0];
-      row.osdSetupMs = setup[1];
-      row.stats = ex.stats;
-
-      std::cerr << " per-frame update..." << std::flush;
-      std::vector<float> ours(3 * ex.patches.points.size()), theirs(ours.size());
-      std::vector<glm::dvec3> oursDouble(ex.patches.points.size());
-      const std::vector<double> frame =
-          interleavedMedianMs(repeats, {[&] { ex.matrix.update(cageXyz, ours); },
-                                        [&] { ex.matrix.update(cage.positions, oursDouble); },
-                                        [&] { osd->update(cageXyz, theirs); }});
-      row.oursFloatMs = frame[0];
-      row.oursDoubleMs = frame[1];
-      row.osdFrameMs = frame[2];
-      row.oursTableMb =
-          (4.0 * ex.matrix.rowCount() + 8.0 * static_cast<double>(ex.matrix.nonZeroCount())) / 1e6;
-      row.osdTableMb = osd->tableMegabytes();
-      for (size_t i = 0; i < ours.size(); ++i)
-        row.maxDiff = std::max(row.maxDiff, double(std::abs(ours[i] - theirs[i])));
-      row.maxDiff /= diag;
-      std::cerr << " done\n";
-      rows.push_back(row);
-    }
-
-    std::ostringstream table;
-    table << "| level | patches | Bézier | Gregory | control points | matrix non-zeros "
-             "| set-up ms, ours | set-up ms, OpenSubdiv | ratio "
-             "| per frame ms, ours (float) | per frame ms, ours (double) | per frame ms, "
-             "OpenSubdiv (float) | ratio (float) "
-             "| tables MB, ours / OpenSubdiv | max diff / diag |\n";
-    table << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    for (const Row& r : rows) {
-      const uint32_t bezier =
-          r.stats.regular + r.stats.boundary + r.stats.corner + r.stats.bsplineEndCaps;
-      char diff[32];
-      std::snprintf(diff, sizeof diff, "%.1e", r.maxDiff);
-      table << "| " << r.level << " | " << r.stats.patches() << " | " << bezier << " | "
-            << r.stats.gregory << " | " << r.stats.controlPoints << " | " << r.stats.matrixNonZeros
-            << " | " << fmt(r.oursSetupMs) << " | " << fmt(r.osdSetupMs) << " | "
-            << fmt(r.oursSetupMs / r.osdSetupMs) << " | " << fmt(r.oursFloatMs, 3) << " | "
-            << fmt(r.oursDoubleMs, 3) << " | " << fmt(r.osdFrameMs, 3) << " | "
-            << fmt(r.oursFloatMs / r.osdFrameMs) << " | " << fmt(r.oursTableMb, 1) << " / "
-            << fmt(r.osdTableMb, 1) << " | " << diff << " |\n";
-    }
-    std::cout << table.str();
-    const std::string loadAfter = loadAverage();
-
+    for (int level = 1; level <= maxLevel; ++level)
+      rows.push_back(measureLevel(cage, cageXyz, diag, level, setupRepeats, repeats));
+    const std::string table = formatTable(rows);
+    std::cout << table;
     if (!writePath.empty()) {
-      std::ofstream out(writePath);
-      if (!out) throw Error("bench-extraction: cannot write " + writePath);
-      out << "# Patch extraction and per-frame update: osd_cull vs OpenSubdiv\n\n"
-          << "Mesh: `" << mesh.filename().string() << "` (" << cage.vertexCount()
-          << " cage vertices, " << cage.faceCount()
-          << " faces), Gregory-basis end caps, infinitely sharp patches on.\n"
-          << "Medians of " << setupRepeats << " set-ups and " << repeats
-          << " per-frame updates, both sides in the same run, interleaved round by round.\n\n"
-          << table.str() << "\n"
-          << "- *set-up, ours*: `extractPatches` — topology refiner, adaptive refinement, "
-             "`Far::PatchTable`, "
-             "double-precision refinement and local-point stencils, the composed cage → "
-             "control-point matrix "
-             "and the points.\n"
-          << "- *set-up, OpenSubdiv*: topology refiner, adaptive refinement, `Far::PatchTable`, "
-             "float "
-             "`Far::StencilTable` (what an OpenSubdiv program builds before its first frame).\n"
-          << "- *per frame, ours*: one pass of `PatchPointMatrix::update` over all control points "
-             "(float xyz "
-             "arrays; the double column uses `glm::dvec3`).\n"
-          << "- *per frame, OpenSubdiv*: `StencilTable::UpdateValues`, "
-             "`PatchTable::ComputeLocalPointValues`, then "
-             "per regular patch the boundary extrapolation and B-spline → Bézier conversion and "
-             "per Gregory "
-             "patch a gather of its 20 points, into the same layout.\n"
-          << "- *ratio* = ours / OpenSubdiv (below 1: ours is faster).\n"
-          << "- *tables MB*: what one frame reads besides the cage and the output: for ours the "
-             "row "
-             "sizes, column indices and float weights of the matrix; for OpenSubdiv the refinement "
-             "and local-point stencil tables, patch point indices and patch params. The composed "
-             "matrix saves the intermediate refined vertices and the per-patch conversion "
-             "arithmetic, but it reads more memory, so its per-frame time suffers more when "
-             "other processes compete for the caches (see the load average below).\n"
-          << "- *max diff / diag*: largest coordinate difference between the two float outputs, "
-             "relative to "
-             "the bounding-box diagonal.\n\n"
-          << "Machine: " << machineNote() << " Load average (1 min) " << loadBefore
-          << " before and " << loadAfter << " after the run."
-          << " Run-to-run variation on this VM is up to 1.5x; compare "
-             "within a run.\n\n"
-          << "Command (from the build directory):\n\n"
-          << "    ./benchmarks/bench-extraction --repeats " << repeats << " --levels " << maxLevel
-          << " --write ../docs/results/extraction.md\n";
+      writePage(writePath, table,
+                {mesh, cage.vertexCount(), cage.faceCount(), setupRepeats, repeats, maxLevel,
+                 loadBefore, loadAverage()});
       std::cerr << "wrote " << writePath << "\n";
     }
   } catch (const std::exception& e) {
