@@ -80,7 +80,32 @@ std::string characterScene(uint32_t frames) {
              "path": {"orbit": {"degreesPerSecond": 10}}}]})";
 }
 
-int run(const Args& a) {
+// Per view (and per view and instance): what each frame measured.
+struct Worst {
+  uint64_t lost = 0;
+  double differing = 0.0;  // share of the image
+  uint32_t frame = 0;
+};
+struct Series {
+  Series(size_t views, size_t instances)
+      : culledShare(views),
+        tesRatio(views),
+        culledMs(views),
+        plainMs(views),
+        plannedMs(views),
+        predictedMs(views),
+        plannedLost(views, 0),
+        choices(views, std::vector<std::map<std::string, uint32_t>>(instances)),
+        worst(views) {}
+  std::vector<std::vector<double>> culledShare, tesRatio, culledMs, plainMs, plannedMs, predictedMs;
+  std::vector<uint64_t> plannedLost;
+  // Per view and instance: how many frames each stage choice ran.
+  std::vector<std::vector<std::map<std::string, uint32_t>>> choices;
+  std::vector<Worst> worst;
+};
+
+// --scene: the built-in scene (with a sun view) or the character scene, at the image size.
+scene::LoadedScene loadBenchScene(const Args& a) {
   if (a.scene != "built-in" && a.scene != "character")
     throw Error("--scene: '" + a.scene + "' is neither built-in nor character");
   scene::LoadedScene s = a.scene == "built-in"
@@ -97,6 +122,61 @@ int run(const Args& a) {
     sun.width = sun.height = a.height;
     s.description.views.push_back(sun);
   }
+  return s;
+}
+
+// The per-view summary over all frames.
+void printSummary(const scene::LoadedScene& s, const session::ScenePlayer& player,
+                  const Series& series, uint32_t frames) {
+  const auto& [culledShare, tesRatio, culledMs, plainMs, plannedMs, predictedMs, plannedLost,
+               choices, worst] = series;
+  std::printf("\nsummary over %u frames (worst: largest over all frames; medians per frame)\n",
+              frames);
+  std::printf("%-5s %10s %15s %11s %14s %15s %12s\n", "view", "worst lost", "worst differing",
+              "at frame", "median culled", "median TES/plain", "median ms c/p");
+  for (size_t v = 0; v < player.viewCount(); ++v)
+    std::printf("%-5s %10llu %14.4f%% %11u %13.1f%% %15.3f %6.2f/%.2f\n",
+                s.description.views[v].name.c_str(), static_cast<unsigned long long>(worst[v].lost),
+                100.0 * worst[v].differing, worst[v].frame, 100.0 * bench::median(culledShare[v]),
+                bench::median(tesRatio[v]), bench::median(culledMs[v]), bench::median(plainMs[v]));
+}
+
+// --plan: the planned frame against all stages and unculled, and what the plan chose.
+void printPlanSummary(const scene::LoadedScene& s, const session::ScenePlayer& player,
+                      const session::ScenePlayer& planned, const Series& series) {
+  const auto& [culledShare, tesRatio, culledMs, plainMs, plannedMs, predictedMs, plannedLost,
+               choices, worst] = series;
+  std::printf(
+      "\nplan (medians per frame, ms; planned, all stages and unculled interleaved in each "
+      "frame)\n%-5s %9s %9s %9s %16s %14s %12s\n",
+      "view", "planned", "all", "unculled", "planned/better", "predicted/meas", "lost pixels");
+  for (size_t v = 0; v < player.viewCount(); ++v) {
+    const double p = bench::median(plannedMs[v]), all = bench::median(culledMs[v]),
+                 none = bench::median(plainMs[v]);
+    std::printf("%-5s %9.2f %9.2f %9.2f %16.3f %14.3f %12llu\n",
+                s.description.views[v].name.c_str(), p, all, none, p / std::min(all, none),
+                bench::median(predictedMs[v]) / p, static_cast<unsigned long long>(plannedLost[v]));
+  }
+  for (size_t v = 0; v < player.viewCount(); ++v)
+    for (size_t i = 0; i < player.instanceCount(); ++i) {
+      std::string line;
+      for (const auto& [choice, n] : choices[v][i])
+        line += (line.empty() ? "" : ", ") + choice + " (" + std::to_string(n) + ")";
+      std::printf("planned %s / %s: %s\n", s.description.views[v].name.c_str(),
+                  s.description.instances[i].name.c_str(), line.c_str());
+    }
+  for (const session::MeshWork& w : planned.work())
+    std::printf("planned mesh '%s': %s, %llu point updates, %llu bounds dispatches\n",
+                w.mesh.c_str(), w.deforms ? "deforms" : "static",
+                static_cast<unsigned long long>(w.pointUpdates),
+                static_cast<unsigned long long>(w.boundsDispatches));
+  for (size_t v = 0; v < player.viewCount(); ++v)
+    std::printf("view %s: %zu CullFrame(s) built for the plan's choices\n",
+                s.description.views[v].name.c_str(), planned.cullFrameCount(v));
+}
+
+int run(const Args& a) {
+  scene::LoadedScene s = loadBenchScene(a);
 
   vulkan::Context context;
   frame::CullFrameOptions options;
@@ -124,11 +204,9 @@ int run(const Args& a) {
         context, s, options,
         a.gpuPoints ? frame::PointUpdatePath::Gpu : frame::PointUpdatePath::Cpu, planner.get());
   }
-  std::vector<std::vector<double>> plannedMs(player.viewCount()), predictedMs(player.viewCount());
-  std::vector<uint64_t> plannedLost(player.viewCount(), 0);
-  // Per view and instance: how many frames each stage choice ran.
-  std::vector<std::vector<std::map<std::string, uint32_t>>> choices(
-      player.viewCount(), std::vector<std::map<std::string, uint32_t>>(player.instanceCount()));
+  Series series(player.viewCount(), player.instanceCount());
+  auto& [culledShare, tesRatio, culledMs, plainMs, plannedMs, predictedMs, plannedLost, choices,
+         worst] = series;
   std::vector<std::unique_ptr<frame::RenderTarget>> plannedPlain;
   if (planned)
     for (size_t v = 0; v < player.viewCount(); ++v)
@@ -139,14 +217,6 @@ int run(const Args& a) {
   for (size_t v = 0; v < player.viewCount(); ++v)
     plain.push_back(std::make_unique<frame::RenderTarget>(context, player.target(v).width(),
                                                           player.target(v).height()));
-  struct Worst {
-    uint64_t lost = 0;
-    double differing = 0.0;  // share of the image
-    uint32_t frame = 0;
-  };
-  std::vector<Worst> worst(player.viewCount());
-  std::vector<std::vector<double>> culledShare(player.viewCount()), tesRatio(player.viewCount()),
-      culledMs(player.viewCount()), plainMs(player.viewCount());
   uint32_t failedFrames = 0;
   std::printf("\n%6s %-5s %9s %8s %6s %11s %10s %9s %9s\n", "frame", "view", "culled", "covered",
               "lost", "differing", "TES ratio", "culled ms", "plain ms");
@@ -197,45 +267,8 @@ int run(const Args& a) {
     failedFrames += failed;
   }
 
-  std::printf("\nsummary over %u frames (worst: largest over all frames; medians per frame)\n",
-              a.frames);
-  std::printf("%-5s %10s %15s %11s %14s %15s %12s\n", "view", "worst lost", "worst differing",
-              "at frame", "median culled", "median TES/plain", "median ms c/p");
-  for (size_t v = 0; v < player.viewCount(); ++v)
-    std::printf("%-5s %10llu %14.4f%% %11u %13.1f%% %15.3f %6.2f/%.2f\n",
-                s.description.views[v].name.c_str(), static_cast<unsigned long long>(worst[v].lost),
-                100.0 * worst[v].differing, worst[v].frame, 100.0 * bench::median(culledShare[v]),
-                bench::median(tesRatio[v]), bench::median(culledMs[v]), bench::median(plainMs[v]));
-  if (planned) {
-    std::printf(
-        "\nplan (medians per frame, ms; planned, all stages and unculled interleaved in each "
-        "frame)\n%-5s %9s %9s %9s %16s %14s %12s\n",
-        "view", "planned", "all", "unculled", "planned/better", "predicted/meas", "lost pixels");
-    for (size_t v = 0; v < player.viewCount(); ++v) {
-      const double p = bench::median(plannedMs[v]), all = bench::median(culledMs[v]),
-                   none = bench::median(plainMs[v]);
-      std::printf("%-5s %9.2f %9.2f %9.2f %16.3f %14.3f %12llu\n",
-                  s.description.views[v].name.c_str(), p, all, none, p / std::min(all, none),
-                  bench::median(predictedMs[v]) / p,
-                  static_cast<unsigned long long>(plannedLost[v]));
-    }
-    for (size_t v = 0; v < player.viewCount(); ++v)
-      for (size_t i = 0; i < player.instanceCount(); ++i) {
-        std::string line;
-        for (const auto& [choice, n] : choices[v][i])
-          line += (line.empty() ? "" : ", ") + choice + " (" + std::to_string(n) + ")";
-        std::printf("planned %s / %s: %s\n", s.description.views[v].name.c_str(),
-                    s.description.instances[i].name.c_str(), line.c_str());
-      }
-    for (const session::MeshWork& w : planned->work())
-      std::printf("planned mesh '%s': %s, %llu point updates, %llu bounds dispatches\n",
-                  w.mesh.c_str(), w.deforms ? "deforms" : "static",
-                  static_cast<unsigned long long>(w.pointUpdates),
-                  static_cast<unsigned long long>(w.boundsDispatches));
-    for (size_t v = 0; v < player.viewCount(); ++v)
-      std::printf("view %s: %zu CullFrame(s) built for the plan's choices\n",
-                  s.description.views[v].name.c_str(), planned->cullFrameCount(v));
-  }
+  printSummary(s, player, series, a.frames);
+  if (planned) printPlanSummary(s, player, *planned, series);
   for (const session::MeshWork& w : player.work())
     std::printf("mesh '%s': %s, %llu point updates, %llu bounds dispatches\n", w.mesh.c_str(),
                 w.deforms ? "deforms" : "static", static_cast<unsigned long long>(w.pointUpdates),
