@@ -205,6 +205,52 @@ std::string loadAverage() {
   return ok ? text : "?";
 }
 
+// The levels of --tess, then those of --adaptive (label "aN": N pixels per segment).
+std::vector<std::pair<std::string, frame::TessellationOptions>> tessellationLevels(
+    const Options& o, const vulkan::Context& context) {
+  std::vector<std::pair<std::string, frame::TessellationOptions>> levels;
+  for (uint32_t tess : o.tess) {
+    frame::TessellationOptions t;
+    t.uniformLevel = tess;
+    levels.push_back({std::to_string(tess), t});
+  }
+  for (uint32_t pixels : o.adaptive) {
+    frame::TessellationOptions t;
+    t.mode = frame::TessellationOptions::Mode::Adaptive;
+    t.pixelsPerSegment = pixels;
+    t.maxLevel = context.info().limits.maxTessellationGenerationLevel;
+    levels.push_back({"a" + std::to_string(pixels), t});
+  }
+  return levels;
+}
+
+// One table row (and CSV line) of a level: the medians of the three sides, the plan's
+// choices, and whether it is within 5% of the better fixed choice and its prediction within 25%.
+void reportLevel(const std::string& caseName, const std::string& label, const Row& row,
+                 Tally& tally, FILE* csv) {
+  const double none = median(row.none), allMs = median(row.all), plannedMs = median(row.planned),
+               predicted = median(row.predicted);
+  const double best = std::min(none, allMs);
+  std::string choices;
+  for (const auto& [choice, count] : row.choices)
+    choices += (choices.empty() ? "" : "; ") + choice + " (" + std::to_string(count) + ")";
+  choices += "; " + std::to_string(row.changes) + " plan changes";
+  const bool within5 = plannedMs <= 1.05 * best,
+             within25 = std::abs(predicted / plannedMs - 1.0) <= 0.25;
+  ++tally.levels;
+  tally.within5 += within5;
+  tally.within25 += within25;
+  std::printf("| %s | %.1f | %.1f | %.1f | %s | %.2f | %s | %.1f | %.2f | %s |\n", label.c_str(),
+              none, allMs, plannedMs, choices.c_str(), plannedMs / best, within5 ? "yes" : "**no**",
+              predicted, predicted / plannedMs, within25 ? "yes" : "**no**");
+  std::fflush(stdout);
+  if (csv) {
+    std::fprintf(csv, "\"%s\",%s,%.4f,%.4f,%.4f,%.4f,\"%s\"\n", caseName.c_str(), label.c_str(),
+                 none, allMs, plannedMs, predicted, choices.c_str());
+    std::fflush(csv);
+  }
+}
+
 Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Options& o,
               FILE* csv) {
   Tally tally;
@@ -249,20 +295,7 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
     return &c.dynamic->cullData(frame::cullMethod(method).reference);
   };
   uint64_t frameNumber = 0;
-  // The uniform levels, then the adaptive ones (label "aN": N pixels per segment).
-  std::vector<std::pair<std::string, frame::TessellationOptions>> levels;
-  for (uint32_t tess : o.tess) {
-    frame::TessellationOptions t;
-    t.uniformLevel = tess;
-    levels.push_back({std::to_string(tess), t});
-  }
-  for (uint32_t pixels : o.adaptive) {
-    frame::TessellationOptions t;
-    t.mode = frame::TessellationOptions::Mode::Adaptive;
-    t.pixelsPerSegment = pixels;
-    t.maxLevel = context.info().limits.maxTessellationGenerationLevel;
-    levels.push_back({"a" + std::to_string(pixels), t});
-  }
+  const auto levels = tessellationLevels(o, context);
   for (const auto& [label, tessellation] : levels) {
     bench::progress(c.name + ": tess " + label);
     frame::CullFrameOptions base;
@@ -329,28 +362,7 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
       ++row.choices[p.stages.describe() + (p.probe ? " [probe]" : "")];
       row.changes += m.planChanged && f > 0;
     }
-    const double none = median(row.none), allMs = median(row.all), plannedMs = median(row.planned),
-                 predicted = median(row.predicted);
-    const double best = std::min(none, allMs);
-    std::string choices;
-    for (const auto& [name, count] : row.choices)
-      choices += (choices.empty() ? "" : "; ") + name + " (" + std::to_string(count) + ")";
-    choices += "; " + std::to_string(row.changes) + " plan changes";
-    const bool within5 = plannedMs <= 1.05 * best,
-               within25 = std::abs(predicted / plannedMs - 1.0) <= 0.25;
-    ++tally.levels;
-    tally.within5 += within5;
-    tally.within25 += within25;
-    std::printf("| %s | %.1f | %.1f | %.1f | %s | %.2f | %s | %.1f | %.2f | %s |\n", label.c_str(),
-                none, allMs, plannedMs, choices.c_str(), plannedMs / best,
-                within5 ? "yes" : "**no**", predicted, predicted / plannedMs,
-                within25 ? "yes" : "**no**");
-    std::fflush(stdout);
-    if (csv) {
-      std::fprintf(csv, "\"%s\",%s,%.4f,%.4f,%.4f,%.4f,\"%s\"\n", c.name.c_str(), label.c_str(),
-                   none, allMs, plannedMs, predicted, choices.c_str());
-      std::fflush(csv);
-    }
+    reportLevel(c.name, label, row, tally, csv);
   }
   std::printf("\n**%s:** %s (load average %s).\n", c.name.c_str(), tally.text().c_str(),
               loadAverage().c_str());
