@@ -769,6 +769,74 @@ class FloorLoops {
   uint32_t survivors_ = 0;
 };
 
+// A kernel of the floors table and its floor loop (nullptr: none), with their samples.
+struct FloorRow {
+  std::string kernel, floor;
+  std::unique_ptr<frame::CullPass> pass;
+  std::function<double(const frame::Camera&)> floorMs;
+  std::vector<double> ms, cpuMs, floorSamples, floorCpuMs;
+  uint64_t culled = 0;
+};
+
+// Every kernel, then its floor loop, per camera and repeat (interleaved); the culls of the
+// first repeat of each camera.
+void measureFloorRows(std::vector<FloorRow>& rows, const std::vector<frame::Camera>& cameras,
+                      const frame::TessellationOptions& tessellation, uint32_t repeats,
+                      uint32_t n) {
+  for (FloorRow& r : rows) r.pass->run(cameras[0], tessellation);  // compile (or cache)
+  for (const frame::Camera& camera : cameras)
+    for (uint32_t rep = 0; rep < repeats; ++rep)
+      for (FloorRow& r : rows) {
+        double cpu = processCpuMs();
+        r.ms.push_back(r.pass->run(camera, tessellation));
+        r.cpuMs.push_back(processCpuMs() - cpu);
+        if (rep == 0) r.culled += n - r.pass->counts().survivors();
+        if (!r.floorMs) continue;
+        cpu = processCpuMs();
+        r.floorSamples.push_back(r.floorMs(camera));
+        r.floorCpuMs.push_back(processCpuMs() - cpu);
+      }
+}
+
+// The floors table: per kernel its ns/patch, its floor's and their ratio (GPU and CPU time),
+// construction cost where timed, and the tangent plane / ncone ratios.
+void printFloorRows(const std::vector<FloorRow>& rows, uint32_t n, size_t views,
+                    double constructionMs, double gpuConstructionMs) {
+  auto nsPerPatch = [&](const std::vector<double>& ms) { return median(ms) * 1e6 / n; };
+  for (const FloorRow& r : rows) {
+    const double kernel = nsPerPatch(r.ms);
+    const double rate = 100.0 * double(r.culled) / double(n) / double(views);
+    const double kernelCpu = nsPerPatch(r.cpuMs);
+    char floorNs[32] = "-", ratio[32] = "-", floorCpu[32] = "-", cpuRatio[32] = "-", build[32] = "";
+    if (!r.floorSamples.empty()) {
+      std::snprintf(floorNs, sizeof floorNs, "%.2f", nsPerPatch(r.floorSamples));
+      std::snprintf(ratio, sizeof ratio, "%.1f", kernel / nsPerPatch(r.floorSamples));
+      std::snprintf(floorCpu, sizeof floorCpu, "%.2f", nsPerPatch(r.floorCpuMs));
+      std::snprintf(cpuRatio, sizeof cpuRatio, "%.1f", kernelCpu / nsPerPatch(r.floorCpuMs));
+    }
+    if (r.kernel == "frustum + ncone/surface")
+      std::snprintf(build, sizeof build, "%.2f (host cones)", constructionMs * 1e3 / n);
+    if (r.kernel == "frustum + ncone/surface, GPU cones")
+      std::snprintf(build, sizeof build, "%.2f (bounds pass)", gpuConstructionMs * 1e3 / n);
+    std::printf("| %u | %s | %.1f%% | %.1f | %s | %s | %s | %.1f | %s | %s | %s |\n", n,
+                r.kernel.c_str(), rate, kernel, r.floor.c_str(), floorNs, ratio, kernelCpu,
+                floorCpu, cpuRatio, build);
+  }
+  auto kernelOf = [&](const std::string& name, bool cpu) {
+    for (const FloorRow& r : rows)
+      if (r.kernel == name) return nsPerPatch(cpu ? r.cpuMs : r.ms);
+    return 0.0;
+  };
+  std::printf(
+      "| %u | tangent plane / ncone | | %.1f (surface), %.1f (drawn) | | | | %.1f (surface), "
+      "%.1f (drawn) | | | |\n",
+      n, kernelOf("tangent-plane/surface", false) / kernelOf("ncone/surface", false),
+      kernelOf("tangent-plane", false) / kernelOf("ncone", false),
+      kernelOf("tangent-plane/surface", true) / kernelOf("ncone/surface", true),
+      kernelOf("tangent-plane", true) / kernelOf("ncone", true));
+  std::fflush(stdout);
+}
+
 void kernelFloors(vulkan::Context& context, const Options& o) {
   std::printf("\nkernels against their floors (%s at the start)\n\n",
               bench::machineState().c_str());
@@ -814,18 +882,11 @@ void kernelFloors(vulkan::Context& context, const Options& o) {
             .count();
     const FloorData data = floorData(set, ncone->cones());
     FloorLoops floors(set, data);
-    struct Row {
-      std::string kernel, floor;
-      std::unique_ptr<frame::CullPass> pass;
-      std::function<double(const frame::Camera&)> floorMs;
-      std::vector<double> ms, cpuMs, floorSamples, floorCpuMs;
-      uint64_t culled = 0;
-    };
     auto eyeOf = [](const frame::Camera& c) {
       return bound::makeCullView(c.viewProjection()).eye.value_or(glm::dvec3(0.0));
     };
     auto viewProj = [](const frame::Camera& c) { return glm::mat4(c.viewProjection()); };
-    std::vector<Row> rows;
+    std::vector<FloorRow> rows;
     auto add = [&](const std::string& kernel, std::unique_ptr<frame::CullPass> pass,
                    const std::string& floor, std::function<double(const frame::Camera&)> f) {
       rows.push_back({kernel, floor, std::move(pass), std::move(f), {}, {}, {}, {}, 0});
@@ -867,52 +928,8 @@ void kernelFloors(vulkan::Context& context, const Options& o) {
     const auto cameras = frame::randomViews(frame::boundsOf(set.points), vo);
     frame::TessellationOptions tessellation;
     tessellation.uniformLevel = o.kernelTess.at(0);
-    for (Row& r : rows) r.pass->run(cameras[0], tessellation);  // compile (or cache)
-    for (const frame::Camera& camera : cameras)
-      for (uint32_t rep = 0; rep < o.repeats; ++rep)
-        for (Row& r : rows) {
-          double cpu = processCpuMs();
-          r.ms.push_back(r.pass->run(camera, tessellation));
-          r.cpuMs.push_back(processCpuMs() - cpu);
-          if (rep == 0) r.culled += n - r.pass->counts().survivors();
-          if (!r.floorMs) continue;
-          cpu = processCpuMs();
-          r.floorSamples.push_back(r.floorMs(camera));
-          r.floorCpuMs.push_back(processCpuMs() - cpu);
-        }
-    auto nsPerPatch = [&](const std::vector<double>& ms) { return median(ms) * 1e6 / n; };
-    for (const Row& r : rows) {
-      const double kernel = nsPerPatch(r.ms);
-      const double rate = 100.0 * double(r.culled) / double(n) / double(cameras.size());
-      const double kernelCpu = nsPerPatch(r.cpuMs);
-      char floorNs[32] = "-", ratio[32] = "-", floorCpu[32] = "-", cpuRatio[32] = "-",
-           build[32] = "";
-      if (!r.floorSamples.empty()) {
-        std::snprintf(floorNs, sizeof floorNs, "%.2f", nsPerPatch(r.floorSamples));
-        std::snprintf(ratio, sizeof ratio, "%.1f", kernel / nsPerPatch(r.floorSamples));
-        std::snprintf(floorCpu, sizeof floorCpu, "%.2f", nsPerPatch(r.floorCpuMs));
-        std::snprintf(cpuRatio, sizeof cpuRatio, "%.1f", kernelCpu / nsPerPatch(r.floorCpuMs));
-      }
-      if (r.kernel == "frustum + ncone/surface")
-        std::snprintf(build, sizeof build, "%.2f (host cones)", constructionMs * 1e3 / n);
-      if (r.kernel == "frustum + ncone/surface, GPU cones")
-        std::snprintf(build, sizeof build, "%.2f (bounds pass)", gpuConstructionMs * 1e3 / n);
-      std::printf("| %u | %s | %.1f%% | %.1f | %s | %s | %s | %.1f | %s | %s | %s |\n", n,
-                  r.kernel.c_str(), rate, kernel, r.floor.c_str(), floorNs, ratio, kernelCpu,
-                  floorCpu, cpuRatio, build);
-    }
-    auto kernelOf = [&](const std::string& name, bool cpu) {
-      for (const Row& r : rows)
-        if (r.kernel == name) return nsPerPatch(cpu ? r.cpuMs : r.ms);
-      return 0.0;
-    };
-    std::printf(
-        "| %u | tangent plane / ncone | | %.1f (surface), %.1f (drawn) | | | | %.1f (surface), "
-        "%.1f (drawn) | | | |\n",
-        n, kernelOf("tangent-plane/surface", false) / kernelOf("ncone/surface", false),
-        kernelOf("tangent-plane", false) / kernelOf("ncone", false),
-        kernelOf("tangent-plane/surface", true) / kernelOf("ncone/surface", true),
-        kernelOf("tangent-plane", true) / kernelOf("ncone", true));
+    measureFloorRows(rows, cameras, tessellation, o.repeats, n);
+    printFloorRows(rows, n, cameras.size(), constructionMs, gpuConstructionMs);
     std::fflush(stdout);
   }
   std::printf("\n(%s at the end)\n", bench::machineState().c_str());

@@ -111,7 +111,7 @@ endfunction()
 if(EXISTS ${_shapes}/catmark_cube.obj)
   osd_cull_bench_smoke(bench-cull --width 64 --height 64 --repeats 1 --mesh ${_shapes}/catmark_cube.obj
     --levels 1 --tess 1 --views 1 --methods frustum,tcone --frame-modes all --kernel-tess 1
-    --break-even-tess 1 --break-even-views 1 --floor-grids 10 --floor-views 1 --parts 1)
+    --break-even-tess 1 --break-even-views 1 --floor-grids 10 --floor-views 1 --parts 14)
   osd_cull_bench_smoke(bench-displaced --mesh ${_shapes}/catmark_cube.obj --levels 1 --views 1 --repeats 1)
   osd_cull_bench_smoke(bench-displaced-tess --mesh ${_shapes}/catmark_cube.obj --level 1 --views 1
     --repeats 1 --size 64 --pixels 8)
