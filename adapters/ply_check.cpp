@@ -90,6 +90,68 @@ struct Header {
 // "format TYPE VERSION" right after "ply"; "element NAME COUNT" with COUNT an unsigned int;
 // list count types uint8, uchar, uint16 or int; in "face", vertex_indices first (OpenMesh
 // drops properties declared before it, and would read their values as indices).
+// A 'property' line of the header: appended to the last element.
+void parseProperty(LineReader& lines, const std::vector<std::string_view>& tokens, Header& h) {
+  if (h.elements.empty()) lines.fail("'property' before any 'element'");
+  PlyElement& e = h.elements.back();
+  PlyProperty p;
+  p.list = tokens.size() >= 2 && tokens[1] == "list";
+  if (tokens.size() != (p.list ? 5u : 3u))
+    lines.fail(p.list ? "expected 'property list COUNT-TYPE ITEM-TYPE NAME'"
+                      : "expected 'property TYPE NAME'");
+  p.countType = p.list ? plyType(tokens[2]) : PlyType::Unknown;
+  p.type = plyType(tokens[p.list ? 3 : 1]);
+  p.name = std::string(tokens.back());
+  if (p.type == PlyType::Unknown) lines.fail("unknown PLY property type in " + quote(lines.line()));
+  if (p.list) {
+    const std::string_view ct = tokens[2];
+    if (ct != "uchar" && ct != "uint8" && ct != "uint16" && ct != "int")
+      lines.fail("list count type " + quote(ct) +
+                 " is not supported (uchar, uint8, uint16 or int)");
+    if (e.name != "face") lines.fail("list properties are only supported in the 'face' element");
+    if (e.isFaceIndexList(p) && !e.properties.empty())
+      lines.fail("'" + p.name + "' must be the first property of 'face'");
+  }
+  e.properties.push_back(p);
+}
+
+// Counts must fit the bytes that follow (an ASCII value takes at least two bytes), so a
+// header claiming 10^12 elements is refused before anything is read; the vertex and face
+// elements are there and not empty.
+void checkCounts(std::string_view bytes, const std::string& file, Header& h) {
+  const auto available = static_cast<int64_t>(bytes.size() - h.dataStart);
+  int64_t needed = 0;
+  bool haveVertex = false, haveFace = false;
+  for (const PlyElement& e : h.elements) {
+    int64_t perItem = 0;
+    bool x = false, y = false, z = false, list = false;
+    for (const PlyProperty& p : e.properties) {
+      perItem += h.info.ascii ? 2 : byteSize(p.list ? p.countType : p.type);
+      x |= p.name == "x", y |= p.name == "y", z |= p.name == "z";
+      list |= e.isFaceIndexList(p);
+    }
+    perItem = std::max<int64_t>(perItem, 1);
+    if (e.count > (available - needed) / perItem)
+      fail(file, 0,
+           "the header declares " + std::to_string(e.count) + " '" + e.name +
+               "' elements, more than the " + std::to_string(available) +
+               " bytes after the header can hold (truncated file or wrong header)");
+    needed += e.count * perItem;
+    if (e.name == "vertex") {
+      if (!(x && y && z)) fail(file, 0, "the 'vertex' element lacks x, y or z");
+      h.info.vertices = e.count;
+      haveVertex = true;
+    } else if (e.name == "face") {
+      if (!list) fail(file, 0, "the 'face' element has no 'vertex_indices' list");
+      h.info.faces = e.count;
+      haveFace = true;
+    }
+  }
+  if (!haveVertex || h.info.vertices == 0)
+    fail(file, 0, "the PLY file has no vertices: the mesh is empty");
+  if (!haveFace || h.info.faces == 0) fail(file, 0, "the PLY file has no faces: the mesh is empty");
+}
+
 Header parseHeader(std::string_view bytes, const std::string& file) {
   if (!bytes.starts_with("ply\n") && !bytes.starts_with("ply\r\n"))
     fail(file, 1, "not a PLY file (it does not start with the line 'ply')");
@@ -133,29 +195,7 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
         lines.fail("element count " + quote(tokens[2]) + " is not an integer in [0, 2^32)");
       h.elements.push_back({std::string(tokens[1]), *n, {}});
     } else if (tokens[0] == "property") {
-      if (h.elements.empty()) lines.fail("'property' before any 'element'");
-      PlyElement& e = h.elements.back();
-      PlyProperty p;
-      p.list = tokens.size() >= 2 && tokens[1] == "list";
-      if (tokens.size() != (p.list ? 5u : 3u))
-        lines.fail(p.list ? "expected 'property list COUNT-TYPE ITEM-TYPE NAME'"
-                          : "expected 'property TYPE NAME'");
-      p.countType = p.list ? plyType(tokens[2]) : PlyType::Unknown;
-      p.type = plyType(tokens[p.list ? 3 : 1]);
-      p.name = std::string(tokens.back());
-      if (p.type == PlyType::Unknown)
-        lines.fail("unknown PLY property type in " + quote(lines.line()));
-      if (p.list) {
-        const std::string_view ct = tokens[2];
-        if (ct != "uchar" && ct != "uint8" && ct != "uint16" && ct != "int")
-          lines.fail("list count type " + quote(ct) +
-                     " is not supported (uchar, uint8, uint16 or int)");
-        if (e.name != "face")
-          lines.fail("list properties are only supported in the 'face' element");
-        if (e.isFaceIndexList(p) && !e.properties.empty())
-          lines.fail("'" + p.name + "' must be the first property of 'face'");
-      }
-      e.properties.push_back(p);
+      parseProperty(lines, tokens, h);
     } else {
       lines.fail("unknown PLY header keyword " + quote(tokens[0]));
     }
@@ -179,39 +219,7 @@ Header parseHeader(std::string_view bytes, const std::string& file) {
            "after it: OpenMesh would read the data from the wrong byte");
   }
 
-  // Counts must fit the bytes that follow (an ASCII value takes at least two bytes), so a
-  // header claiming 10^12 elements is refused before anything is read.
-  const auto available = static_cast<int64_t>(bytes.size() - h.dataStart);
-  int64_t needed = 0;
-  bool haveVertex = false, haveFace = false;
-  for (const PlyElement& e : h.elements) {
-    int64_t perItem = 0;
-    bool x = false, y = false, z = false, list = false;
-    for (const PlyProperty& p : e.properties) {
-      perItem += h.info.ascii ? 2 : byteSize(p.list ? p.countType : p.type);
-      x |= p.name == "x", y |= p.name == "y", z |= p.name == "z";
-      list |= e.isFaceIndexList(p);
-    }
-    perItem = std::max<int64_t>(perItem, 1);
-    if (e.count > (available - needed) / perItem)
-      fail(file, 0,
-           "the header declares " + std::to_string(e.count) + " '" + e.name +
-               "' elements, more than the " + std::to_string(available) +
-               " bytes after the header can hold (truncated file or wrong header)");
-    needed += e.count * perItem;
-    if (e.name == "vertex") {
-      if (!(x && y && z)) fail(file, 0, "the 'vertex' element lacks x, y or z");
-      h.info.vertices = e.count;
-      haveVertex = true;
-    } else if (e.name == "face") {
-      if (!list) fail(file, 0, "the 'face' element has no 'vertex_indices' list");
-      h.info.faces = e.count;
-      haveFace = true;
-    }
-  }
-  if (!haveVertex || h.info.vertices == 0)
-    fail(file, 0, "the PLY file has no vertices: the mesh is empty");
-  if (!haveFace || h.info.faces == 0) fail(file, 0, "the PLY file has no faces: the mesh is empty");
+  checkCounts(bytes, file, h);
   return h;
 }
 
