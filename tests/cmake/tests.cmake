@@ -40,6 +40,12 @@ if(TARGET osd_cull_viewer AND TARGET test_viewer)
   target_compile_definitions(test_viewer PRIVATE OSD_CULL_HAVE_VIEWER=1)
 endif()
 
+# The verify report's verdict (samples/osd-cull/verify_report.*), judged on made-up totals.
+if(TARGET test_cli_verify)
+  target_sources(test_cli_verify PRIVATE ${PROJECT_SOURCE_DIR}/samples/osd-cull/verify_report.cpp)
+  target_include_directories(test_cli_verify PRIVATE ${PROJECT_SOURCE_DIR}/samples/osd-cull)
+endif()
+
 # The layer order of DESIGN.md: no include runs upward (scripts/check_layers.py), the check
 # fails on a planted upward include, and docs/architecture.md's layer picture is current.
 find_program(OSD_CULL_PYTHON3 python3)
