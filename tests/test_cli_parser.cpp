@@ -85,6 +85,75 @@ TEST(CommandLine, HelpListsEveryOptionOnceAndExitsZero) {
   EXPECT_EQ(osdCull("--help").exitCode(), 0);
 }
 
+/// The help text with every run of white space (line breaks and the indent of the
+/// description column) as one space, so that a phrase may span lines.
+std::string flatHelp(const std::string& command) {
+  const auto r = osdCull(command + " --help");
+  EXPECT_EQ(r.exitCode(), 0) << command << "\n" << r.output;
+  return std::regex_replace(r.output, std::regex(R"(\s+)"), " ");
+}
+
+TEST(CommandLine, HelpStatesTheDefaultsAndTheAcceptedValues) {
+  REQUIRE_PROGRAM();
+  for (const char* command : {"render", "verify", "plan", "view", "info", "calibrate"}) {
+    const std::string help = flatHelp(command);
+    SCOPED_TRACE(command);
+    EXPECT_EQ(help.find("none (default)"), std::string::npos) << help;
+    EXPECT_EQ(help.find("else lavapipe"), std::string::npos) << help;
+    EXPECT_EQ(help.find("1e+30"), std::string::npos) << help;
+    EXPECT_FALSE(std::regex_search(help, std::regex(R"(:[A-Z]+ in \[)"))) << help;  // CLI::Range
+    if (std::string(command) != "info")
+      EXPECT_NE(help.find("else the first discrete GPU, then integrated, then virtual, then CPU"),
+                std::string::npos)
+          << help;
+  }
+  const std::string render = flatHelp("render"), verify = flatHelp("verify");
+  EXPECT_NE(render.find("default: the effect plan chooses (--plan)"), std::string::npos);
+  EXPECT_NE(flatHelp("view").find("(default: the effect plan chooses"), std::string::npos);
+  for (const std::string& help : {render, verify}) {
+    EXPECT_NE(help.find("--displacement-scale S:FLOAT scale, a finite number"), std::string::npos)
+        << help;
+    EXPECT_NE(help.find("--displacement-midlevel M:FLOAT midlevel"), std::string::npos) << help;
+    EXPECT_NE(help.find("--displacement-lod L coarsest mip level the draw samples, 0 to 15"),
+              std::string::npos)
+        << help;
+  }
+  EXPECT_NE(render.find("--displaced-bound B extension of the bound: full, acon (default), con "),
+            std::string::npos)
+      << render;
+  EXPECT_NE(render.find("--displaced-box X box the extension is applied to: oobb, caf (default)"),
+            std::string::npos)
+      << render;
+  EXPECT_NE(verify.find("full, acon (default), con, all (each)"), std::string::npos) << verify;
+  EXPECT_NE(verify.find("oobb, caf, all (each); default caf, all with --displaced-bound all"),
+            std::string::npos)
+      << verify;
+  // The side status view: 90 degrees for a mesh (cmd_render.cpp), 120 for a scene
+  // (scene_render.cpp), both in the option's text.
+  EXPECT_NE(render.find("FILE_status_side.png from 90 degrees around the up axis; a scene: only "
+                        "DIR/<view>_status_NNNN.png (needs --out-dir), seen from 120 degrees"),
+            std::string::npos)
+      << render;
+}
+
+TEST(CommandLine, AbsurdDisplacementNumbersAreRefusedWithTheRange) {
+  REQUIRE_PROGRAM();
+  auto r = osdCull("render --out x.png --displacement procedural --displacement-scale 1e31");
+  EXPECT_EQ(r.exitCode(), 2) << r.output;
+  EXPECT_NE(r.output.find("--displacement-scale: 1e31 is out of range [-1e+30, 1e+30]"),
+            std::string::npos)
+      << r.output;
+  r = osdCull("render --out x.png --displacement procedural --displacement-midlevel nan");
+  EXPECT_EQ(r.exitCode(), 2) << r.output;
+  EXPECT_NE(r.output.find("--displacement-midlevel: 'nan' is not a finite number"),
+            std::string::npos)
+      << r.output;
+  r = osdCull("render --out x.png --displacement procedural --displacement-lod 16");
+  EXPECT_EQ(r.exitCode(), 2) << r.output;
+  EXPECT_NE(r.output.find("--displacement-lod: 16 is out of range [0, 15]"), std::string::npos)
+      << r.output;
+}
+
 TEST(CommandLine, OutputWeCannotWriteIsAnErrorBeforeRendering) {
   REQUIRE_PROGRAM();
   test::TempDir dir("osd_cull_cli_out_");

@@ -67,7 +67,14 @@ void expectUpdateMatches(const CageMesh& cage, const PatchOptions& options, uint
   EXPECT_LE(d.derivative, kTolerance * diag) << "worst at " << d.worst;
 }
 
-class ShapeAccuracy : public ::testing::TestWithParam<fs::path> {};
+/// Without the data folder the suite has one parameter, the empty path, whose tests skip
+/// naming the folder (instead of a suite of zero tests that nobody sees vanish).
+class ShapeAccuracy : public ::testing::TestWithParam<fs::path> {
+ protected:
+  void SetUp() override {
+    if (GetParam().empty()) OSD_CULL_REQUIRE_DATA();
+  }
+};
 
 TEST_P(ShapeAccuracy, MatchesOpenSubdivAtEveryLevelAndEndCap) {
   const CageMesh cage = adapters::loadCage(GetParam());
@@ -90,11 +97,16 @@ TEST_P(ShapeAccuracy, MatchesOpenSubdivAtTinyAndHugeScale) {
   }
 }
 
-std::vector<fs::path> shapesOrEmpty() { return test::catmarkShapes(); }
+std::vector<fs::path> shapesOrEmpty() {
+  std::vector<fs::path> shapes = test::catmarkShapes();
+  if (!test::haveData()) shapes = {fs::path()};  // one test that skips: SetUp()
+  return shapes;
+}
 
 INSTANTIATE_TEST_SUITE_P(Shapes, ShapeAccuracy, ::testing::ValuesIn(shapesOrEmpty()),
                          [](const ::testing::TestParamInfo<fs::path>& param) {
-                           return param.param.stem().string();
+                           return param.param.empty() ? std::string("NoData")
+                                                      : param.param.stem().string();
                          });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ShapeAccuracy);
 

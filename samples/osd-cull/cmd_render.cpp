@@ -505,7 +505,9 @@ Runner setup(CLI::App& app) {
                "with occlusion: also write FILE_status.png, patches colored by\n"
                "their status (green visible, yellow newly visible, blue frustum-,\n"
                "purple back-patch-, red occlusion-culled) from the camera, and\n"
-               "FILE_status_side.png from 90 degrees around the up axis")
+               "FILE_status_side.png from 90 degrees around the up axis; a scene:\n"
+               "only DIR/<view>_status_NNNN.png (needs --out-dir), seen from 120\n"
+               "degrees around the view's up axis through the scene's centre")
       ->group("Culling");
   app.add_option("--pyramid-dir", args->pyramidDir,
                  "with occlusion: write the Hi-Z levels of the last frame as\n"

@@ -147,10 +147,10 @@ void printVerifyHeader(const VerifyArgs& args, const MeshPatches& mesh,
     const bound::DisplacementRange r = displacementMap->displacementRange();
     std::printf(
         "displacement: %s, %ux%u, scale %g, midlevel %g, D in [%g, %g], lod %u; "
-        "back-patch culling off (%s)\n",
+        "back-patch culling off (below)\n",
         displacementMap->name().c_str(), displacementMap->width(), displacementMap->height(),
         displacementMap->scale(), displacementMap->midlevel(), r.dmin, r.dmax,
-        displacementMap->maxLod(), frame::kDisplacedBackPatchNote);
+        displacementMap->maxLod());
   }
   std::printf("back-patch culling: %s (%s)%s\n", mesh.backPatch.enabled ? "on" : "off",
               mesh.backPatch.reason.c_str(),
@@ -159,8 +159,7 @@ void printVerifyHeader(const VerifyArgs& args, const MeshPatches& mesh,
                                     : ", conservative for the drawn triangles");
   std::printf("oracle and image draws: back-facing triangles %s\n",
               verifier.cullBackFaces() ? "culled (closed mesh)" : "drawn");
-  for (const auto& [name, why] : verifier.skipped())
-    std::printf("skipped %s: %s\n", name.c_str(), why.c_str());
+  printSkipped(verifier.skipped(), mesh.backPatch.reason);
   std::fflush(stdout);
 }
 
@@ -260,14 +259,8 @@ int run(const VerifyArgs& args) {
       printVerifyTables(verifier.totals(), mesh.patches.patchCount(), options.oracle,
                         args.surfaceExact, args.sample > 0 || args.imageCheck);
   if (!args.json.empty()) writeVerifyJson(args, mesh, context, verifier, options.oracle, verdict);
-  if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
-    std::cerr << "validation reported " << log->count() << " messages\n";
-    return 1;
-  }
-  if (!verdict.okButSilhouettes)
-    std::cerr << "verify: FAILED (a GPU cull outside the reference, a false cull, a visible "
-                 "sample or a lost pixel; see the tables)\n";
-  return verdict.okButSilhouettes ? 0 : 1;
+  const vulkan::ValidationLog* log = context.validationLog();
+  return finishVerify(verdict, log ? log->count() : 0);
 }
 
 Runner setup(CLI::App& app) {

@@ -13,33 +13,41 @@ void addDisplacementOptions(CLI::App& app, DisplacementArgs& args, bool allowAll
                  "back-patch culling is off for displaced meshes")
       ->type_name("MAP")
       ->group(group);
-  app.add_option("--displacement-scale", args.scale, "scale (default 1)")
-      ->type_name("S")
+  // numberIn, not CLI::Range: the range would print as "[-1e+30 - 1e+30]" in the help.
+  app.add_option("--displacement-scale", args.scale, "scale, a finite number (default 1)")
+      ->type_name("S:FLOAT")
       ->group(group)
-      ->check(CLI::Range(-1e30, 1e30));
+      ->check(numberIn(-1e30, 1e30));
   app.add_option("--displacement-midlevel", args.midlevel,
-                 "default 0.5 for PNG and procedural, 0 for EXR")
-      ->type_name("M")
+                 "midlevel, a finite number (default 0.5 for PNG and procedural,\n"
+                 "0 for EXR)")
+      ->type_name("M:FLOAT")
       ->group(group)
-      ->check(CLI::Range(-1e30, 1e30));
+      ->check(numberIn(-1e30, 1e30));
   app.add_option("--displacement-channel", args.channel, "image channel r|g|b|a (default r)")
       ->type_name("C")
       ->group(group)
       ->check(oneOf({"r", "g", "b", "a"}));
-  app.add_option("--displacement-lod", args.lod, "coarsest mip level the draw samples (default 0)")
+  app.add_option("--displacement-lod", args.lod,
+                 "coarsest mip level the draw samples, 0 to 15 (default 0)")
       ->type_name("L")
       ->group(group)
-      ->check(CLI::Range(0, 15));
+      ->check(integerIn(0, 15));
   std::vector<std::string> bounds = {"full", "acon", "con"}, boxes = {"oobb", "caf"};
   if (allowAll) {
     bounds.push_back("all");
     boxes.push_back("all");
   }
-  app.add_option("--displaced-bound", args.bound, "extension of the bound (default acon)")
+  app.add_option("--displaced-bound", args.bound,
+                 allowAll ? "extension of the bound: full, acon (default), con, all (each)"
+                          : "extension of the bound: full, acon (default), con")
       ->type_name("B")
       ->group(group)
       ->check(oneOf(bounds));
-  app.add_option("--displaced-box", args.box, "box the extension is applied to (default caf)")
+  app.add_option("--displaced-box", args.box,
+                 allowAll ? "box the extension is applied to: oobb, caf, all (each); default\n"
+                            "caf, all with --displaced-bound all"
+                          : "box the extension is applied to: oobb, caf (default)")
       ->type_name("X")
       ->group(group)
       ->check(oneOf(boxes));

@@ -199,8 +199,7 @@ int verifyScene(const VerifyArgs& args) {
       d.views.size(), args.views.value_or(4), args.tess, context.info().name.c_str());
 
   const SceneTotals totals = verifyFrames(context, player, loaded, args, methods, options);
-  for (const auto& [name, why] : totals.skipped)
-    std::printf("skipped %s: %s\n", name.c_str(), why.c_str());
+  printSkipped(totals.skipped);
   std::vector<frame::MethodTotals> ordered;
   for (const std::string& m : methods)
     if (totals.byMethod.count(m)) ordered.push_back(totals.byMethod.at(m));
@@ -210,12 +209,8 @@ int verifyScene(const VerifyArgs& args) {
   if (!args.json.empty())
     writeSceneVerifyJson(args, d, player, context, totals, ordered, perInstance, options.oracle,
                          verdict);
-  if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
-    std::cerr << "validation reported " << log->count() << " messages\n";
-    return 1;
-  }
-  if (!verdict.okButSilhouettes) std::cerr << "verify: FAILED (see the tables)\n";
-  return verdict.okButSilhouettes ? 0 : 1;
+  const vulkan::ValidationLog* log = context.validationLog();
+  return finishVerify(verdict, log ? log->count() : 0);
 }
 
 }  // namespace osd_cull::cli

@@ -40,6 +40,27 @@ if(TARGET osd_cull_viewer AND TARGET test_viewer)
   target_compile_definitions(test_viewer PRIVATE OSD_CULL_HAVE_VIEWER=1)
 endif()
 
+# The verify report's verdict (samples/osd-cull/verify_report.*), judged on made-up totals.
+if(TARGET test_cli_verify)
+  target_sources(test_cli_verify PRIVATE ${PROJECT_SOURCE_DIR}/samples/osd-cull/verify_report.cpp)
+  target_include_directories(test_cli_verify PRIVATE ${PROJECT_SOURCE_DIR}/samples/osd-cull)
+endif()
+
+# Without the data folder the shape suites run one test each that skips naming the folder.
+foreach(_suite test_patch_accuracy:Shapes/ShapeAccuracy test_shapes_load:SharedData/ShapeIndex)
+  string(REPLACE ":" ";" _parts ${_suite})
+  list(GET _parts 0 _exe)
+  list(GET _parts 1 _name)
+  string(REPLACE "/" "." _test ${_name})
+  if(TARGET ${_exe})
+    add_test(NAME DataSkips.${_test}SkipsNamingTheMissingFolder
+      COMMAND ${_exe} --gtest_filter=${_name}.*)
+    set_tests_properties(DataSkips.${_test}SkipsNamingTheMissingFolder PROPERTIES
+      ENVIRONMENT OSD_CULL_DATA_DIR=/nonexistent/osd_cull_data
+      PASS_REGULAR_EXPRESSION [=[/NoData.*shared data folder not found at "/nonexistent/osd_cull_data".*SKIPPED \] .*/NoData]=])
+  endif()
+endforeach()
+
 # The layer order of DESIGN.md: no include runs upward (scripts/check_layers.py), the check
 # fails on a planted upward include, and docs/architecture.md's layer picture is current.
 find_program(OSD_CULL_PYTHON3 python3)
