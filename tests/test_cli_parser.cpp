@@ -102,10 +102,11 @@ TEST(CommandLine, HelpStatesTheDefaultsAndTheAcceptedValues) {
     EXPECT_EQ(help.find("else lavapipe"), std::string::npos) << help;
     EXPECT_EQ(help.find("1e+30"), std::string::npos) << help;
     EXPECT_FALSE(std::regex_search(help, std::regex(R"(:[A-Z]+ in \[)"))) << help;  // CLI::Range
-    if (std::string(command) != "info")
+    if (std::string(command) != "info") {
       EXPECT_NE(help.find("else the first discrete GPU, then integrated, then virtual, then CPU"),
                 std::string::npos)
           << help;
+    }
   }
   const std::string render = flatHelp("render"), verify = flatHelp("verify");
   EXPECT_NE(render.find("default: the effect plan chooses (--plan)"), std::string::npos);
