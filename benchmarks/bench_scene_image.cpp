@@ -128,39 +128,38 @@ scene::LoadedScene loadBenchScene(const Args& a) {
 // The per-view summary over all frames.
 void printSummary(const scene::LoadedScene& s, const session::ScenePlayer& player,
                   const Series& series, uint32_t frames) {
-  const auto& [culledShare, tesRatio, culledMs, plainMs, plannedMs, predictedMs, plannedLost,
-               choices, worst] = series;
   std::printf("\nsummary over %u frames (worst: largest over all frames; medians per frame)\n",
               frames);
   std::printf("%-5s %10s %15s %11s %14s %15s %12s\n", "view", "worst lost", "worst differing",
               "at frame", "median culled", "median TES/plain", "median ms c/p");
   for (size_t v = 0; v < player.viewCount(); ++v)
     std::printf("%-5s %10llu %14.4f%% %11u %13.1f%% %15.3f %6.2f/%.2f\n",
-                s.description.views[v].name.c_str(), static_cast<unsigned long long>(worst[v].lost),
-                100.0 * worst[v].differing, worst[v].frame, 100.0 * bench::median(culledShare[v]),
-                bench::median(tesRatio[v]), bench::median(culledMs[v]), bench::median(plainMs[v]));
+                s.description.views[v].name.c_str(),
+                static_cast<unsigned long long>(series.worst[v].lost),
+                100.0 * series.worst[v].differing, series.worst[v].frame,
+                100.0 * bench::median(series.culledShare[v]), bench::median(series.tesRatio[v]),
+                bench::median(series.culledMs[v]), bench::median(series.plainMs[v]));
 }
 
 // --plan: the planned frame against all stages and unculled, and what the plan chose.
 void printPlanSummary(const scene::LoadedScene& s, const session::ScenePlayer& player,
                       const session::ScenePlayer& planned, const Series& series) {
-  const auto& [culledShare, tesRatio, culledMs, plainMs, plannedMs, predictedMs, plannedLost,
-               choices, worst] = series;
   std::printf(
       "\nplan (medians per frame, ms; planned, all stages and unculled interleaved in each "
       "frame)\n%-5s %9s %9s %9s %16s %14s %12s\n",
       "view", "planned", "all", "unculled", "planned/better", "predicted/meas", "lost pixels");
   for (size_t v = 0; v < player.viewCount(); ++v) {
-    const double p = bench::median(plannedMs[v]), all = bench::median(culledMs[v]),
-                 none = bench::median(plainMs[v]);
+    const double p = bench::median(series.plannedMs[v]), all = bench::median(series.culledMs[v]),
+                 none = bench::median(series.plainMs[v]);
     std::printf("%-5s %9.2f %9.2f %9.2f %16.3f %14.3f %12llu\n",
                 s.description.views[v].name.c_str(), p, all, none, p / std::min(all, none),
-                bench::median(predictedMs[v]) / p, static_cast<unsigned long long>(plannedLost[v]));
+                bench::median(series.predictedMs[v]) / p,
+                static_cast<unsigned long long>(series.plannedLost[v]));
   }
   for (size_t v = 0; v < player.viewCount(); ++v)
     for (size_t i = 0; i < player.instanceCount(); ++i) {
       std::string line;
-      for (const auto& [choice, n] : choices[v][i])
+      for (const auto& [choice, n] : series.choices[v][i])
         line += (line.empty() ? "" : ", ") + choice + " (" + std::to_string(n) + ")";
       std::printf("planned %s / %s: %s\n", s.description.views[v].name.c_str(),
                   s.description.instances[i].name.c_str(), line.c_str());

@@ -36,7 +36,7 @@ const char* const kDetailLegend =
   pixels-changed  pixels another patch covers instead (depth ties; for information)
 )";
 
-std::string count(uint64_t n, const char* what) { return std::to_string(n) + " " + what; }
+std::string counted(uint64_t n, const char* what) { return std::to_string(n) + " " + what; }
 
 }  // namespace
 
@@ -50,12 +50,10 @@ VerifyVerdict judgeVerify(std::span<const frame::MethodTotals> totals, bool surf
         surfaceExact && t.stage == frame::CullStage::BackPatch && t.falseCullPixels == t.falseCulls;
     std::vector<std::string> found;
     if (t.notInReference)
-      found.push_back(count(t.notInReference,
-                            "culls outside the double "
-                            "reference"));
-    if (t.falseCulls && !silhouettes) found.push_back(count(t.falseCulls, "false culls"));
-    if (t.samplingViolations) found.push_back(count(t.samplingViolations, "visible samples"));
-    if (t.pixelsLost) found.push_back(count(t.pixelsLost, "lost pixels"));
+      found.push_back(counted(t.notInReference, "culls outside the double reference"));
+    if (t.falseCulls && !silhouettes) found.push_back(counted(t.falseCulls, "false culls"));
+    if (t.samplingViolations) found.push_back(counted(t.samplingViolations, "visible samples"));
+    if (t.pixelsLost) found.push_back(counted(t.pixelsLost, "lost pixels"));
     v.ok = v.ok && found.empty() && t.falseCulls == 0;
     for (const std::string& f : found) v.failures.push_back(t.name + ": " + f);
   }
