@@ -28,7 +28,11 @@ void loadInstance(uint i) {
 
 #define POINTS_BINDING kCullBindingPoints  // read by common/control_points.glsl
 layout(std430, set = 0, binding = kCullBindingCones) readonly buffer Cones { vec4 cones[]; };
+#if CULL_DRAWN_LISTED  // the listed-triangle pass reads the codes the cull kernel wrote
+layout(std430, set = 0, binding = kCullBindingResults) buffer Results { uint results[]; };
+#else
 layout(std430, set = 0, binding = kCullBindingResults) writeonly buffer Results { uint results[]; };
+#endif
 layout(std430, set = 0, binding = kCullBindingDrawList) writeonly buffer DrawList {
   uint drawList[];
 };

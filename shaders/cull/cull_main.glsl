@@ -15,10 +15,22 @@
 //                     one thread per patch that survived the earlier stages; its resources
 //                     live in descriptor set 1 (per-view values in its own uniform buffer)
 //   CULL_DRAWN        1: back-patch culls respect the drawn triangles (drawn_triangles.glsl)
-//   CULL_DRAWN_ENUMERATE 1 (with CULL_DRAWN): a patch the worst-case bound keeps is culled
-//                     when every triangle the tessellator can draw for it faces away
+//   CULL_DRAWN_ENUMERATE 1 (with CULL_DRAWN_LISTED): a patch the worst-case bound keeps is
+//                     culled when every triangle the tessellator can draw for it faces away
 //                     (drawn_triangle_set.glsl, exact levels only: uniform or precomputed),
 //                     for patches whose outer levels are at most CULL_DRAWN_LIST_LEVEL
+//   CULL_DRAWN_DEFER  1 (with CULL_DRAWN): a patch the worst-case bound keeps but the
+//                     listing could decide (drawnListable) is not finished here: its code so
+//                     far goes to results[] and the patch to deferred[] for the
+//                     listed-triangle pass. On lavapipe the listing's code slows every
+//                     invocation of a kernel that contains it (its arrays live in memory per
+//                     SIMD lane), even where it never runs: 600-1000 ns a patch against 255
+//                     without (docs/results/cull-kernel-floor.md), so it runs only on the
+//                     candidates, compacted.
+//   CULL_DRAWN_LISTED 1: the listed-triangle pass itself, over deferred[] (an indirect
+//                     dispatch after the cull kernel): the listing (CULL_DRAWN_ENUMERATE),
+//                     then the occlusion stage, then the code and the draw list, as the cull
+//                     kernel would have finished them.
 //   CULL_CLUSTERS     1: only the patches the cluster test left undecided
 //                     (cluster_cull.comp lists them in clusterWork), one instance, by an
 //                     indirect dispatch
@@ -34,7 +46,49 @@ layout(std430, set = 0, binding = kCullBindingClusterWork) readonly buffer Work 
 #include "drawn_triangle_set.glsl"
 #endif
 
+#if CULL_DRAWN_DEFER || CULL_DRAWN_LISTED
+layout(std430, set = 0, binding = kCullBindingDeferred) buffer Deferred { uint deferred[]; };
+#endif
+
 layout(local_size_x = kCullGroupSize) in;
+
+// Appends a surviving patch of the instance whose results begin at `base` to its draw list.
+void appendSurvivor(uint base, uint counterBase, uint patchIndex) {
+  if (isBezier(patchIndex)) {
+    drawList[base + atomicAdd(counters[counterBase + kCounterSurvivorsBezier], 1u)] = patchIndex;
+  } else {
+    drawList[base + pc.bezierCount +
+             atomicAdd(counters[counterBase + kCounterSurvivorsGregory], 1u)] = patchIndex;
+  }
+}
+
+#if CULL_DRAWN_LISTED
+void main() {
+  const uint count = deferred[kDeferredCount];
+  const uint stride = gl_NumWorkGroups.x * kCullGroupSize;
+  for (uint i = gl_GlobalInvocationID.x; i < count; i += stride) {
+    const uint instance = deferred[kDeferredHeader + 2u * i];
+    const uint patchIndex = deferred[kDeferredHeader + 2u * i + 1u];
+    loadInstance(instance);
+    const uint base = instance * pc.patchCount;
+    uint result = results[base + patchIndex];
+    if (drawnTrianglesFaceAway(patchIndex)) {
+      result = withField(result, kResultShiftBackPatch, 8u, kVerdictBackFacing);
+      result = withStage(result, kStageBackPatch);
+    }
+#if CULL_OCCLUSION
+    if (resultStage(result) == kStageNone) {
+      uint o = occlusionVerdict(patchIndex, patchClipBounds(patchIndex));
+      result = withField(result, kResultShiftOcclusion, 8u, o);
+      if (o == 0u) result = withStage(result, kStageOcclusion);
+    }
+#endif
+    results[base + patchIndex] = result;
+    if (resultStage(result) == kStageNone)
+      appendSurvivor(base, instance * kCounterCount, patchIndex);
+  }
+}
+#else
 
 const uint kLanes = uint(CULL_LANES);
 const uint kPatchesPerGroup = kCullGroupSize / kLanes;
@@ -92,10 +146,9 @@ void main() {
 #endif
   const bool runBackPatch = inRange && resultStage(result) == kStageNone;
   uint b = backPatchVerdict(patchIndex, lane, slot, runBackPatch);
-#if CULL_DRAWN && CULL_DRAWN_ENUMERATE
-  if (runBackPatch && lane == 0u && b == kVerdictDrawnTriangles &&
-      drawnTrianglesFaceAway(patchIndex))
-    b = kVerdictBackFacing;
+#if CULL_DRAWN && CULL_DRAWN_DEFER
+  const bool defer =
+      runBackPatch && lane == 0u && b == kVerdictDrawnTriangles && drawnListable(patchIndex);
 #endif
   if (runBackPatch) {
     result = withField(result, kResultShiftBackPatch, 8u, b);
@@ -104,6 +157,16 @@ void main() {
 #endif
 
   if (!inRange || lane != 0u) return;
+#if CULL_DRAWN && CULL_DRAWN_DEFER
+  if (defer) {  // finished by the listed-triangle pass
+    results[base + patchIndex] = result;
+    const uint i = atomicAdd(deferred[kDeferredCount], 1u);
+    deferred[kDeferredHeader + 2u * i] = instance;
+    deferred[kDeferredHeader + 2u * i + 1u] = patchIndex;
+    atomicMax(deferred[0], min(i / kCullGroupSize + 1u, kDeferredMaxGroups));
+    return;
+  }
+#endif
 
 #if CULL_OCCLUSION
   if (resultStage(result) == kStageNone) {
@@ -114,11 +177,6 @@ void main() {
 #endif
 
   results[base + patchIndex] = result;
-  if (resultStage(result) != kStageNone) return;
-  if (isBezier(patchIndex)) {
-    drawList[base + atomicAdd(counters[counterBase + kCounterSurvivorsBezier], 1u)] = patchIndex;
-  } else {
-    drawList[base + pc.bezierCount +
-             atomicAdd(counters[counterBase + kCounterSurvivorsGregory], 1u)] = patchIndex;
-  }
+  if (resultStage(result) == kStageNone) appendSurvivor(base, counterBase, patchIndex);
 }
+#endif

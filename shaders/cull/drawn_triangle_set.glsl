@@ -67,17 +67,22 @@ float drawnGregoryWidest(int p, int q) {
 
 // Loads the Gregory patch at `first` (gDrawnNet's boundary, gDrawnFace) and returns
 // bound::gregoryDerivativeBound and the largest |coordinate| of its 20 points.
-vec2 drawnLoadGregory(uint first) {
+vec3 drawnLoadGregory(uint first) {
   const int kBoundary[16] = int[16](0, 1, 7, 5, 2, -1, -1, 6, 16, -1, -1, 12, 15, 17, 11, 10);
   const int kFace[8] = int[8](3, 4, 8, 9, 13, 14, 18, 19);
-  float maxAbs = 0.0;
-  for (uint k = 0u; k < 20u; ++k) {
-    vec3 a = abs(controlPoint(first + k));
+  // Each point loaded once: on lavapipe a load of a per-invocation address is a loop over
+  // the SIMD lanes, and the loads dominated this test.
+  vec3 p[20];
+  float maxAbs = 0.0, maxDistance = 0.0;
+  for (int k = 0; k < 20; ++k) {
+    p[k] = controlPoint(first + uint(k));
+    vec3 a = abs(p[k]);
     maxAbs = max(maxAbs, max(a.x, max(a.y, a.z)));
+    maxDistance = max(maxDistance, length(pc.eye.xyz - p[k]));
   }
   for (int k = 0; k < 16; ++k)
-    if (kBoundary[k] >= 0) gDrawnNet[k] = controlPoint(first + uint(kBoundary[k]));
-  for (int k = 0; k < 8; ++k) gDrawnFace[k] = controlPoint(first + uint(kFace[k]));
+    if (kBoundary[k] >= 0) gDrawnNet[k] = p[kBoundary[k]];
+  for (int k = 0; k < 8; ++k) gDrawnFace[k] = p[kFace[k]];
   float hodograph = 0.0, rational = 0.0;
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 3; ++i)
@@ -87,7 +92,7 @@ vec2 drawnLoadGregory(uint first) {
   // fp32 differences of the points: 8 ulps of the coordinates each, 3 + 4 4/3 of them.
   float g =
       (3.0 * hodograph + 4.0 / 3.0 * rational) * kDrawnSafety + 10.0 * 8.0 / 16777216.0 * maxAbs;
-  return vec2(g, maxAbs);
+  return vec3(g, maxAbs, maxDistance * kDrawnSafety);
 }
 
 // bound::triangleFacesAway in fp32: the margin also covers rounding of the triple product.
@@ -190,19 +195,21 @@ bool drawnTrianglesFaceAway(uint patchIndex) {
   }
   uint first = firstPoint(patchIndex);
   gDrawnGregory = !isBezier(patchIndex);
-  float g, maxAbs, evalUlps = 24.0;
+  float g, maxAbs, maxDistance, evalUlps = 24.0;
   if (gDrawnGregory) {
-    vec2 d = drawnLoadGregory(first);
+    vec3 d = drawnLoadGregory(first);
     g = d.x;
     maxAbs = d.y;
+    maxDistance = d.z;
     // bound::kGregoryEvalUlps for the draw shader, and as much again for this kernel's
     // blends (the same operations but the division, which is also one here).
     evalUlps += 2.0 * 16.0;
   } else {
     for (uint k = 0u; k < 16u; ++k) gDrawnNet[k] = controlPoint(first + k);
-    vec3 d = drawnDerivativeBounds(first);
+    vec3 d = drawnDerivativeBounds(gDrawnNet);
     g = d.x;
     maxAbs = d.z;
+    maxDistance = drawnMaxDistance(gDrawnNet);
   }
   vec3 e3 = abs(pc.eye.xyz);
   float i0 = max(2.0, ceil(0.5 * (outer[1] + outer[3])));  // subdivides u
@@ -216,7 +223,7 @@ bool drawnTrianglesFaceAway(uint patchIndex) {
   // This kernel's own fp32 error: the 16-term Bernstein sum and the corner differences
   // (below 24 ulps of the largest coordinate; Gregory: evalUlps) and E - p0 (2 ulps of the
   // eye). The draw shader's Gregory evaluation: bound::kGregoryEvalUlps.
-  gDrawnEps = drawnVertexError(maxAbs, drawnMaxDistance(first, gDrawnGregory ? 20u : 16u)) +
+  gDrawnEps = drawnVertexError(maxAbs, maxDistance) +
               2.0 * g * coordError * kDrawnSafety +
               (evalUlps * maxAbs + 2.0 * max(e3.x, max(e3.y, e3.z))) / 16777216.0;
   if (!isFiniteF(gDrawnEps)) return false;

@@ -51,6 +51,10 @@ void drawnEdgeLevels(uint patchIndex, out vec4 levelLo, out vec4 levelHi) {
     unpackTessLevels(tessLevels[gLevelBase + patchIndex], levelLo, levelHi);
     return;
   }
+  if (tessMode() == kTessUniform) {  // no curve loads: on lavapipe they dominate the kernel
+    uniformEdgeLevels(params[2u * patchIndex] >> 28u, levelLo, levelHi);
+    return;
+  }
   uint first = firstPoint(patchIndex);
   bool bezier = isBezier(patchIndex);
   vec3 curves[16];
@@ -58,6 +62,22 @@ void drawnEdgeLevels(uint patchIndex, out vec4 levelLo, out vec4 levelHi) {
     curves[k] = controlPoint(first + uint(bezier ? kEdgeCurveBezier[k] : kEdgeCurveGregory[k]));
   curveEdgeLevels(curves, params[2u * patchIndex] >> 28u, levelLo, levelHi);
 }
+
+#ifdef CULL_DRAWN_LIST_LEVEL
+// Whether the listed-triangle test (drawn_triangle_set.glsl drawnTrianglesFaceAway) can
+// decide the patch: exact levels, a finite eye and every outer level (Lo + Hi halves) at most
+// CULL_DRAWN_LIST_LEVEL. The same level arithmetic as that test, which checks it again.
+bool drawnListable(uint patchIndex) {
+  if (!drawnLevelsExact() || pc.eye.w == 0.0) return false;
+  vec4 levelLo, levelHi;
+  drawnEdgeLevels(patchIndex, levelLo, levelHi);
+  for (int e = 0; e < 4; ++e) {
+    float outer = max(1.0, ceil(levelLo[e])) + (levelHi[e] > 0.0 ? max(1.0, ceil(levelHi[e])) : 0.0);
+    if (!(outer <= float(CULL_DRAWN_LIST_LEVEL))) return false;
+  }
+  return true;
+}
+#endif
 
 // bound::triangleShape of a Bezier patch for this view: (phi, psi, minEdge).
 vec3 drawnShape(uint patchIndex) {
@@ -116,6 +136,13 @@ float drawnVertexError(float maxAbs, float maxDistance) {
           maxDistance * pc.snapPerDistance) * kDrawnSafety;
 }
 
+// The largest distance of the 16 points `b` from the eye.
+float drawnMaxDistance(vec3 b[16]) {
+  float r = 0.0;
+  for (int k = 0; k < 16; ++k) r = max(r, length(pc.eye.xyz - b[k]));
+  return r * kDrawnSafety;
+}
+
 // The largest distance of a patch's `count` control points from the eye.
 float drawnMaxDistance(uint first, uint count) {
   float r = 0.0;
@@ -131,12 +158,10 @@ float drawnNormalDeviation(float g, float h, vec3 shape, float vertexError) {
   return (0.5 * g * hh * shape.x + 0.25 * hh * hh * shape.y) * kDrawnSafety;
 }
 
-// bound::bezierDerivativeBounds of the 16 points at `first`: (G, H, max |coordinate|).
-vec3 drawnDerivativeBounds(uint first) {
-  vec3 b[16];
+// bound::bezierDerivativeBounds of the Bezier net b: (G, H, max |coordinate|).
+vec3 drawnDerivativeBounds(vec3 b[16]) {
   float maxAbs = 0.0;
-  for (uint k = 0u; k < 16u; ++k) {
-    b[k] = controlPoint(first + k);
+  for (int k = 0; k < 16; ++k) {
     vec3 a = abs(b[k]);
     maxAbs = max(maxAbs, max(a.x, max(a.y, a.z)));
   }
@@ -158,5 +183,12 @@ vec3 drawnDerivativeBounds(uint first) {
   // fp32 differences of the points: relative to the coordinates.
   float round = 8.0 / 16777216.0 * maxAbs;
   return vec3(g * kDrawnSafety + 6.0 * round, h * kDrawnSafety + 36.0 * round, maxAbs);
+}
+
+// The same of the 16 points at `first`.
+vec3 drawnDerivativeBounds(uint first) {
+  vec3 b[16];
+  for (uint k = 0u; k < 16u; ++k) b[k] = controlPoint(first + k);
+  return drawnDerivativeBounds(b);
 }
 #endif

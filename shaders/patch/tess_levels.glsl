@@ -58,8 +58,23 @@ float curveLevel(vec3 b0, vec3 b1, vec3 b2, vec3 b3, float offset, float maxLeve
 // four boundary curves (curves[4e + k]: point k of edge e's curve, see edge_curves.glsl)
 // and the displacement's variation along each edge or half (offsetLo, offsetHi; zero for
 // undisplaced patches).
+// The uniform levels: they depend on the transition edges only, not on the curves.
+void uniformEdgeLevels(uint transition, out vec4 lo, out vec4 hi) {
+  float maxLevel = tessMaxLevel(), uniformLevel = tessUniformLevel();
+  for (int e = 0; e < 4; ++e) {
+    bool split = (transition & kEdgeTransitionBit[e]) != 0u;
+    float level = split ? min(uniformLevel, floor(maxLevel * 0.5)) : min(uniformLevel, maxLevel);
+    lo[e] = level;
+    hi[e] = split ? level : 0.0;
+  }
+}
+
 void curveEdgeLevels(vec3 curves[16], uint transition, vec4 offsetLo, vec4 offsetHi,
                      out vec4 lo, out vec4 hi) {
+  if (tessMode() == kTessUniform) {
+    uniformEdgeLevels(transition, lo, hi);
+    return;
+  }
   float maxLevel = tessMaxLevel();
   for (int e = 0; e < 4; ++e) {
     vec3 b0 = curves[4 * e + 0];
@@ -67,12 +82,7 @@ void curveEdgeLevels(vec3 curves[16], uint transition, vec4 offsetLo, vec4 offse
     vec3 b2 = curves[4 * e + 2];
     vec3 b3 = curves[4 * e + 3];
     bool split = (transition & kEdgeTransitionBit[e]) != 0u;
-    if (tessMode() == kTessUniform) {
-      float uniformLevel = tessUniformLevel();
-      float level = split ? min(uniformLevel, floor(maxLevel * 0.5)) : min(uniformLevel, maxLevel);
-      lo[e] = level;
-      hi[e] = split ? level : 0.0;
-    } else if (!split) {
+    if (!split) {
       // Half the maximum, so that a neighbour's transition edge can hold two of these.
       lo[e] = curveLevel(b0, b1, b2, b3, offsetLo[e], floor(maxLevel * 0.5));
       hi[e] = 0.0;

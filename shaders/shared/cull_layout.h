@@ -23,12 +23,14 @@ OSD_CULL_CONST uint kCullBindingDisplacedView = 8u;  // DisplacedView: per-view 
 OSD_CULL_CONST uint kCullBindingInstances = 9u;      // CullInstances: the instances culled in
                                                      // one dispatch (their view · model)
 OSD_CULL_CONST uint kCullBindingTable = 6u;          // uvec2 table[]: the method's constant table
-OSD_CULL_CONST uint kCullBindingTessLevels = 10u;    // uvec2 tessLevels[]: GpuPatchSet::tessLevels()
-OSD_CULL_CONST uint kCullBindingBoxes = 11u;  // float boxes[]: with CullSettings::staticPoints
-                                              // the box of each patch's control points,
+OSD_CULL_CONST uint kCullBindingTessLevels = 10u;  // uvec2 tessLevels[]: GpuPatchSet::tessLevels()
+OSD_CULL_CONST uint kCullBindingBoxes = 11u;       // float boxes[]: with CullSettings::staticPoints
+                                                   // the box of each patch's control points,
                                               // structure of arrays: boxes[c * patchCount + p],
                                               // c = min x, y, z, max x, y, z (kBoxFloats),
                                               // rounded outward (CULL_PATCH_BOXES)
+OSD_CULL_CONST uint kCullBindingDeferred = 15u;  // uint deferred[]: the listed-triangle
+                                                 // candidates (below)
 // (CullMethod::table). The tangent-plane table: per term (target | j << 8 | k << 16 | l << 24,
 // floatBitsToUint(weight)). A buffer, not GLSL constants: lavapipe's LLVM backend needs
 // 150-190 s to compile the kernel with 516-entry constant arrays, 0.4 s with this buffer.
@@ -49,6 +51,14 @@ OSD_CULL_CONST uint kCounterCount = 4u;
 // cone (Bezier patches; min 0 for Gregory), rounded up / down,
 // cones[4p+3] = (max radius rounded up, half-angle in radians rounded up, 0, 0): what
 // bound::widenCone needs.
+// deferred[]: the patches the cull kernel hands to the listed-triangle pass
+// (CULL_DRAWN_DEFER, shaders/cull/cull_main.glsl): [0..2] VkDispatchIndirectCommand of that
+// pass (x: groups, at most kDeferredMaxGroups, the least maxComputeWorkGroupCount[0] Vulkan
+// allows; the pass loops over the rest), [3] candidates, then (instance, patch) per candidate.
+OSD_CULL_CONST uint kDeferredCount = 3u;
+OSD_CULL_CONST uint kDeferredHeader = 4u;
+OSD_CULL_CONST uint kDeferredMaxGroups = 65535u;
+
 OSD_CULL_CONST uint kConeVec4s = 4u;
 OSD_CULL_CONST uint kBoxFloats = 6u;  // floats per patch in boxes[]
 

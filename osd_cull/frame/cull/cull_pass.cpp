@@ -47,6 +47,7 @@ const vulkan::DescriptorBinding kBindings[] = {
     {sh::kCullBindingBoxes, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingClusterWork, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingClusters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
+    {sh::kCullBindingDeferred, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_SHADER_STAGE_COMPUTE_BIT},
     {sh::kCullBindingClusterMembers, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
      VK_SHADER_STAGE_COMPUTE_BIT}};
 
@@ -136,12 +137,19 @@ std::vector<float> packPatchBoxes(const PatchSet& patches) {
 
 namespace {
 
+// The parts of a drawn-triangle kernel (shaders/cull/cull_main.glsl): the cull kernel that
+// hands the patches the listed-triangle test could decide to the listed-triangle pass, that
+// pass, and the lean cull kernel for views where no patch can be listed
+// (CullPass::leanKernelApplies).
+enum class KernelPart { Deferring, Listed, Lean };
+
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
 std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t lanes,
                           bool drawnTriangles, bool drawnEnumerate,
                           const CullMethod::Displaced* displaced, bool pointsByAddress,
-                          bool patchBoxes, bool listing = true, bool clusters = false) {
+                          bool patchBoxes, KernelPart part = KernelPart::Deferring,
+                          bool clusters = false) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
@@ -156,18 +164,23 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
           (drawnTriangles && has(CullStage::BackPatch) ? "1" : "0") + "\n";
   // The listing only refines the drawn-triangle back-patch test; elsewhere it is off, so the
   // kernel text (and its build-time SPIR-V) does not depend on it. With the bound it always
-  // runs at low levels (bound::kDrawnListLowLevel), at every level with drawnEnumerate.
-  // `listing` false: the kernel for views where no patch can be listed (CullPass::record
-  // chooses it, leanKernelApplies()); on lavapipe the listing's code costs every invocation
-  // even when it never runs (docs/results/cull-kernel-floor.md).
-  const bool drawn = drawnTriangles && has(CullStage::BackPatch) && listing;
-  text += std::string("#define CULL_DRAWN_ENUMERATE ") + (drawn ? "1" : "0") + "\n";
-  if (drawn)
+  // runs at low levels (bound::kDrawnListLowLevel), at every level with drawnEnumerate, in
+  // its own pass over the patches the cull kernel deferred to it (on lavapipe the listing's
+  // code costs every invocation of a kernel containing it, even where it never runs:
+  // docs/results/cull-kernel-floor.md). The lean kernel, for views where no patch can be
+  // listed (CullPass::record chooses it, leanKernelApplies()), defers nothing.
+  const bool drawn = drawnTriangles && has(CullStage::BackPatch);
+  const bool listed = drawn && part == KernelPart::Listed;
+  const bool deferring = drawn && part == KernelPart::Deferring;
+  text += std::string("#define CULL_DRAWN_ENUMERATE ") + (listed ? "1" : "0") + "\n";
+  text += std::string("#define CULL_DRAWN_LISTED ") + (listed ? "1" : "0") + "\n";
+  text += std::string("#define CULL_DRAWN_DEFER ") + (deferring ? "1" : "0") + "\n";
+  if (listed || deferring)
     text += "#define CULL_DRAWN_LIST_LEVEL " +
             std::to_string(drawnEnumerate ? 64u : bound::kDrawnListLowLevel) + "\n";
   text += std::string("#define CULL_DISPLACED ") + (displaced ? "1" : "0") + "\n";
   text += std::string("#define CULL_PATCH_BOXES ") + (patchBoxes ? "1" : "0") + "\n";
-  text += std::string("#define CULL_CLUSTERS ") + (clusters ? "1" : "0") + "\n";
+  text += std::string("#define CULL_CLUSTERS ") + (clusters && !listed ? "1" : "0") + "\n";
   if (displaced)
     text += "#define DISPLACED_BOX " + std::to_string(static_cast<uint32_t>(displaced->box)) + "\n";
   for (const CullMethod* m : stages)
@@ -233,15 +246,17 @@ std::vector<vulkan::ShaderVariant> cullPassShaderVariants() {
                   // without (CullPass::leanKernelApplies).
                   // Clustered (CullSettings::clusters): static points, undisplaced, no
                   // occlusion, a cone method or none.
-                  for (const bool listing : {true, false})
+                  for (const KernelPart part :
+                       {KernelPart::Deferring, KernelPart::Listed, KernelPart::Lean})
                     for (const bool clusters : {false, true}) {
-                      if (!listing && (enumerate || !(drawn && backPatch))) continue;
+                      if (part != KernelPart::Deferring && !(drawn && backPatch)) continue;
+                      if (part == KernelPart::Lean && enumerate) continue;
                       if (clusters &&
                           (!boxes || occlusion || box >= 0 || !clusterMethod(backPatch)))
                         continue;
                       std::string text = composeKernel(stages, lanes, drawn, enumerate,
                                                        box >= 0 ? &displaced : nullptr, bda, boxes,
-                                                       listing, clusters);
+                                                       part, clusters);
                       if (texts.insert(text).second)
                         variants.push_back(vulkan::ShaderVariant::glsl(
                             text, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
@@ -349,6 +364,7 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
   const size_t codes = std::max<size_t>(1, instances * n);
   results_ = vulkan::Buffer(context, codes * 4, storage, vulkan::MemoryUse::Readback);
   drawList_ = vulkan::Buffer(context, codes * 4, storage);
+  deferred_ = vulkan::Buffer(context, (sh::kDeferredHeader + 2 * instances * n) * 4, indirect);
   counters_ = vulkan::Buffer(context, instances * sh::kCounterCount * 4, indirect,
                              vulkan::MemoryUse::Readback);
   commands_ = vulkan::Buffer(context, instances * (size_t{n} + 2) * sizeof(VkDrawIndirectCommand),
@@ -374,6 +390,8 @@ void CullPass::checkLimits(uint32_t n) const {
                                   "CullPass: the cones" + of);
   vulkan::checkStorageBufferRange(context_, instances * n * 4, "CullPass: the result codes" + of);
   vulkan::checkStorageBufferRange(context_, instances * n * 4, "CullPass: the draw list" + of);
+  vulkan::checkStorageBufferRange(context_, (sh::kDeferredHeader + 2 * instances * n) * 4,
+                                  "CullPass: the listed-triangle candidates" + of);
   vulkan::checkStorageBufferRange(context_,
                                   instances * (uint64_t{n} + 2) * sizeof(VkDrawIndirectCommand),
                                   "CullPass: the draw commands" + of);
@@ -486,6 +504,9 @@ struct CullPipelines {
   vulkan::UniqueDescriptorSetLayout stageSetLayout;
   vulkan::UniquePipelineLayout layout;
   vulkan::UniquePipeline cull;
+  /// The listed-triangle pass over the patches `cull` deferred to it (null when `cull`
+  /// defers none).
+  vulkan::UniquePipeline cullListed;
   /// The kernel without the listed-triangle test (null when `cull` has none): for views
   /// where it cannot run (CullPass::leanKernelApplies).
   vulkan::UniquePipeline cullLean;
@@ -495,11 +516,9 @@ struct CullPipelines {
 
 namespace {
 
-std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
-                                                     const std::string& kernel,
-                                                     const std::string& leanKernel,
-                                                     const std::vector<const CullMethod*>& stages,
-                                                     bool clusters) {
+std::shared_ptr<const CullPipelines> sharedPipelines(
+    vulkan::Context& context, const std::string& kernel, const std::string& listedKernel,
+    const std::string& leanKernel, const std::vector<const CullMethod*>& stages, bool clusters) {
   static std::mutex mutex;
   static std::map<std::pair<VkDevice, std::string>, std::weak_ptr<const CullPipelines>> cache;
   const std::lock_guard<std::mutex> lock(mutex);
@@ -518,6 +537,10 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
   const vulkan::Spirv cull =
       vulkan::compileGlsl(kernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT);
   p->cull = vulkan::createComputePipeline(context, p->layout.get(), cull);
+  if (!listedKernel.empty() && listedKernel != kernel)
+    p->cullListed = vulkan::createComputePipeline(
+        context, p->layout.get(),
+        vulkan::compileGlsl(listedKernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
   if (!leanKernel.empty() && leanKernel != kernel)
     p->cullLean = vulkan::createComputePipeline(
         context, p->layout.get(),
@@ -534,15 +557,17 @@ std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
 }  // namespace
 
 void CullPass::buildPipelines(vulkan::Context& context) {
-  const auto kernel = [&](bool listing) {
+  const auto kernel = [&](KernelPart part) {
     return composeKernel(stages_, lanes_, settings_.drawnTriangles, settings_.drawnEnumerate,
                          displaced() ? &displacedKernel_ : nullptr, gpu_.pointsByAddress(),
-                         patchBoxes(), listing, settings_.clusters);
+                         patchBoxes(), part, settings_.clusters);
   };
-  // With drawnEnumerate the listing runs at every level: no lean kernel.
-  pipelines_ = sharedPipelines(context, kernel(true),
-                               settings_.drawnEnumerate ? std::string() : kernel(false), stages_,
-                               settings_.clusters);
+  // Without the drawn-triangle bound the three texts are one (no listed pass, no lean
+  // kernel); with drawnEnumerate the listing runs at every level: no lean kernel.
+  const std::string deferring = kernel(KernelPart::Deferring);
+  pipelines_ = sharedPipelines(context, deferring, kernel(KernelPart::Listed),
+                               settings_.drawnEnumerate ? std::string() : kernel(KernelPart::Lean),
+                               stages_, settings_.clusters);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(pipelines_->setLayout.get());
   vulkan::DescriptorWriter()
@@ -561,6 +586,7 @@ void CullPass::buildPipelines(vulkan::Context& context) {
       .buffer(sh::kCullBindingClusterWork, clusterWork_)
       .buffer(sh::kCullBindingClusters, clusterData_)
       .buffer(sh::kCullBindingClusterMembers, clusterMembers_)
+      .buffer(sh::kCullBindingDeferred, deferred_)
       .update(context.device(), set_);
   boundTessLevels_ = gpu_.tessLevels().handle();
 }
@@ -720,6 +746,12 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   // Earlier readers of the outputs (draws, host) and writers of the points come first.
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
   vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+  const bool lean = pipelines_->cullLean && leanKernelApplies(tessellation);
+  const bool listed = pipelines_->cullListed && !lean;
+  if (listed) {  // no candidates yet; a dispatch of 0 x 1 x 1 groups
+    const uint32_t none[sh::kDeferredHeader] = {0u, 1u, 1u, 0u};
+    vkCmdUpdateBuffer(cmd, deferred_.handle(), 0, sizeof(none), none);
+  }
   updateBuffer(cmd, instances_, instanceData.data(), instanceData.size());
   if (displaced()) {
     std::vector<sh::DisplacedView> views;
@@ -736,7 +768,6 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
     if (settings_.clusters) recordClusters(cmd);
-    const bool lean = pipelines_->cullLean && leanKernelApplies(tessellation);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                       lean ? pipelines_->cullLean.get() : pipelines_->cull.get());
     if (settings_.clusters) {  // the undecided clusters' patches (cluster_cull.comp)
@@ -745,6 +776,15 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
       const vulkan::DispatchSize groups = vulkan::checkedGroups2D(
           context_, cullGroups(n, lanes_, settings_.instanceCount), "CullPass: the cull dispatch");
       vkCmdDispatch(cmd, groups.x, groups.y, 1);
+    }
+    if (listed) {  // the candidates the kernel deferred (shaders/cull/cull_main.glsl)
+      vulkan::memoryBarrier(
+          cmd, vulkan::scope::kComputeReadWrite,
+          {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+           VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+               VK_ACCESS_INDIRECT_COMMAND_READ_BIT});
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->cullListed.get());
+      vkCmdDispatchIndirect(cmd, deferred_.handle(), 0);
     }
     ++dispatches_;
   }

@@ -289,6 +289,7 @@ class CullPass {
   vulkan::Buffer results_;
   vulkan::Buffer drawList_;
   vulkan::Buffer counters_;
+  vulkan::Buffer deferred_;  // shared/cull_layout.h deferred[]: the listed-triangle candidates
   vulkan::Buffer commands_;
   bound::PatchClusters clusters_;  // empty without CullSettings::clusters
   vulkan::Buffer clusterWork_;     // shared/cluster_layout.h (a header only without clusters)
