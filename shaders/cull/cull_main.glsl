@@ -163,7 +163,10 @@ void main() {
     const uint i = atomicAdd(deferred[kDeferredCount], 1u);
     deferred[kDeferredHeader + 2u * i] = instance;
     deferred[kDeferredHeader + 2u * i + 1u] = patchIndex;
-    atomicMax(deferred[0], min(i / kCullGroupSize + 1u, kDeferredMaxGroups));
+    // The groups the pass needs, ceil(count / kCullGroupSize), from the first candidate of
+    // each group (the indices are 0..count-1): one atomic per group, not per candidate.
+    if (i % kCullGroupSize == 0u)
+      atomicMax(deferred[0], min(i / kCullGroupSize + 1u, kDeferredMaxGroups));
     return;
   }
 #endif
