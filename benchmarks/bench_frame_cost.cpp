@@ -13,10 +13,12 @@
 //     ratios, the culled frame's GPU time per stage from timestamps in its one submission,
 //     pass 2's time beyond its share of the drawing (its TES share of both passes' time),
 //     and GPU / wall of the culled frame (timestamps against the host clock);
-//  B. the break-even tessellation level per configuration and path.
+//     (rows "aN": screen-space adaptive levels, N pixels per segment, after the uniform ones);
+//  B. the break-even uniform tessellation level per configuration and path.
 // Every table ends with the load average and the peak RSS.
 //
-//   bench-frame-cost [--width 1280] [--height 720] [--tess 1,4,8,16,32] [--frames 8]
+//   bench-frame-cost [--width 1280] [--height 720] [--tess 1,4,8,16,32] [--adaptive 4,8,16]
+//                    [--frames 8]
 //                    [--paths default-orbit,default-walk,bigguy-orbit,bigguy-closeup]
 //                    [--bigguy-level 2] [--only PFB] [--repeats 20] [--csv FILE]
 //                    [--device X]
@@ -44,8 +46,8 @@
 #include <cstdio>
 #include <functional>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -58,6 +60,7 @@ using osd_cull::bench::median;
 struct Options {
   uint32_t width = 1280, height = 720, frames = 8, repeats = 20, bigguyLevel = 2;
   std::vector<uint32_t> tess = {1, 4, 8, 16, 32};
+  std::vector<uint32_t> adaptive;  // pixels per segment
   std::string paths = "default-orbit,default-walk,bigguy-orbit,bigguy-closeup";
   std::string only = "PFB";
   std::string csv, device;
@@ -73,6 +76,7 @@ bool parse(int argc, char** argv, Options& o) {
       .number("--frames", o.frames, 1)
       .number("--bigguy-level", o.bigguyLevel)
       .numbers("--tess", o.tess)
+      .numbers("--adaptive", o.adaptive)
       .text("--paths", o.paths)
       .text("--only", o.only)
       .text("--csv", o.csv)
@@ -159,8 +163,8 @@ struct Row {
 
 struct PathResult {
   std::string name;
-  std::map<std::pair<uint32_t, size_t>, Row> rows;          // (tess, config)
-  std::map<uint32_t, std::pair<uint64_t, uint64_t>> plain;  // tess -> TES, fragments
+  std::map<std::pair<std::string, size_t>, Row> rows;          // (level label, config)
+  std::map<std::string, std::pair<uint64_t, uint64_t>> plain;  // level -> TES, fragments
 };
 
 // The configurations' frames at one tessellation level: a CullFrame with occlusion, else a
@@ -179,9 +183,9 @@ ConfigFrames makeConfigFrames(vulkan::Context& context, frame::Renderer& rendere
     frame::CullFrameOptions fo;
     fo.render = render;
     fo.cull = settings(c, scene);
-    f.frames.push_back(c.occlusion ? std::make_unique<frame::CullFrame>(context, renderer, target,
-                                                                        cullMeshes, fo)
-                                   : nullptr);
+    f.frames.push_back(
+        c.occlusion ? std::make_unique<frame::CullFrame>(context, renderer, target, cullMeshes, fo)
+                    : nullptr);
     f.passes.push_back(
         c.occlusion ? nullptr
                     : std::make_unique<frame::CullPass>(context, gpu, scene.patches, fo.cull));
@@ -255,10 +259,11 @@ PathResult measurePath(vulkan::Context& context, const std::string& name, const 
   const frame::PatchDraw draw{&gpu, &scene.patches, 0};
   frame::FreeCullingFrame freeFrame(context, renderer, {&draw, 1});
   const size_t sides = 1 + std::size(kConfigs);  // the unculled frame, then each config
-  for (uint32_t tess : o.tess) {
-    progress("F. " + name + ": tess " + std::to_string(tess));
+  for (const auto& [tess, tessellation] : bench::tessellationLevels(
+           o.tess, o.adaptive, context.info().limits.maxTessellationGenerationLevel)) {
+    progress("F. " + name + ": tess " + tess);
     frame::RenderOptions render;
-    render.tessellation.uniformLevel = tess;
+    render.tessellation = tessellation;
     render.cullBackFaces = scene.validity.enabled;
     ConfigFrames configs = makeConfigFrames(context, renderer, culled, gpu, scene, render);
     uint64_t plainTes = 0, plainFragments = 0;
@@ -285,8 +290,8 @@ PathResult measurePath(vulkan::Context& context, const std::string& name, const 
         }
         const size_t c = side - 1;
         Row& row = result.rows[{tess, c}];
-        results[c] = culledFrame(context, renderer, culled, configs, c, cam, occluders, render,
-                                 row, timed);
+        results[c] =
+            culledFrame(context, renderer, culled, configs, c, cam, occluders, render, row, timed);
         freeFrame.setPatches(0, results[c].drawn);
         const frame::FrameStats fs = freeFrame.render(freeTarget, cam, occluders, render);
         sideMs[c] = {results[c].ms, fs.wallMs};
@@ -331,7 +336,7 @@ void printPath(const PathResult& r, const Options& o, FILE* csv) {
       "culled | fragment ratio | GPU ms: pass 1 / pyramid / cull / pass 2 | pass 2 - its share, "
       "ms | GPU / wall |\n");
   std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|---:|---:|\n");
-  for (uint32_t tess : o.tess)
+  for (const auto& [tess, tessellation] : bench::tessellationLevels(o.tess, o.adaptive, 64))
     for (size_t c = 0; c < std::size(kConfigs); ++c) {
       const Row& row = r.rows.at({tess, c});
       const double x = double(row.notDrawn) / double(row.total);
@@ -349,17 +354,18 @@ void printPath(const PathResult& r, const Options& o, FILE* csv) {
                                     : "cull " + medians({&row.cull}) + " (own run)";
       const std::string excess = kConfigs[c].occlusion ? medians({&row.pass2Excess}) : "-";
       std::printf(
-          "| %u | %s | %.1f%% | %.1f%% | %.2f | %.2f | %.2f | %.1f%% | %s | %.2f | %.2f | %s | "
+          "| %s | %s | %.1f%% | %.1f%% | %.2f | %.2f | %.2f | %.1f%% | %s | %.2f | %.2f | %s | "
           "%.2f | %s | %s | %s |\n",
-          tess, kConfigs[c].name.c_str(), 100 * x, 100.0 * double(row.frustum) / double(row.total),
-          u, fr, cu, 100 * overhead, shareText, median(row.ratio), double(row.tes) / double(tes),
-          row.freeTes == row.tes ? "yes" : "NO", double(row.fragments) / double(fragments),
-          split.c_str(), excess.c_str(), medians({&row.gpuTotal}).c_str());
+          tess.c_str(), kConfigs[c].name.c_str(), 100 * x,
+          100.0 * double(row.frustum) / double(row.total), u, fr, cu, 100 * overhead, shareText,
+          median(row.ratio), double(row.tes) / double(tes), row.freeTes == row.tes ? "yes" : "NO",
+          double(row.fragments) / double(fragments), split.c_str(), excess.c_str(),
+          medians({&row.gpuTotal}).c_str());
       if (csv)
         std::fprintf(csv,
-                     "\"%s\",\"%s\",%u,%.5f,%.3f,%.3f,%.3f,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f,%.3f,"
+                     "\"%s\",\"%s\",%s,%.5f,%.3f,%.3f,%.3f,%.5f,%.5f,%.5f,%.5f,%.5f,%.3f,%.3f,%.3f,"
                      "%.3f,%.3f\n",
-                     r.name.c_str(), kConfigs[c].name.c_str(), tess, x, u, fr, cu, overhead,
+                     r.name.c_str(), kConfigs[c].name.c_str(), tess.c_str(), x, u, fr, cu, overhead,
                      shareValid ? share : std::nan(""), median(row.ratio),
                      double(row.tes) / double(tes), double(row.fragments) / double(fragments),
                      median(row.pass1), median(row.pyramid), median(row.cull), median(row.pass2),
@@ -380,7 +386,7 @@ void printBreakEven(const std::vector<PathResult>& results, const Options& o) {
     for (size_t c = 0; c < std::size(kConfigs); ++c) {
       std::string level = "never";
       for (auto t = o.tess.rbegin(); t != o.tess.rend(); ++t) {
-        if (median(r.rows.at({*t, c}).ratio) >= 1.0) break;
+        if (median(r.rows.at({std::to_string(*t), c}).ratio) >= 1.0) break;
         level = std::to_string(*t);
       }
       std::printf(" %s |", level.c_str());
@@ -425,8 +431,8 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
       const float* r1 = r0 + w;
       float* dst = l0.texels.data() + size_t{ty} * l0.width;
       for (uint32_t tx = 0; tx < fullX; ++tx)
-        dst[tx] = std::max(std::max(r0[2 * tx], r0[2 * tx + 1]),
-                           std::max(r1[2 * tx], r1[2 * tx + 1]));
+        dst[tx] =
+            std::max(std::max(r0[2 * tx], r0[2 * tx + 1]), std::max(r1[2 * tx], r1[2 * tx + 1]));
     }
   } else {
     for (uint32_t y = 0; y < layout.height; ++y) {
@@ -442,8 +448,7 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
   if (layout.width % n)
     for (uint32_t y = 0; y < l0.height; ++y) l0.texels[size_t{y} * l0.width + l0.width - 1] = 1.0f;
   if (layout.height % n)
-    for (uint32_t x = 0; x < l0.width; ++x)
-      l0.texels[size_t{l0.height - 1} * l0.width + x] = 1.0f;
+    for (uint32_t x = 0; x < l0.width; ++x) l0.texels[size_t{l0.height - 1} * l0.width + x] = 1.0f;
   for (uint32_t l = 1; l < layout.levelCount; ++l) {
     const FloorLevel& src = levels[l - 1];
     FloorLevel& dst = levels[l];
@@ -454,8 +459,7 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
       for (uint32_t x = 0; x < dst.width; ++x) {
         // Sources past the covered part are padding: far.
         auto at = [&](uint32_t sx, uint32_t sy) {
-          return sx < src.width && sy < src.height ? src.texels[size_t{sy} * src.width + sx]
-                                                   : 1.0f;
+          return sx < src.width && sy < src.height ? src.texels[size_t{sy} * src.width + sx] : 1.0f;
         };
         const uint32_t sx = 2 * x, sy = 2 * y;
         if (sx + 1 < src.width && sy + 1 < src.height) {  // inside: all four
@@ -477,7 +481,8 @@ std::vector<FloorLevel> floorMaxChain(const std::vector<float>& depth,
 
 // True when every covered texel of the floor's levels equals the GPU pyramid's.
 bool floorEqualsBuild(const std::vector<FloorLevel>& floor,
-                      const std::vector<std::vector<float>>& built, const bound::HiZLayout& layout) {
+                      const std::vector<std::vector<float>>& built,
+                      const bound::HiZLayout& layout) {
   for (uint32_t l = 0; l < floor.size(); ++l)
     for (uint32_t y = 0; y < floor[l].height; ++y)
       for (uint32_t x = 0; x < floor[l].width; ++x)
@@ -506,15 +511,14 @@ void pyramidCost(vulkan::Context& context, const Options& o) {
     bool legacy = false;
     bool readDepthImage = false;
   };
-  std::vector<Kind> kinds = {
-      {"blocked: 3 levels a dispatch, depth copied to RGBA rows (default)",
-       frame::HiZReduction::Blocked},
-      {"blocked, top level gathered from the depth image", frame::HiZReduction::Blocked, false,
-       true},
-      {"single pass (1 dispatch)", frame::HiZReduction::SinglePass},
-      {"per level, four-tap", frame::HiZReduction::FourTap},
-      {"per level, four-tap, before (every texel every build)", frame::HiZReduction::FourTap,
-       true}};
+  std::vector<Kind> kinds = {{"blocked: 3 levels a dispatch, depth copied to RGBA rows (default)",
+                              frame::HiZReduction::Blocked},
+                             {"blocked, top level gathered from the depth image",
+                              frame::HiZReduction::Blocked, false, true},
+                             {"single pass (1 dispatch)", frame::HiZReduction::SinglePass},
+                             {"per level, four-tap", frame::HiZReduction::FourTap},
+                             {"per level, four-tap, before (every texel every build)",
+                              frame::HiZReduction::FourTap, true}};
   if (frame::supportsMinmaxReduction(context)) {
     kinds.push_back(
         {"per level, min/max sampler, gathered top level", frame::HiZReduction::Sampler});
@@ -590,14 +594,16 @@ void pyramidCost(vulkan::Context& context, const Options& o) {
     std::printf("| %s | %u | %.2f | %.2f | %.1fx | %.1f%% | %.0f |\n", kinds[k].name.c_str(),
                 pyramids[k]->dispatchCount(), median(ms[k]), median(gpuMs[k]),
                 median(gpuMs[k]) / floorMedian, 100 * median(ms[k]) / frame, createMs[k]);
-  std::printf("| floor: plain C++ 2x2 max chain, 1 thread (values equal the build: %s) | 0 | "
-              "%.2f | | 1.0x | %.1f%% | |\n",
-              same ? "yes" : "NO", floorMedian, 100 * floorMedian / frame);
+  std::printf(
+      "| floor: plain C++ 2x2 max chain, 1 thread (values equal the build: %s) | 0 | "
+      "%.2f | | 1.0x | %.1f%% | |\n",
+      same ? "yes" : "NO", floorMedian, 100 * floorMedian / frame);
   std::printf("| (empty submission) | 0 | %.2f | | | %.1f%% | |\n", median(emptyMs),
               100 * median(emptyMs) / frame);
   std::printf("\nUnculled built-in scene frame, tess 4, back faces culled: %.2f ms (median). %s\n",
               frame, bench::machineState().c_str());
-  if (!stamps) std::printf("No GPU times: %s\n", vulkan::TimestampQuery::unavailableReason(context).c_str());
+  if (!stamps)
+    std::printf("No GPU times: %s\n", vulkan::TimestampQuery::unavailableReason(context).c_str());
   std::fflush(stdout);
 }
 

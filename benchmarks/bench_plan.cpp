@@ -120,11 +120,17 @@ Case bigGuy(vulkan::Context& context, bool animated);
 Case meshFile(const std::string& file, uint32_t level, double scale, double translate) {
   bench::CullMesh m = bench::loadCullMesh(file, level);
   for (glm::dvec3& p : m.patches.points) p = scale * p + glm::dvec3(translate);
+  // Recentred as osd-cull recentres a far mesh file at load (samples/osd-cull/mesh_patches.cpp),
+  // so the planner sees what the program runs, not fp32 world coordinates that no form of
+  // the program draws.
+  const glm::dvec3 offset = scene::farMeshOffset(m.patches.points);
+  for (glm::dvec3& p : m.patches.points) p -= offset;
   Case c;
   c.name = std::filesystem::path(file).filename().string() + " level " + std::to_string(level);
   if (scale != 1.0 || translate != 0.0) {
     char t[64];
-    std::snprintf(t, sizeof t, " (x%g, +%g)", scale, translate);
+    std::snprintf(t, sizeof t, " (x%g, +%g%s)", scale, translate,
+                  offset != glm::dvec3(0.0) ? ", recentred" : "");
     c.name += t;
   }
   c.up = {0, 1, 0};
@@ -205,25 +211,6 @@ std::string loadAverage() {
   return ok ? text : "?";
 }
 
-// The levels of --tess, then those of --adaptive (label "aN": N pixels per segment).
-std::vector<std::pair<std::string, frame::TessellationOptions>> tessellationLevels(
-    const Options& o, const vulkan::Context& context) {
-  std::vector<std::pair<std::string, frame::TessellationOptions>> levels;
-  for (uint32_t tess : o.tess) {
-    frame::TessellationOptions t;
-    t.uniformLevel = tess;
-    levels.push_back({std::to_string(tess), t});
-  }
-  for (uint32_t pixels : o.adaptive) {
-    frame::TessellationOptions t;
-    t.mode = frame::TessellationOptions::Mode::Adaptive;
-    t.pixelsPerSegment = pixels;
-    t.maxLevel = context.info().limits.maxTessellationGenerationLevel;
-    levels.push_back({"a" + std::to_string(pixels), t});
-  }
-  return levels;
-}
-
 // One table row (and CSV line) of a level: the medians of the three sides, the plan's
 // choices, and whether it is within 5% of the better fixed choice and its prediction within 25%.
 void reportLevel(const std::string& caseName, const std::string& label, const Row& row,
@@ -295,7 +282,8 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
     return &c.dynamic->cullData(frame::cullMethod(method).reference);
   };
   uint64_t frameNumber = 0;
-  const auto levels = tessellationLevels(o, context);
+  const auto levels = bench::tessellationLevels(
+      o.tess, o.adaptive, context.info().limits.maxTessellationGenerationLevel);
   for (const auto& [label, tessellation] : levels) {
     bench::progress(c.name + ": tess " + label);
     frame::CullFrameOptions base;

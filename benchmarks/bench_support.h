@@ -7,6 +7,7 @@
 #include "adapters/load_mesh.h"
 #include "osd_cull/bound/back_patch_validity.h"
 #include "osd_cull/error.h"
+#include "osd_cull/frame/draw/tess_levels.h"
 #include "osd_cull/patch/extract_patches.h"
 #include "osd_cull/patch/refiner.h"
 #include "osd_cull/vk/context.h"
@@ -25,6 +26,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sys/resource.h>
@@ -48,6 +50,27 @@ inline std::vector<uint32_t> numberList(const std::string& text) {
   return out;
 }
 
+// The uniform levels, then the screen-space adaptive ones (label "aN": N pixels per
+// segment, up to maxLevel), each with its label.
+inline std::vector<std::pair<std::string, frame::TessellationOptions>> tessellationLevels(
+    const std::vector<uint32_t>& uniform, const std::vector<uint32_t>& adaptive,
+    uint32_t maxLevel) {
+  std::vector<std::pair<std::string, frame::TessellationOptions>> levels;
+  for (uint32_t tess : uniform) {
+    frame::TessellationOptions t;
+    t.uniformLevel = tess;
+    levels.push_back({std::to_string(tess), t});
+  }
+  for (uint32_t pixels : adaptive) {
+    frame::TessellationOptions t;
+    t.mode = frame::TessellationOptions::Mode::Adaptive;
+    t.pixelsPerSegment = pixels;
+    t.maxLevel = maxLevel;
+    levels.push_back({"a" + std::to_string(pixels), t});
+  }
+  return levels;
+}
+
 /// \brief A comma-separated list of names ("default,bigguy0").
 inline std::vector<std::string> nameList(const std::string& text) {
   std::vector<std::string> out;
@@ -66,10 +89,11 @@ class CommandLine {
   /// \brief `program` ("bench-draw") and `source` ("bench_draw.cpp", whose top comment
   /// describes the options) are named in --help and in errors.
   CommandLine(std::string program, std::string source)
-      : app_(std::make_shared<CLI::App>(
-            "What the options do and what " + program + " prints: the comment at the top of "
-            "benchmarks/" + source + ".",
-            program)),
+      : app_(std::make_shared<CLI::App>("What the options do and what " + program +
+                                            " prints: the comment at the top of "
+                                            "benchmarks/" +
+                                            source + ".",
+                                        program)),
         source_(std::move(source)) {
     app_->option_defaults()->always_capture_default();
     app_->get_formatter()->column_width(36);
@@ -82,20 +106,23 @@ class CommandLine {
   }
   /// \brief `--name N`, a whole number of at least `atLeast`.
   CommandLine& number(const std::string& name, uint32_t& value, uint32_t atLeast = 0) {
-    app_->add_option(name, value)->type_name("N")->check(
-        CLI::Range(atLeast, std::numeric_limits<uint32_t>::max()));
+    app_->add_option(name, value)
+        ->type_name("N")
+        ->check(CLI::Range(atLeast, std::numeric_limits<uint32_t>::max()));
     return *this;
   }
   /// \brief `--name N`, a signed whole number of at least `atLeast`.
   CommandLine& integer(const std::string& name, int& value, int atLeast) {
-    app_->add_option(name, value)->type_name("N")->check(
-        CLI::Range(atLeast, std::numeric_limits<int>::max()));
+    app_->add_option(name, value)
+        ->type_name("N")
+        ->check(CLI::Range(atLeast, std::numeric_limits<int>::max()));
     return *this;
   }
   /// \brief `--name X`, a real number of at least `atLeast`.
   CommandLine& real(const std::string& name, double& value, double atLeast) {
-    app_->add_option(name, value)->type_name("X")->check(
-        CLI::Range(atLeast, std::numeric_limits<double>::max()));
+    app_->add_option(name, value)
+        ->type_name("X")
+        ->check(CLI::Range(atLeast, std::numeric_limits<double>::max()));
     return *this;
   }
   /// \brief `--name N,N,...`.

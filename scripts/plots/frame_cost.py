@@ -38,7 +38,8 @@ def main():
     for ax, path in zip(axes[0], paths):
         for stage, color in COLORS.items():
             pts = sorted((int(r["tess"]), float(r["ratio"]), 1.0 - float(r["not_drawn"]))
-                         for r in rows if r["path"] == path and r["stages"] == stage)
+                         for r in rows if r["path"] == path and r["stages"] == stage
+                         and r["tess"].isdigit())  # uniform levels; "aN" rows are adaptive
             if not pts:
                 continue
             tess = [p[0] for p in pts]
