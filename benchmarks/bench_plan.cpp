@@ -14,6 +14,7 @@
 //              [--scale S] [--translate T] (of the --mesh points) [--orbit DEG] (per frame;
 //              default one turn over --frames)
 //              [--warmup 4] [--width 1280] [--height 720] [--calibration FILE] [--csv FILE]
+//              [--per-frame] (each measured frame: the three sides' ms, the order, the plan)
 //              [--device X]   (--repeats is accepted and unused: --frames sets the medians)
 //
 // The animated case deforms BigGuy's cage with a wave every frame; its control-point
@@ -67,6 +68,7 @@ struct Options {
   double translate = 0.0;  // added to their x, y and z (far from the origin)
   uint32_t frames = 4, warmup = 4, width = 1280, height = 720, repeats = 1;
   std::string calibration, csv, device;
+  bool perFrame = false;  // each measured frame's three times and the plan, to stderr
 };
 
 bench::CommandLine commandLine(Options& o) {
@@ -83,7 +85,8 @@ bench::CommandLine commandLine(Options& o) {
       .number("--warmup", o.warmup)
       .imageAndDevice(o.width, o.height, o.repeats, o.device)
       .text("--calibration", o.calibration)
-      .text("--csv", o.csv);
+      .text("--csv", o.csv)
+      .flag("--per-frame", o.perFrame);
 }
 
 // A mesh to draw: static patches, or a deforming cage.
@@ -348,6 +351,11 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
       row.planned.push_back(m.stats.frameMs);
       row.predicted.push_back(p.predicted.totalMs() - p.predicted.updateMs);
       ++row.choices[p.stages.describe() + (p.probe ? " [probe]" : "")];
+      if (o.perFrame)
+        std::fprintf(
+            stderr, "  frame %d (order %d%d%d): none %.2f, all %.2f, planned %.2f ms (%s%s)\n", f,
+            kOrders[(f - first) % 6][0], kOrders[(f - first) % 6][1], kOrders[(f - first) % 6][2],
+            none, allMs, m.stats.frameMs, p.stages.describe().c_str(), p.probe ? ", probe" : "");
       row.changes += m.planChanged && f > 0;
     }
     reportLevel(c.name, label, row, tally, csv);
