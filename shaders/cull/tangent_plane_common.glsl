@@ -91,17 +91,29 @@ uint classifyTangentPlane(bool finite, uint pcnt, uint ncnt, uint pcntDrawn) {
   return kVerdictSilhouette;
 }
 
-// tangentPlaneDrawnMargin() of bound/drawn_triangles.h for the Bezier patch at `first`, in
+// tangentPlaneDrawnMargin() of bound/drawn_triangles.h for the Bezier patch with net b, in
 // the units of the world-space coefficients: (R + dv) deviation + dv G^2, R = max |E - b|.
-float tangentPlaneDrawnMargin(uint patchIndex) {
+float tangentPlaneDrawnMargin(uint patchIndex, vec3 b[16]) {
 #if CULL_DRAWN
-  uint first = firstPoint(patchIndex);
-  vec3 d = drawnDerivativeBounds(first);
-  float r = drawnMaxDistance(first);
+  vec3 d = drawnDerivativeBounds(b);
+  float r = drawnMaxDistance(b);
   float dv = drawnVertexError(d.z, r);
   float mu = (r + dv) * drawnNormalDeviation(d.x, d.y, drawnShape(patchIndex), dv) +
              dv * d.x * d.x;
   return isFiniteF(mu) ? mu * kDrawnSafety : 3.0e38;
+#else
+  return 0.0;
+#endif
+}
+
+// The same, loading the net (on lavapipe each load is a loop over the SIMD lanes: a caller
+// that has the points passes them).
+float tangentPlaneDrawnMargin(uint patchIndex) {
+#if CULL_DRAWN
+  vec3 b[16];
+  uint first = firstPoint(patchIndex);
+  for (uint k = 0u; k < 16u; ++k) b[k] = controlPoint(first + k);
+  return tangentPlaneDrawnMargin(patchIndex, b);
 #else
   return 0.0;
 #endif

@@ -72,7 +72,7 @@ uint tangentPlaneFactoredVerdict(uint patchIndex) {
       bvec4(allEqual(b[0], b[1], b[2], b[3]), allEqual(b[12], b[13], b[14], b[15]),
             allEqual(b[0], b[4], b[8], b[12]), allEqual(b[3], b[7], b[11], b[15]));
   const uvec4 counts = tangentPlaneFactoredSigns(b, inputError, reference,
-                                                 tangentPlaneDrawnMargin(patchIndex), collapsed);
+                                                 tangentPlaneDrawnMargin(patchIndex, b), collapsed);
   return classifyTangentPlane(counts.z == 0u, counts.x, counts.y, counts.w);
 }
 #endif
