@@ -241,6 +241,22 @@ void reportLevel(const std::string& caseName, const std::string& label, const Ro
   }
 }
 
+// --per-frame: one measured frame's three times, the order they ran in, and the plan with
+// its predictions and the planned frame's GPU stage times.
+void printFrame(int f, const int* order, double none, double allMs,
+                const session::SessionFrame& m) {
+  const plan::Plan& p = *m.plan;
+  std::fprintf(stderr,
+               "  frame %d (order %d%d%d): none %.2f, all %.2f, planned %.2f ms (%s%s; "
+               "predicted %.2f, unculled %.2f; GPU pass 1 %.2f, pyramid %.2f, cull %.2f, "
+               "pass 2 %.2f)\n",
+               f, order[0], order[1], order[2], none, allMs, m.stats.frameMs,
+               p.stages.describe().c_str(), p.probe ? ", probe" : "",
+               p.predicted.totalMs() - p.predicted.updateMs,
+               p.predictedUnculled.totalMs() - p.predictedUnculled.updateMs, m.stats.gpu.pass1,
+               m.stats.gpu.pyramid, m.stats.gpu.cull, m.stats.gpu.pass2);
+}
+
 Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const Options& o,
               FILE* csv) {
   Tally tally;
@@ -351,11 +367,7 @@ Tally runCase(vulkan::Context& context, Case& c, plan::Planner& planner, const O
       row.planned.push_back(m.stats.frameMs);
       row.predicted.push_back(p.predicted.totalMs() - p.predicted.updateMs);
       ++row.choices[p.stages.describe() + (p.probe ? " [probe]" : "")];
-      if (o.perFrame)
-        std::fprintf(
-            stderr, "  frame %d (order %d%d%d): none %.2f, all %.2f, planned %.2f ms (%s%s)\n", f,
-            kOrders[(f - first) % 6][0], kOrders[(f - first) % 6][1], kOrders[(f - first) % 6][2],
-            none, allMs, m.stats.frameMs, p.stages.describe().c_str(), p.probe ? ", probe" : "");
+      if (o.perFrame) printFrame(f, kOrders[(f - first) % 6], none, allMs, m);
       row.changes += m.planChanged && f > 0;
     }
     reportLevel(c.name, label, row, tally, csv);
