@@ -179,20 +179,9 @@ float drawnTessellatorPointError(float level) {
 // Whether every triangle the tessellator can draw for this patch (Bezier or Gregory) faces
 // away.
 bool drawnTrianglesFaceAway(uint patchIndex) {
-  if (!drawnLevelsExact() || pc.eye.w == 0.0) return false;
-  vec4 levelLo, levelHi;
-  drawnEdgeLevels(patchIndex, levelLo, levelHi);
   float lo[4], hi[4], outer[4];
-  bool allOnes = true;
-  for (int e = 0; e < 4; ++e) {
-    lo[e] = max(1.0, ceil(levelLo[e]));
-    hi[e] = levelHi[e] > 0.0 ? max(1.0, ceil(levelHi[e])) : 0.0;
-    outer[e] = lo[e] + hi[e];
-    // Listed up to CULL_DRAWN_LIST_LEVEL (64 with CullSettings::drawnEnumerate, else
-    // bound::kDrawnListLowLevel: where the listing is cheap and the bound loose).
-    if (!(outer[e] <= float(CULL_DRAWN_LIST_LEVEL))) return false;
-    allOnes = allOnes && outer[e] == 1.0;
-  }
+  bool allOnes;
+  if (!drawnListedLevels(patchIndex, lo, hi, outer, allOnes)) return false;
   uint first = firstPoint(patchIndex);
   gDrawnGregory = !isBezier(patchIndex);
   float g, maxAbs, maxDistance, evalUlps = 24.0;

@@ -64,18 +64,34 @@ void drawnEdgeLevels(uint patchIndex, out vec4 levelLo, out vec4 levelHi) {
 }
 
 #ifdef CULL_DRAWN_LIST_LEVEL
-// Whether the listed-triangle test (drawn_triangle_set.glsl drawnTrianglesFaceAway) can
-// decide the patch: exact levels, a finite eye and every outer level (Lo + Hi halves) at most
-// CULL_DRAWN_LIST_LEVEL. The same level arithmetic as that test, which checks it again.
-bool drawnListable(uint patchIndex) {
+// The outer levels the tessellator draws for this view (each half of a split edge rounded up
+// to a whole count, at least 1: lo, hi, outer = lo + hi) and whether the listed-triangle test
+// (drawn_triangle_set.glsl drawnTrianglesFaceAway) can decide the patch: exact levels, a
+// finite eye and every outer level at most CULL_DRAWN_LIST_LEVEL (64 with
+// CullSettings::drawnEnumerate, else bound::kDrawnListLowLevel: where the listing is cheap and
+// the bound loose). `allOnes`: every edge is one segment.
+bool drawnListedLevels(uint patchIndex, out float lo[4], out float hi[4], out float outer[4],
+                       out bool allOnes) {
+  allOnes = true;
+  for (int e = 0; e < 4; ++e) lo[e] = hi[e] = outer[e] = 0.0;
   if (!drawnLevelsExact() || pc.eye.w == 0.0) return false;
   vec4 levelLo, levelHi;
   drawnEdgeLevels(patchIndex, levelLo, levelHi);
   for (int e = 0; e < 4; ++e) {
-    float outer = max(1.0, ceil(levelLo[e])) + (levelHi[e] > 0.0 ? max(1.0, ceil(levelHi[e])) : 0.0);
-    if (!(outer <= float(CULL_DRAWN_LIST_LEVEL))) return false;
+    lo[e] = max(1.0, ceil(levelLo[e]));
+    hi[e] = levelHi[e] > 0.0 ? max(1.0, ceil(levelHi[e])) : 0.0;
+    outer[e] = lo[e] + hi[e];
+    if (!(outer[e] <= float(CULL_DRAWN_LIST_LEVEL))) return false;
+    allOnes = allOnes && outer[e] == 1.0;
   }
   return true;
+}
+
+// Whether the listed-triangle test can decide the patch (drawnListedLevels).
+bool drawnListable(uint patchIndex) {
+  float lo[4], hi[4], outer[4];
+  bool allOnes;
+  return drawnListedLevels(patchIndex, lo, hi, outer, allOnes);
 }
 #endif
 
@@ -143,13 +159,12 @@ float drawnMaxDistance(vec3 b[16]) {
   return r * kDrawnSafety;
 }
 
-// The largest distance of a patch's `count` control points from the eye.
-float drawnMaxDistance(uint first, uint count) {
-  float r = 0.0;
-  for (uint k = 0u; k < count; ++k) r = max(r, length(pc.eye.xyz - controlPoint(first + k)));
-  return r * kDrawnSafety;
+// The same of the 16 points at `first`.
+float drawnMaxDistance(uint first) {
+  vec3 b[16];
+  for (uint k = 0u; k < 16u; ++k) b[k] = controlPoint(first + k);
+  return drawnMaxDistance(b);
 }
-float drawnMaxDistance(uint first) { return drawnMaxDistance(first, 16u); }
 
 // bound::normalDeviation from (G, H) and the shape.
 float drawnNormalDeviation(float g, float h, vec3 shape, float vertexError) {
