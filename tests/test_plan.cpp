@@ -104,6 +104,14 @@ PlannerOptions fromPriors() {
   return o;
 }
 
+// The default options without the unculled check (PlannerOptions::unculledCheckFrames), for
+// the tests of the other probes and of the scales, whose frame sequences it would interleave.
+PlannerOptions withoutUnculledCheck() {
+  PlannerOptions o;
+  o.unculledCheckFrames = 0;
+  return o;
+}
+
 TEST(Plan, RateKeysNameEveryVariantAndParseBack) {
   // Each learned rate is keyed by its stage, method and variant (issue 22: no string keys).
   const std::vector<std::pair<RateKey, std::string>> keys = {
@@ -470,9 +478,10 @@ TEST(SelfOcclusion, OnForANonConvexMeshOnceItsMeasuredRatePays) {
       << last.occlusion.reason;
   EXPECT_NE(last.occlusion.reason.find("saves "), std::string::npos) << last.occlusion.reason;
   EXPECT_LT(last.occlusion.deltaMs, 0.0);
-  // On from the first frame the hysteresis allows after the probe.
+  // On from the first frame the hysteresis allows after the probe, but for the unculled
+  // checks (frames drawn with no stage).
   for (auto it = probe + 1 + 8; it < concave.end(); ++it)
-    EXPECT_TRUE(it->occlusion.on) << "frame " << it->frame;
+    EXPECT_TRUE(it->occlusion.on || it->unculledCheck) << "frame " << it->frame;
 }
 
 class PlanDisplacement : public test::VkTest {};
@@ -628,6 +637,7 @@ TEST(Plan, HysteresisHoldsAChoiceForHoldFrames) {
 
 TEST(Plan, SwitchedOffMeshIsReprobedAndTurnedOnWhenItPays) {
   PlannerOptions options = fromPriors();
+  options.unculledCheckFrames = 0;
   options.reprobeFrames = 16;
   Planner planner(syntheticCalibration(), options);
   const PlanInput in = meshAt(60.0, 2.0);
@@ -676,6 +686,7 @@ TEST(Plan, TheUnculledFrameIsPredictedFromTheCulledFramesOwnDrawTime) {
   // the unculled frame from that, and switches culling off without ever drawing an
   // unculled frame to measure it (issue 18: such a probe threw the visibility status away).
   PlannerOptions options;
+  options.unculledCheckFrames = 0;
   options.holdFrames = 1;
   Planner planner(syntheticCalibration(), options);
   const PlanInput in = meshAt(1.6, 16.0);
@@ -705,8 +716,57 @@ TEST(Plan, TheUnculledFrameIsPredictedFromTheCulledFramesOwnDrawTime) {
   EXPECT_GT(p.cullScale, 4.0);
 }
 
-TEST(Plan, PredictionFollowsTheMeasuredFrameTime) {
+// Issue 18: the displaced BigGuy's two-pass frame at tess 2 and 4 was predicted at 0.87 of
+// its time from the culled frames' own draw time, and kept where no culling was 10% faster.
+// The unculled check draws one frame with no stage right after exploring: here it measures
+// the unculled frame at half its prediction (the culled frames at theirs), and the choice
+// made on the next frame, unheld, is no culling, kept from then on.
+TEST(Plan, AnUnculledCheckMeasuresTheFrameWithoutCullingAndSwitchesOffWhatDoesNotPay) {
   Planner planner(syntheticCalibration());
+  const PlanInput in = meshAt(6.0, 4.0);
+  std::vector<uint64_t> checks;
+  for (uint64_t f = 0; f < 40; ++f) {
+    const Plan p = planner.plan("k", in, f);
+    if (p.unculledCheck) {
+      checks.push_back(f);
+      EXPECT_TRUE(p.probe);
+      EXPECT_FALSE(p.culls());
+      EXPECT_EQ(p.backPatch.reason.rfind("unculled check", 0), 0u) << p.backPatch.reason;
+    }
+    if (f < 2) {
+      ASSERT_TRUE(p.culls()) << "exploring: " << planTable({&p, 1});
+    }
+    if (f >= 3) {
+      EXPECT_FALSE(p.culls()) << "frame " << f << ": " << planTable({&p, 1});
+    }
+    const double ms = p.culls() ? p.predicted.totalMs() : 0.5 * p.predictedUnculled.totalMs();
+    planner.observe("k", p, atPredictedRates(p, 2000, ms, NAN));
+  }
+  EXPECT_EQ(checks, (std::vector<uint64_t>{2}));
+}
+
+// Where culling pays, the unculled frame measures as predicted and culling stays; the checks
+// come right after exploring, then 8, 16, 32 frames apart (each doubles the interval), and
+// start over 8 frames after the inputs change (the level at frame 100).
+TEST(Plan, UnculledChecksComeEverMoreRarelyWhereCullingPays) {
+  Planner planner(syntheticCalibration());
+  PlanInput in = meshAt(6.0, 4.0);
+  std::vector<uint64_t> checks;
+  for (uint64_t f = 0; f < 120; ++f) {
+    if (f == 100) in.tess = 16.0;
+    const Plan p = planner.plan("k", in, f);
+    if (p.unculledCheck) checks.push_back(f);
+    if (!p.unculledCheck) {
+      EXPECT_TRUE(p.culls()) << "frame " << f << ": " << planTable({&p, 1});
+    }
+    const double ms = p.culls() ? p.predicted.totalMs() : p.predictedUnculled.totalMs();
+    planner.observe("k", p, atPredictedRates(p, 2000, ms, NAN));
+  }
+  EXPECT_EQ(checks, (std::vector<uint64_t>{2, 10, 26, 58, 108}));
+}
+
+TEST(Plan, PredictionFollowsTheMeasuredFrameTime) {
+  Planner planner(syntheticCalibration(), withoutUnculledCheck());
   const PlanInput in = meshAt(1.6, 16.0);
   const Plan first = planner.plan("k", in, 0);
   EXPECT_EQ(first.drawScale, 1.0);
@@ -741,7 +801,7 @@ TEST(Plan, OneSlowFrameDoesNotMoveTheScales) {
   // A scale is the median of the last frames (PlannerOptions::scaleWindow): lavapipe runs a
   // frame after a heavy one up to 1.5x slower, and a moving average carried such a frame
   // into the next predictions (issue 18: predictions 17-23% high on a held-out character).
-  Planner planner(syntheticCalibration());
+  Planner planner(syntheticCalibration(), withoutUnculledCheck());
   const PlanInput in = meshAt(1.6, 16.0);
   const Plan first = planner.plan("k", in, 0);
   const double unscaled = first.predicted.totalMs() - first.predicted.updateMs;
@@ -814,7 +874,7 @@ TEST(Plan, TheFirstFramesMeasureEveryStageAndTheChoiceAfterIsMadeOnMeasuredRates
   // A mesh whose priors say "cull nothing" (far away, tess 1) but whose back-patch stage
   // culls 95% and pays: the two exploring frames run every offered stage and measure it,
   // frame 2 keeps back-patch culling without waiting for a probe.
-  Planner planner(syntheticCalibration());
+  Planner planner(syntheticCalibration(), withoutUnculledCheck());
   const PlanInput in = meshAt(60.0, 1.0);
   for (uint64_t f = 0; f < 2; ++f) {
     const Plan p = planner.plan("k", in, f);
@@ -840,7 +900,7 @@ TEST(Plan, TheFirstFrameCountsEveryOtherBackPatchVariantAndTheChoiceUsesTheirRat
   // Issue 18: with one back-patch method measured in the exploring frames, every other
   // variant borrowed its rate and was never chosen. The first frame asks for a counting-only
   // pass of every other offered variant; their measured rates decide frame 2.
-  Planner planner(syntheticCalibration());
+  Planner planner(syntheticCalibration(), withoutUnculledCheck());
   const PlanInput in = meshAt(60.0, 1.0);
   const Plan first = planner.plan("k", in, 0);
   ASSERT_TRUE(first.backPatch.on);
@@ -909,7 +969,10 @@ void expectReasonAgrees(const Plan& p, const char* name, const Effect& e, bool p
   const std::string& r = e.reason;
   SCOPED_TRACE(std::string(name) + " at frame " + std::to_string(p.frame) + ": " + r);
   if (r.find("rate") == std::string::npos) return;  // a rule (pre-test, validity), no numbers
-  if (probedOn) {
+  if (p.unculledCheck) {
+    EXPECT_EQ(r.rfind("unculled check", 0), 0u);
+    EXPECT_FALSE(e.on);
+  } else if (probedOn) {
     EXPECT_EQ(r.rfind("re-probe", 0), 0u);
     EXPECT_TRUE(e.on);
   } else if (r.rfind("saves ", 0) == 0) {

@@ -503,8 +503,8 @@ double Planner::rate(const std::string& key, const std::string& stage) const {
 
 double Planner::predictedMs(const State& s, const PlanInput& input, const StageChoice& c,
                             BoxInView box) const {
-  return scaled(predict(calibration_, costCase(input, c), c, ratesFor(s, c, box)), s.drawScaleNow(),
-                s.cullScaleNow())
+  return scaled(predict(calibration_, costCase(input, c), c, ratesFor(s, c, box)),
+                s.drawScaleFor(c), s.cullScaleNow())
       .totalMs();
 }
 
@@ -536,6 +536,16 @@ bool Planner::choose(State& s, const PlanInput& input, const std::vector<StageCh
     }
   }
   const bool exploring = s.explored && frameNumber - *s.firstFrame < options_.exploreFrames;
+  // Right after exploring, one frame with no stage at all (the unculled check,
+  // PlannerOptions::unculledCheckFrames) when the explored choice culls: the choice after it
+  // compares two measured frames. The frame after it is still unheld.
+  if (s.explored && !exploring && frameNumber - *s.firstFrame == options_.exploreFrames &&
+      options_.unculledCheckFrames > 0 && !s.unculledMeasured && s.current && s.current->any() &&
+      p.box != BoxInView::Outside) {
+    p.stages = {};
+    p.probe = p.unculledCheck = true;
+    return true;
+  }
   // The first choice after exploring is made on the measured rates, not held.
   const bool unheld = s.explored && !exploring;
   if (unheld) s.explored = false;
@@ -562,8 +572,8 @@ bool Planner::choose(State& s, const PlanInput& input, const std::vector<StageCh
 void Planner::reprobe(State& s, const PlanInput& input, const std::vector<StageChoice>& all,
                       Plan& p, uint64_t frameNumber, bool exploring) const {
   auto total = [&](const StageChoice& c) { return predictedMs(s, input, c, p.box); };
-  // The unculled frame is never probed: observe() learns its cost from the culled frames'
-  // own draw time (Plan::drawScale), so the visibility status is never thrown away.
+  // The unculled frame is checked at the end (Plan::unculledCheck): a frame with no stage
+  // keeps every cull configuration and its visibility status (MeshSession's cache).
   for (CullStage kind : {CullStage::Frustum, CullStage::BackPatch, CullStage::Occlusion})
     if (!s.lastRun.count(kind)) s.lastRun[kind] = frameNumber;
   if (exploring) {
@@ -625,6 +635,18 @@ void Planner::reprobe(State& s, const PlanInput& input, const std::vector<StageC
       s.hold = p.stages;
     }
   }
+  // The unculled check (PlannerOptions::unculledCheckFrames) where no stage probe runs.
+  if (!exploring && !p.probe && options_.unculledCheckFrames > 0 && p.stages.any() &&
+      p.box != BoxInView::Outside) {
+    const uint32_t interval =
+        s.unculledInterval > 0 ? s.unculledInterval : options_.unculledCheckFrames;
+    if (frameNumber - s.lastUnculled >= interval) {
+      p.stages = {};
+      p.probe = p.unculledCheck = true;
+      s.unculledInterval =
+          std::min(std::max(options_.maxReprobeFrames, options_.unculledCheckFrames), 2 * interval);
+    }
+  }
 }
 
 Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t frameNumber) {
@@ -637,6 +659,8 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
   if (const std::string inputs = inputsSignature(input); inputs != s.inputs) {
     s.inputs = inputs;
     s.probeInterval.clear();
+    s.unculledInterval = 0;
+    s.lastUnculled = frameNumber;
   }
   while (!s.switches.empty() && frameNumber - s.switches.front() >= options_.oscillationWindow)
     s.switches.pop_front();
@@ -654,17 +678,18 @@ Plan Planner::plan(const std::string& key, const PlanInput& input, uint64_t fram
           !(c.backPatch == p.stages.backPatch && c.accuracy == p.stages.accuracy) &&
           !s.rates.count(RateKey::backPatch(c.backPatch, c.accuracy)))
         p.countOnly.push_back(c);
+  if (!p.stages.any()) s.lastUnculled = frameNumber;
   if (p.stages.frustum) s.lastRun[CullStage::Frustum] = frameNumber;
   if (!p.stages.backPatch.empty()) s.lastRun[CullStage::BackPatch] = frameNumber;
   if (!p.stages.occlusion.empty()) s.lastRun[CullStage::Occlusion] = frameNumber;
 
   p.rates = ratesFor(s, p.stages, p.box);
-  p.drawScale = s.drawScaleNow();
+  p.drawScale = s.drawScaleFor(p.stages);
   p.cullScale = s.cullScaleNow();
   p.cost = costCase(input, p.stages);
   p.predicted = scaled(predict(calibration_, p.cost, p.stages, p.rates), p.drawScale, p.cullScale);
-  p.predictedUnculled =
-      scaled(predict(calibration_, costCase(input, {}), {}, p.rates), p.drawScale, p.cullScale);
+  p.predictedUnculled = scaled(predict(calibration_, costCase(input, {}), {}, p.rates),
+                               s.unculledScaleNow(), p.cullScale);
   explain(p, input, s);
   return p;
 }
@@ -729,7 +754,12 @@ struct Planner::Explaining {
   // prediction that now favours the other.
   std::string decision(bool on, double deltaMs, bool probed) const {
     char text[160];
-    if (probed)
+    if (p.unculledCheck)
+      std::snprintf(text, sizeof text,
+                    "unculled check: one frame with no stage, to measure the frame without "
+                    "culling (%+.2f ms)",
+                    deltaMs);
+    else if (probed)
       std::snprintf(text, sizeof text, "re-probe: runs once to measure its rate (%+.2f ms)",
                     deltaMs);
     else if (on && deltaMs <= 0.0)
@@ -1092,7 +1122,7 @@ void Planner::observe(const std::string& key, const Plan& plan, const Observatio
   };
   if (warm && o.ms > 0.0 && std::isfinite(o.ms) && drawModel > 0.0) {
     if (!culls) {
-      learnScale(s.drawScale, s.drawMeasured, s.drawRatios, o.ms / drawModel);
+      learnScale(s.unculledScale, s.unculledMeasured, s.unculledRatios, o.ms / drawModel);
     } else if (std::isfinite(o.cullMs) && o.cullMs >= 0.0 && o.cullMs < o.ms) {
       learnScale(s.drawScale, s.drawMeasured, s.drawRatios, (o.ms - o.cullMs) / drawModel);
       if (cullModel > 0.0)

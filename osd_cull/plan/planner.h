@@ -23,9 +23,13 @@
 /// observe() feeds the frame's measured per-stage cull counts back (a moving average) and
 /// its measured time, split into the draw and the cull work where the frame measured both
 /// (CullFrameStats::gpu): the model's draw cost and its cull cost are corrected apart, from
-/// culled frames too, so the unculled frame is predicted from the culled one's own draw time
-/// and never has to be drawn to be measured (issue 18: an unculled re-probe threw away the
-/// visibility status and drew everything on the frames after it).
+/// culled frames too. The unculled frame has its own scale, from frames drawn with no stage:
+/// while the choice culls, an unculled check draws one such frame now and then
+/// (PlannerOptions::unculledCheckFrames), keeping every cull configuration and its
+/// visibility status, so that returning to culling does not draw everything (issue 18: an
+/// unculled re-probe once threw the status away; the culled frames' draw time alone
+/// predicted the displaced two-pass frame at 0.87 of its time and kept it where no culling
+/// was 10% faster).
 ///
 /// The planner never touches the device: applyPlan() turns a plan into the options that
 /// the frame pipeline already takes (frame::CullFrameOptions, frame::CullSettings).
@@ -145,6 +149,9 @@ struct Plan {
   StageChoice stages;
   Effect frustum, backPatch, accuracy, occlusion, passes, hiz, update, bounds, displacement;
   bool probe = false;  ///< a re-probe frame (a switched-off stage runs once)
+  /// An unculled check (PlannerOptions::unculledCheckFrames, also a probe): this frame draws
+  /// with no stage at all, so that the frame without culling is measured, not only predicted.
+  bool unculledCheck = false;
   /// Back-patch variants (method and accuracy, with this frame's frustum stage) to run in a
   /// counting-only pass this frame: their kernels cull nothing that is drawn and the
   /// visibility status is untouched; their culls go to Planner::observeCount(). Set on a
@@ -202,6 +209,16 @@ struct PlannerOptions {
   /// on measured rates, not priors, and needs no probe soon after (0: start from the
   /// priors' choice). Two frames: a new two-pass frame's first one cannot measure occlusion.
   uint32_t exploreFrames = 2;
+  /// While the current choice culls, one frame is drawn with no stage at all (an unculled
+  /// check: Plan::unculledCheck) right after exploring and again after this many frames,
+  /// each check doubling the interval up to maxReprobeFrames until the inputs change (0:
+  /// never). It teaches the unculled frame's own time scale: the culled frames' draw time
+  /// predicts it only as well as the model's draw cost carries from the patches a culled
+  /// frame draws to all of them (issue 18: the displaced BigGuy's two-pass frame at tess 2
+  /// and 4 was predicted at 0.87 of its time and kept where no culling was 10% faster).
+  /// The frame keeps every cull configuration and its visibility status (MeshSession's
+  /// cache), so the frame after it culls from a status one frame old.
+  uint32_t unculledCheckFrames = 8;
   /// Plan::countOnly on a key's first frame (false: an unmeasured back-patch variant borrows
   /// its measured sibling's rate, Planner::rate).
   bool countingProbes = true;
@@ -357,7 +374,24 @@ class Planner {
     bool drawMeasured = false, cullMeasured = false;
     std::deque<double> drawRatios, cullRatios;  // the last measured / model ratios
     std::vector<StageChoice> observed;          // the stage choices observed at least once
-    double drawScaleNow() const { return drawMeasured || !cullMeasured ? drawScale : cullScale; }
+    // The unculled frame's scale, learned from frames drawn with no stage (unculled checks,
+    // a choice of none); the culled choices' draw scale only from culled frames. Until one is
+    // measured it takes the other's.
+    double unculledScale = 1.0;
+    bool unculledMeasured = false;
+    std::deque<double> unculledRatios;
+    uint64_t lastUnculled = 0;      // the last frame drawn with no stage
+    uint32_t unculledInterval = 0;  // frames between unculled checks (0: not started)
+    double drawScaleNow() const {
+      if (drawMeasured) return drawScale;
+      if (unculledMeasured) return unculledScale;
+      return cullMeasured ? cullScale : drawScale;
+    }
+    double unculledScaleNow() const { return unculledMeasured ? unculledScale : drawScaleNow(); }
+    // The draw scale of choice `c`.
+    double drawScaleFor(const StageChoice& c) const {
+      return c.any() ? drawScaleNow() : unculledScaleNow();
+    }
     double cullScaleNow() const { return cullMeasured || !drawMeasured ? cullScale : drawScale; }
   };
   /// The frame time of choice `c` predicted for `input`, in this key's measured time.
