@@ -181,145 +181,194 @@ std::string toText(const Calibration& c) {
   return out.str();
 }
 
+namespace {
+
+/// \brief One line of a calibration file, `NAME VALUES...`, and the readers of its values,
+/// whose errors name the file, the line and the entry.
+class EntryLine {
+ public:
+  EntryLine(const std::string& line, const std::string& source, int lineNumber)
+      : source_(source), lineNumber_(lineNumber) {
+    const size_t space = line.find(' ');
+    name_ = line.substr(0, space);
+    rest_ = space == std::string::npos ? "" : line.substr(space + 1);
+    values_.str(rest_);
+  }
+
+  const std::string& name() const { return name_; }
+  const std::string& rest() const { return rest_; }
+
+  /// \brief The error `what` at this line.
+  Error fail(const std::string& what) const {
+    return Error(source_ + ":" + std::to_string(lineNumber_) + ": " + what);
+  }
+
+  /// \brief The next value into `v`, in [lo, hi] when a number: finite, and not beyond what a
+  /// device measures.
+  template <typename T>
+  void read(T& v, const char* what, double lo = 0.0, double hi = kMaxMs) {
+    std::string token;
+    if (!(values_ >> token)) throw fail("'" + name_ + "' needs " + what + ", got '" + rest_ + "'");
+    if constexpr (std::is_same_v<T, std::string>) {
+      v = token;
+    } else {
+      char* end = nullptr;
+      const double x = std::strtod(token.c_str(), &end);
+      if (token.empty() || *end != '\0' || (std::is_integral_v<T> && x != std::floor(x)))
+        throw fail("'" + name_ + "' needs " + what + ", got '" + rest_ + "'");
+      if (!std::isfinite(x) || x < lo || x > hi)
+        throw fail("'" + name_ + "': " + what + " " + token + " is out of range [" + number(lo) +
+                   ", " + number(hi) + "]");
+      v = static_cast<T>(x);
+    }
+  }
+
+  /// \brief `NAME ms-per-patch` into a map.
+  void readNamed(std::map<std::string, double>& into, const char* what) {
+    std::string key;
+    double ms = 0;
+    read(key, what);
+    read(ms, "ms per patch");
+    into[key] = ms;
+  }
+
+  /// \brief `KEY VALUE` appended to `into`, whose keys must ascend.
+  template <typename List, typename Key, typename Value>
+  void readAscending(List& into, Key key, Value value, const char* keyWhat, const char* valueWhat,
+                     const char* keys, double keyMax, double valueMax = kMaxMs) {
+    typename List::value_type entry{};
+    read(entry.*key, keyWhat, 0, keyMax);
+    read(entry.*value, valueWhat, 0, valueMax);
+    if (!into.empty() && entry.*key <= into.back().*key)
+      throw fail("'" + name_ + "' " + keys + " must ascend");
+    into.push_back(entry);
+  }
+
+ private:
+  const std::string& source_;
+  int lineNumber_;
+  std::string name_, rest_;
+  std::istringstream values_;
+};
+
+/// \brief One `draw LEVEL MS TES BACK-MS` line appended to c.draw, whose levels must ascend.
+void readDrawLine(EntryLine& e, Calibration& c) {
+  DrawCost d;
+  e.read(d.tess, "a tessellation level", 1, 64);
+  e.read(d.msPerPatch, "ms per patch");
+  e.read(d.tesPerPatch, "TES invocations per patch", 0, kMaxInvocations);
+  e.read(d.backMsPerPatch, "ms per back-facing patch");
+  if (!c.draw.empty() && d.tess <= c.draw.back().tess) throw e.fail("'draw' levels must ascend");
+  c.draw.push_back(d);
+}
+
+/// \brief Reads one entry other than `end` into `c`; an unknown name is an error.
+void readEntry(EntryLine& e, Calibration& c) {
+  using LevelValue = std::pair<uint32_t, double>;
+  const std::string& name = e.name();
+  if (name == "device")
+    c.key.device = e.rest();
+  else if (name == "driver")
+    c.key.driver = e.rest();
+  else if (name == "library")
+    c.key.library = e.rest();
+  else if (name == "quick") {
+    int q = 0;
+    e.read(q, "0 or 1", 0, 1);
+    c.quick = q != 0;
+  } else if (name == "repeats")
+    e.read(c.repeats, "a count", 1, 1e6);
+  else if (name == "patches")
+    e.read(c.patches, "a count", 1, 1e9);
+  else if (name == "draw")
+    readDrawLine(e, c);
+  else if (name == "gregory-draw-factor")
+    e.read(c.gregoryDrawFactor, "a factor", 0, kMaxFactor);
+  else if (name == "draw-zero")
+    e.read(c.drawZeroMsPerPatch, "ms per patch");
+  else if (name == "submit")
+    e.read(c.submitMs, "ms");
+  else if (name == "cull-dispatch")
+    e.read(c.cullDispatchMs, "ms");
+  else if (name == "cull")
+    e.readNamed(c.cullMsPerPatch, "a stage name");
+  else if (name == "hiz")
+    e.readAscending(c.hizBuild, &SizeCost::pixels, &SizeCost::ms, "a pixel count", "ms", "sizes",
+                    1e12);
+  else if (name == "point-update-cpu")
+    e.read(c.pointUpdateCpuMsPerPatch, "ms per patch");
+  else if (name == "point-update-gpu")
+    e.read(c.pointUpdateGpuMsPerPatch, "ms per patch");
+  else if (name == "bounds")
+    e.read(c.boundsMsPerPatch, "ms per patch");
+  else if (name == "draw-displaced")
+    e.readAscending(c.displacedDrawFactor, &LevelValue::first, &LevelValue::second,
+                    "a tessellation level", "a factor", "levels", 64, kMaxFactor);
+  else if (name == "bounds-method")
+    e.readNamed(c.boundsMsPerMethod, "a back-patch method name");
+  else if (name == "hiz-tight") {
+    double ms = 0;
+    e.read(ms, "ms per patch");
+    c.hizTightMsPerPatch = ms;
+  } else if (name == "cull-surface")
+    e.readNamed(c.surfaceCullMsPerPatch, "a back-patch method name");
+  else if (name == "cull-listed") {
+    std::string method;
+    e.read(method, "a back-patch method name");
+    e.readAscending(c.listedCullMsPerPatch[method], &LevelValue::first, &LevelValue::second,
+                    "a tessellation level", "ms per patch", "levels of one method", 64);
+  } else
+    throw e.fail("unknown entry '" + name + "'");
+}
+
+/// \brief Refuses a calibration read whole that misses an entry, by name: a file cut short
+/// (no closing `end` after `lastLine`) or missing a measurement.
+void checkComplete(const Calibration& c, const std::set<std::string>& seen, bool ended,
+                   int lastLine, const std::string& source) {
+  for (const auto& [entry, what] : requiredEntries())
+    if (!seen.count(entry))
+      throw Error(source + ": no '" + entry + "' line (" + what + ")" +
+                  (ended ? ""
+                         : "; the file ends at line " + std::to_string(lastLine) +
+                               " without its closing 'end' line: cut short?"));
+  if (c.draw.empty()) throw Error(source + ": no 'draw' lines (RT(tf))");
+  if (c.hizBuild.empty()) throw Error(source + ": no 'hiz' lines (the Hi-Z build)");
+  if (!c.cullMsPerPatch.count("frustum"))
+    throw Error(source + ": no 'cull frustum' line (the cull kernel's cost)");
+}
+
+}  // namespace
+
 Calibration fromText(const std::string& text, const std::string& source) {
   std::istringstream in(text);
   std::string line;
-  int lineNumber = 0;
-  auto fail = [&](const std::string& what) -> Error {
-    return Error(source + ":" + std::to_string(lineNumber) + ": " + what);
-  };
   if (!std::getline(in, line) || line != kMagic) {
     if (const int format = formatOf(line); format > 0)
       throw Error(source + ":1: " + outdatedCalibrationMessage(format));
     throw Error(source + ":1: not a calibration file (expected first line '" + kMagic + "')");
   }
-  lineNumber = 1;
+  int lineNumber = 1;
   Calibration c;
   std::set<std::string> seen;  // of requiredEntries()
   bool ended = false;
   while (std::getline(in, line)) {
     ++lineNumber;
     if (line.empty()) continue;
-    const size_t space = line.find(' ');
-    const std::string name = line.substr(0, space);
-    const std::string rest = space == std::string::npos ? "" : line.substr(space + 1);
-    if (ended) throw fail("'" + name + "' after the closing 'end' line");
+    EntryLine entry(line, source, lineNumber);
+    const std::string& name = entry.name();
+    if (ended) throw entry.fail("'" + name + "' after the closing 'end' line");
     if (requiredEntries().count(name) && !seen.insert(name).second)
-      throw fail("'" + name + "' given twice");
-    std::istringstream values(rest);
-    // A value, in [lo, hi] when a number: finite, and not beyond what a device measures.
-    auto read = [&](auto& v, const char* what, double lo = 0.0, double hi = kMaxMs) {
-      std::string token;
-      if (!(values >> token)) throw fail("'" + name + "' needs " + what + ", got '" + rest + "'");
-      using T = std::remove_reference_t<decltype(v)>;
-      if constexpr (std::is_same_v<T, std::string>) {
-        v = token;
-      } else {
-        char* end = nullptr;
-        const double x = std::strtod(token.c_str(), &end);
-        if (token.empty() || *end != '\0' || (std::is_integral_v<T> && x != std::floor(x)))
-          throw fail("'" + name + "' needs " + what + ", got '" + rest + "'");
-        if (!std::isfinite(x) || x < lo || x > hi)
-          throw fail("'" + name + "': " + what + " " + token + " is out of range [" + number(lo) +
-                     ", " + number(hi) + "]");
-        v = static_cast<T>(x);
-      }
-    };
-    // `NAME ms-per-patch` into a map.
-    auto readNamed = [&](std::map<std::string, double>& into, const char* what) {
-      std::string key;
-      double ms = 0;
-      read(key, what);
-      read(ms, "ms per patch");
-      into[key] = ms;
-    };
-    // `KEY VALUE` appended to `into`, whose keys must ascend.
-    auto readAscending = [&](auto& into, auto key, auto value, const char* keyWhat,
-                             const char* valueWhat, const char* keys, double keyMax,
-                             double valueMax = kMaxMs) {
-      typename std::decay_t<decltype(into)>::value_type entry{};
-      read(entry.*key, keyWhat, 0, keyMax);
-      read(entry.*value, valueWhat, 0, valueMax);
-      if (!into.empty() && entry.*key <= into.back().*key)
-        throw fail("'" + name + "' " + keys + " must ascend");
-      into.push_back(entry);
-    };
+      throw entry.fail("'" + name + "' given twice");
     if (name == "end") {
-      if (!rest.empty()) throw fail("'end' takes no value, got '" + rest + "'");
+      if (!entry.rest().empty())
+        throw entry.fail("'end' takes no value, got '" + entry.rest() + "'");
       ended = true;
-    } else if (name == "device")
-      c.key.device = rest;
-    else if (name == "driver")
-      c.key.driver = rest;
-    else if (name == "library")
-      c.key.library = rest;
-    else if (name == "quick") {
-      int q = 0;
-      read(q, "0 or 1", 0, 1);
-      c.quick = q != 0;
-    } else if (name == "repeats")
-      read(c.repeats, "a count", 1, 1e6);
-    else if (name == "patches")
-      read(c.patches, "a count", 1, 1e9);
-    else if (name == "draw") {
-      DrawCost d;
-      read(d.tess, "a tessellation level", 1, 64);
-      read(d.msPerPatch, "ms per patch");
-      read(d.tesPerPatch, "TES invocations per patch", 0, kMaxInvocations);
-      read(d.backMsPerPatch, "ms per back-facing patch");
-      if (!c.draw.empty() && d.tess <= c.draw.back().tess) throw fail("'draw' levels must ascend");
-      c.draw.push_back(d);
-    } else if (name == "gregory-draw-factor")
-      read(c.gregoryDrawFactor, "a factor", 0, kMaxFactor);
-    else if (name == "draw-zero")
-      read(c.drawZeroMsPerPatch, "ms per patch");
-    else if (name == "submit")
-      read(c.submitMs, "ms");
-    else if (name == "cull-dispatch")
-      read(c.cullDispatchMs, "ms");
-    else if (name == "cull")
-      readNamed(c.cullMsPerPatch, "a stage name");
-    else if (name == "hiz")
-      readAscending(c.hizBuild, &SizeCost::pixels, &SizeCost::ms, "a pixel count", "ms", "sizes",
-                    1e12);
-    else if (name == "point-update-cpu")
-      read(c.pointUpdateCpuMsPerPatch, "ms per patch");
-    else if (name == "point-update-gpu")
-      read(c.pointUpdateGpuMsPerPatch, "ms per patch");
-    else if (name == "bounds")
-      read(c.boundsMsPerPatch, "ms per patch");
-    else if (name == "draw-displaced")
-      readAscending(c.displacedDrawFactor, &std::pair<uint32_t, double>::first,
-                    &std::pair<uint32_t, double>::second, "a tessellation level", "a factor",
-                    "levels", 64, kMaxFactor);
-    else if (name == "bounds-method")
-      readNamed(c.boundsMsPerMethod, "a back-patch method name");
-    else if (name == "hiz-tight") {
-      double ms = 0;
-      read(ms, "ms per patch");
-      c.hizTightMsPerPatch = ms;
-    } else if (name == "cull-surface")
-      readNamed(c.surfaceCullMsPerPatch, "a back-patch method name");
-    else if (name == "cull-listed") {
-      std::string method;
-      read(method, "a back-patch method name");
-      readAscending(c.listedCullMsPerPatch[method], &std::pair<uint32_t, double>::first,
-                    &std::pair<uint32_t, double>::second, "a tessellation level", "ms per patch",
-                    "levels of one method", 64);
-    } else
-      throw fail("unknown entry '" + name + "'");
+    } else {
+      readEntry(entry, c);
+    }
   }
   // Validated whole: a file cut short, or missing a measurement, is refused by name.
-  for (const auto& [entry, what] : requiredEntries())
-    if (!seen.count(entry))
-      throw Error(source + ": no '" + entry + "' line (" + what + ")" +
-                  (ended ? ""
-                         : "; the file ends at line " + std::to_string(lineNumber) +
-                               " without its closing 'end' line: cut short?"));
-  if (c.draw.empty()) throw Error(source + ": no 'draw' lines (RT(tf))");
-  if (c.hizBuild.empty()) throw Error(source + ": no 'hiz' lines (the Hi-Z build)");
-  if (!c.cullMsPerPatch.count("frustum"))
-    throw Error(source + ": no 'cull frustum' line (the cull kernel's cost)");
+  checkComplete(c, seen, ended, lineNumber, source);
   return c;
 }
 

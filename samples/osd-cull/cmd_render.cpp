@@ -317,56 +317,183 @@ void writeJson(const std::string& path, const nlohmann::json& doc) {
   std::cout << "wrote " << path << "\n";
 }
 
-int run(const RenderArgs& args) {
-  if (args.source.path && isSceneArgument(*args.source.path)) return renderScene(args);
-  const auto out = args.out;
-  const uint32_t width = args.width.value_or(640), height = args.height.value_or(480);
-  const uint32_t frames = args.frames.value_or(1);
-  const double orbitDegrees = args.orbitDegrees;
-  const PatchOptions& patchOptions = args.patchOptions;
-  const CullChoice cull = cullChoice(args.cull);
-  const MeshSource& source = args.source;
-  const std::vector<double> cameraNumbers = checkMeshForm(args, cull);
-
-  Scene scene = loadScene(source, patchOptions);
-  for (const std::string& file : splitList(args.occluders))
+/// \brief Adds the --occluders OBJ files to the scene, moved by its recentring offset (they
+/// are given in the file's coordinates).
+void addOccluders(Scene& scene, const std::string& files) {
+  for (const std::string& file : splitList(files))
     if (!file.empty()) {
       scene.occluders.push_back(adapters::loadTriangleMesh(file));
       for (glm::dvec3& p : scene.occluders.back().positions) p -= scene.offset;
     }
-  const DisplacementChoice displacement = displacementChoice(args.displacement, false);
-  // Displacement: the map, and back-patch culling off (kDisplacedBackPatchNote).
-  std::optional<bound::DisplacementMap> displacementMap;
+}
+
+/// \brief The displacement map --displacement names, loaded, if any; with one, back-patch
+/// culling is off for the scene (kDisplacedBackPatchNote).
+std::optional<bound::DisplacementMap> loadDisplacement(const DisplacementChoice& displacement,
+                                                       Scene& scene) {
+  std::optional<bound::DisplacementMap> map;
   if (displacement.map) {
-    displacementMap.emplace(adapters::loadDisplacementMap(*displacement.map));
+    map.emplace(adapters::loadDisplacementMap(*displacement.map));
     scene.backPatch = {false, frame::kDisplacedBackPatchNote};
   }
-  vulkan::Context context(args.device);
+  return map;
+}
+
+/// \brief The lines that open the output: the device, the scene's patches and occluders,
+/// the loader's notes.
+void printSceneHeader(const vulkan::Context& context, const Scene& scene) {
   std::cout << "device: " << context.info().name << "\n";
   std::cout << "scene: " << scene.patches.source << ": " << scene.patches.bezierCount
             << " Bezier + " << scene.patches.gregoryCount << " Gregory patches, "
             << scene.occluders.size() << " triangle occluders\n";
   for (const std::string& note : scene.notes) std::cout << "note: " << note << "\n";
+}
 
-  frame::GpuPatchSet gpu(context, scene.patches);
-  std::unique_ptr<frame::GpuDisplacement> gpuDisplacement;
-  if (displacementMap) {
-    gpuDisplacement = std::make_unique<frame::GpuDisplacement>(
-        context, *displacementMap, scene.uvCorners, scene.patches.patchCount());
-    gpu.setDisplacement(gpuDisplacement.get());
-    printDisplacement(*displacementMap, displacement, scene);
+/// \brief The scene on the device: its patches (displaced by the map, if any) and its
+/// triangle occluders.
+struct GpuScene {
+  GpuScene(vulkan::Context& context, const Scene& scene, const bound::DisplacementMap* map)
+      : patches(context, scene.patches) {
+    if (map) {
+      displacement = std::make_unique<frame::GpuDisplacement>(context, *map, scene.uvCorners,
+                                                              scene.patches.patchCount());
+      patches.setDisplacement(displacement.get());
+    }
+    for (const auto& m : scene.occluders) occluderMeshes.emplace_back(context, m);
+    for (const auto& m : occluderMeshes) occluders.push_back(&m);
   }
+
+  frame::GpuPatchSet patches;
+  std::unique_ptr<frame::GpuDisplacement> displacement;
   std::vector<frame::GpuTriangleMesh> occluderMeshes;
-  for (const auto& m : scene.occluders) occluderMeshes.emplace_back(context, m);
-  std::vector<const frame::GpuTriangleMesh*> occluders;
-  for (const auto& m : occluderMeshes) occluders.push_back(&m);
+  std::vector<const frame::GpuTriangleMesh*> occluders;  ///< of occluderMeshes
+};
+
+/// \brief The `back faces:` line: whether the rasterizer culls them (on a closed, oriented
+/// mesh) or draws them, and why.
+void printBackFaces(const bound::BackPatchValidity& backPatch) {
+  std::cout << "back faces: "
+            << (backPatch.enabled
+                    ? "culled by the rasterizer (closed, oriented mesh), with or without culling"
+                    : "drawn (" + backPatch.reason + ")")
+            << "\n";
+}
+
+/// \brief What the session draws: the render options, the cull stages chosen (or the
+/// plan's, with a planner) with the scene's back-patch validity, and the displacement map
+/// with its kernel.
+session::MeshSessionOptions meshSessionOptions(const Scene& scene, const CullChoice& cull,
+                                               const frame::RenderOptions& options,
+                                               const bound::DisplacementMap* map,
+                                               const DisplacementChoice& displacement) {
+  session::MeshSessionOptions sessionOptions;
+  sessionOptions.name = scene.patches.source;
+  sessionOptions.view = "render";
+  frame::CullFrameOptions& frameOptions = sessionOptions.frame;
+  frameOptions = cull.frame;
+  frameOptions.render = options;
+  frameOptions.cull = cullSettings(cull, scene.backPatch);
+  if (map) {
+    frameOptions.cull.displacementMap = map;
+    frameOptions.cull.uvCorners = scene.uvCorners;
+    frameOptions.cull.displacedKernel = displacement.kernels[0];
+  }
+  return sessionOptions;
+}
+
+/// \brief The frames drawn: their JSON objects (for --stats) and the last frame's camera.
+struct RenderedFrames {
+  nlohmann::json json = nlohmann::json::array();
+  frame::Camera lastView;
+};
+
+/// \brief Draws --frames frames, the camera orbiting the start view by --orbit degrees a
+/// frame; prints each frame (and each plan change) and writes its images.
+RenderedFrames renderFrames(const RenderArgs& args, vulkan::Context& context,
+                            session::MeshSession& meshSession, const frame::RenderTarget& target,
+                            const StartView& start) {
+  const uint32_t frames = args.frames.value_or(1);
+  RenderedFrames rendered;
+  rendered.lastView = start.camera;
+  std::optional<plan::Plan> lastPlan;
+  for (uint32_t f = 0; f < frames; ++f) {
+    rendered.lastView = frame::orbit(start.camera, start.pivot, start.up, args.orbitDegrees * f);
+    const session::SessionFrame frame = meshSession.render(rendered.lastView);
+    if (frame.plan && frame.planChanged)
+      printPlanChange(lastPlan ? &*lastPlan : nullptr, *frame.plan, std::cout);
+    if (frame.plan) lastPlan = frame.plan;
+    rendered.json.push_back(printFrame(f, frame));
+    writeFrameImages(args, context, target, f, f + 1 == frames);
+  }
+  return rendered;
+}
+
+/// \brief Displaced: the pixels where the surface opens in the last view (UV seams; edges
+/// elsewhere get equal levels on both sides), drawn unculled with back faces culled and not
+/// on a target of the frame's size (the frame's left alone), printed.
+uint32_t countLastViewCracks(vulkan::Context& context, frame::Renderer& renderer,
+                             const frame::RenderTarget& target, const frame::Camera& view,
+                             const frame::PatchDraw& draw, const frame::RenderOptions& options) {
+  frame::RenderTarget crackTarget(context, target.width(), target.height());
+  const uint32_t crackPixels = frame::countCracks(context, renderer, crackTarget, view, draw,
+                                                  options, frame::kSeamCrackWidth);
+  std::printf(
+      "cracks: %u pixels in the last view (displaced surface open at UV seams, back "
+      "faces culled; --displaced-tess %s)\n",
+      crackPixels, frame::toString(options.tessellation.displaced));
+  return crackPixels;
+}
+
+/// \brief --stats: the run's frames, summary, crack pixels and two-pass options as JSON.
+void writeStats(const std::string& path, const vulkan::Context& context, const Scene& scene,
+                const frame::RenderTarget& target, const std::string& cull,
+                const RenderedFrames& rendered, const session::SessionSummary& summary,
+                const frame::CullFrame* cullFrame, const frame::CullFrameOptions& frameOptions,
+                std::optional<uint32_t> crackPixels) {
+  nlohmann::json doc{{"device", context.info().name},
+                     {"scene", scene.patches.source},
+                     {"width", target.width()},
+                     {"height", target.height()},
+                     {"cull", cull},
+                     {"frames", rendered.json},
+                     {"summary", summaryJson(summary)}};
+  if (crackPixels) doc["crack_pixels"] = *crackPixels;
+  if (cullFrame) doc["options"] = twoPassOptionsJson(frameOptions, *cullFrame);
+  writeJson(path, doc);
+}
+
+/// \brief The shader cache's line; the exit code: 1 when validation reported messages.
+int finishRun(const vulkan::Context& context) {
+  const vulkan::ShaderCacheStats shaders = vulkan::shaderCacheStats();
+  std::printf("shader variants: %zu from the library's build-time SPIR-V, %.1f ms\n",
+              shaders.embedded, shaders.milliseconds);
+  if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
+    std::cerr << "validation reported " << log->count() << " messages\n";
+    return 1;
+  }
+  return 0;
+}
+
+int run(const RenderArgs& args) {
+  if (args.source.path && isSceneArgument(*args.source.path)) return renderScene(args);
+  const uint32_t width = args.width.value_or(640), height = args.height.value_or(480);
+  const CullChoice cull = cullChoice(args.cull);
+  const std::vector<double> cameraNumbers = checkMeshForm(args, cull);
+
+  Scene scene = loadScene(args.source, args.patchOptions);
+  addOccluders(scene, args.occluders);
+  const DisplacementChoice displacement = displacementChoice(args.displacement, false);
+  // Displacement: the map, and back-patch culling off (kDisplacedBackPatchNote).
+  const std::optional<bound::DisplacementMap> displacementMap =
+      loadDisplacement(displacement, scene);
+  const bound::DisplacementMap* map = displacementMap ? &*displacementMap : nullptr;
+  vulkan::Context context(args.device);
+  printSceneHeader(context, scene);
+  GpuScene gpu(context, scene, map);
+  if (map) printDisplacement(*map, displacement, scene);
 
   const StartView start = startView(scene, cameraNumbers, width, height);
-  const frame::Camera& camera = start.camera;
-  const glm::dvec3 pivot = start.pivot, up = start.up;
-
   frame::RenderOptions options = renderOptions(args, context, displacement);
-
   frame::RenderTarget target(context, width, height);
   frame::Renderer renderer(context);
   // On a closed, oriented mesh the rasterizer culls back faces in every mode, with and
@@ -376,82 +503,32 @@ int run(const RenderArgs& args) {
   const bool backPatchCulling =
       (cull.mode == "backpatch" || cull.mode == "all") && scene.backPatch.enabled;
   options.cullBackFaces = scene.backPatch.enabled;
-  std::cout << "back faces: "
-            << (scene.backPatch.enabled
-                    ? "culled by the rasterizer (closed, oriented mesh), with or without culling"
-                    : "drawn (" + scene.backPatch.reason + ")")
-            << "\n";
-  session::MeshSessionOptions sessionOptions;
-  sessionOptions.name = scene.patches.source;
-  sessionOptions.view = "render";
-  frame::CullFrameOptions& frameOptions = sessionOptions.frame;
-  frameOptions = cull.frame;
-  frameOptions.render = options;
-  frameOptions.cull = cullSettings(cull, scene.backPatch);
-  if (displacementMap) {
-    frameOptions.cull.displacementMap = &*displacementMap;
-    frameOptions.cull.uvCorners = scene.uvCorners;
-    frameOptions.cull.displacedKernel = displacement.kernels[0];
-  }
+  printBackFaces(scene.backPatch);
+  const session::MeshSessionOptions sessionOptions =
+      meshSessionOptions(scene, cull, options, map, displacement);
   // The effect plan (docs/algorithms/plan.md): without --cull, each frame's stages are the
   // planner's, drawn by the session (session/mesh_session.h), which keeps every
   // configuration's visibility status across plan changes.
   const std::unique_ptr<plan::Planner> planner =
       makePlanner(args.plan, context, !args.cull.mode.empty(),
                   cull.backPatchMethodGiven ? cull.backPatchMethod : "", std::cout);
-  session::MeshSession meshSession(context, renderer, target, gpu, scene.patches, occluders,
-                                   sessionOptions, planner.get());
-  printCullSetup(meshSession, cull, frameOptions, backPatchCulling);
-  const frame::PatchDraw draw{&gpu, &scene.patches, 0};
-  nlohmann::json jsonFrames = nlohmann::json::array();
-  frame::Camera view = camera;
-  std::optional<plan::Plan> lastPlan;
-  for (uint32_t f = 0; f < frames; ++f) {
-    view = frame::orbit(camera, pivot, up, orbitDegrees * f);
-    const session::SessionFrame frame = meshSession.render(view);
-    if (frame.plan && frame.planChanged)
-      printPlanChange(lastPlan ? &*lastPlan : nullptr, *frame.plan, std::cout);
-    if (frame.plan) lastPlan = frame.plan;
-    jsonFrames.push_back(printFrame(f, frame));
-    writeFrameImages(args, context, target, f, f + 1 == frames);
-  }
-  // Displaced: the pixels where the surface opens in the last view (UV seams; edges
-  // elsewhere get equal levels on both sides), drawn unculled with back faces culled and not.
+  session::MeshSession meshSession(context, renderer, target, gpu.patches, scene.patches,
+                                   gpu.occluders, sessionOptions, planner.get());
+  printCullSetup(meshSession, cull, sessionOptions.frame, backPatchCulling);
+  const RenderedFrames rendered = renderFrames(args, context, meshSession, target, start);
   std::optional<uint32_t> crackPixels;
-  if (displacementMap) {
-    frame::RenderTarget crackTarget(context, width, height);  // leaves the frame's target alone
-    crackPixels = frame::countCracks(context, renderer, crackTarget, view, draw, options,
-                                     frame::kSeamCrackWidth);
-    std::printf(
-        "cracks: %u pixels in the last view (displaced surface open at UV seams, back "
-        "faces culled; --displaced-tess %s)\n",
-        *crackPixels, frame::toString(options.tessellation.displaced));
-  }
-  const session::SessionSummary& summary = meshSession.summary();
+  if (map)
+    crackPixels = countLastViewCracks(context, renderer, target, rendered.lastView,
+                                      {&gpu.patches, &scene.patches, 0}, options);
+  const session::SessionSummary summary = meshSession.summary();
   std::cout << summary.text() << "\n";
-  if (!args.stats.empty()) {
-    nlohmann::json doc{{"device", context.info().name},
-                       {"scene", scene.patches.source},
-                       {"width", width},
-                       {"height", height},
-                       {"cull", planner ? std::string("plan") : cull.mode},
-                       {"frames", jsonFrames},
-                       {"summary", summaryJson(summary)}};
-    if (crackPixels) doc["crack_pixels"] = *crackPixels;
-    if (const frame::CullFrame* cullFrame = meshSession.cullFrame())
-      doc["options"] = twoPassOptionsJson(frameOptions, *cullFrame);
-    writeJson(args.stats, doc);
-  }
+  if (!args.stats.empty())
+    writeStats(args.stats, context, scene, target, planner ? std::string("plan") : cull.mode,
+               rendered, summary, meshSession.cullFrame(), sessionOptions.frame, crackPixels);
   if (frame::CullFrame* cullFrame = meshSession.cullFrame())
-    writeStatusAndPyramid(args, context, *cullFrame, occluders, view, pivot, up);
-  const vulkan::ShaderCacheStats shaders = vulkan::shaderCacheStats();
-  std::printf("shader variants: %zu from the library's build-time SPIR-V, %.1f ms\n",
-              shaders.embedded, shaders.milliseconds);
-  if (const vulkan::ValidationLog* log = context.validationLog(); log && log->count() > 0) {
-    std::cerr << "validation reported " << log->count() << " messages\n";
-    return 1;
-  }
-  return 0;
+    writeStatusAndPyramid(args, context, *cullFrame, gpu.occluders, rendered.lastView, start.pivot,
+                          start.up);
+  return finishRun(context);
 }
 
 Runner setup(CLI::App& app) {

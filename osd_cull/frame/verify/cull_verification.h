@@ -165,7 +165,24 @@ class CullVerifier {
 
  private:
   struct Method;
+  struct ViewTruth;
+  /// \brief The dense sampling check of one method's culls on one view.
   void checkSampling(Method& m, const Camera& camera, std::span<const uint32_t> results);
+  /// \brief (Re)creates the target, and with occlusion methods its pyramid and Hi-Z stage,
+  /// when the view's size changes.
+  void prepareTarget(const Camera& camera, bool occlusion);
+  /// \brief The full draw's ground truth for one view: the oracle's counts and items, the
+  /// Hi-Z pyramid (built on the GPU, and in double on reference views).
+  ViewTruth drawTruth(const Camera& camera, bool reference, bool occlusion);
+  /// \brief Runs one method on the view and adds its culls and every check to its totals.
+  void verifyMethod(Method& m, const Camera& camera, const ViewTruth& truth);
+  /// \brief The CPU reference's cull codes of one method on the view, per patch.
+  std::vector<uint32_t> referenceCodes(Method& m, const Camera& camera, const ViewTruth& truth);
+  /// \brief Draws one method's survivors and counts the pixels lost and changed against the
+  /// full draw.
+  void checkImage(Method& m, const Camera& camera, const ViewTruth& truth);
+  /// \brief Counts the view's crack pixels into cracks_ (draws over the target).
+  void countViewCracks(const Camera& camera);
 
   vulkan::Context& context_;
   const PatchSet& host_;
