@@ -536,11 +536,12 @@ bool Planner::choose(State& s, const PlanInput& input, const std::vector<StageCh
     }
   }
   const bool exploring = s.explored && frameNumber - *s.firstFrame < options_.exploreFrames;
-  // Right after exploring, one frame with no stage at all (the unculled check,
-  // PlannerOptions::unculledCheckFrames) when the explored choice culls: the choice after it
-  // compares two measured frames. The frame after it is still unheld.
-  if (s.explored && !exploring && frameNumber - *s.firstFrame == options_.exploreFrames &&
-      options_.unculledCheckFrames > 0 && !s.unculledMeasured && s.current && s.current->any() &&
+  // Right after exploring, PlannerOptions::unculledFirstChecks frames with no stage at all
+  // (the unculled check, PlannerOptions::unculledCheckFrames) when the explored choice culls:
+  // the choice after them compares measured frames. The frame after them is still unheld.
+  if (s.explored && !exploring &&
+      frameNumber - *s.firstFrame < options_.exploreFrames + options_.unculledFirstChecks &&
+      options_.unculledCheckFrames > 0 && s.current && s.current->any() &&
       p.box != BoxInView::Outside) {
     p.stages = {};
     p.probe = p.unculledCheck = true;

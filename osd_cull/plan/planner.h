@@ -219,6 +219,10 @@ struct PlannerOptions {
   /// The frame keeps every cull configuration and its visibility status (MeshSession's
   /// cache), so the frame after it culls from a status one frame old.
   uint32_t unculledCheckFrames = 8;
+  /// Unculled checks right after exploring, one after the other: the first frame drawn
+  /// unculled after the heavy exploring frames can run slow on lavapipe (up to 1.5x), and
+  /// the scale is the median of the frames measured.
+  uint32_t unculledFirstChecks = 2;
   /// Plan::countOnly on a key's first frame (false: an unmeasured back-patch variant borrows
   /// its measured sibling's rate, Planner::rate).
   bool countingProbes = true;
