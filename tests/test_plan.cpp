@@ -763,6 +763,17 @@ TEST(Plan, UnculledChecksComeEverMoreRarelyWhereCullingPays) {
     planner.observe("k", p, atPredictedRates(p, 2000, ms, NAN));
   }
   EXPECT_EQ(checks, (std::vector<uint64_t>{2, 3, 11, 27, 59, 108}));
+  // A saving beyond PlannerOptions::unculledCheckBelow is not checked: none at 0.
+  PlannerOptions sure;
+  sure.unculledCheckBelow = 0.0;
+  Planner certain(syntheticCalibration(), sure);
+  in.tess = 4.0;
+  for (uint64_t f = 0; f < 120; ++f) {
+    const Plan p = certain.plan("k", in, f);
+    EXPECT_FALSE(p.unculledCheck) << "frame " << f;
+    EXPECT_TRUE(p.culls()) << "frame " << f;
+    certain.observe("k", p, atPredictedRates(p, 2000, p.predicted.totalMs(), NAN));
+  }
 }
 
 TEST(Plan, PredictionFollowsTheMeasuredFrameTime) {

@@ -508,6 +508,13 @@ double Planner::predictedMs(const State& s, const PlanInput& input, const StageC
       .totalMs();
 }
 
+// Whether a choice predicted at `culledMs` against `unculledMs` without culling saves too
+// little for the prediction to be sure of it (PlannerOptions::unculledCheckBelow): then the
+// unculled checks run.
+bool Planner::uncertainSaving(double culledMs, double unculledMs) const {
+  return culledMs > (1.0 - options_.unculledCheckBelow) * unculledMs;
+}
+
 // Steps 2 and 3 of the plan (planner.h): the cheapest predicted choice, or while exploring
 // the cheapest that runs every stage kind offered; the current one is kept unless the new one
 // is predicted cheaper by the margin after the hold. Returns whether this frame explores.
@@ -542,7 +549,7 @@ bool Planner::choose(State& s, const PlanInput& input, const std::vector<StageCh
   if (s.explored && !exploring &&
       frameNumber - *s.firstFrame < options_.exploreFrames + options_.unculledFirstChecks &&
       options_.unculledCheckFrames > 0 && s.current && s.current->any() &&
-      p.box != BoxInView::Outside) {
+      p.box != BoxInView::Outside && uncertainSaving(total(*s.current), total({}))) {
     p.stages = {};
     p.probe = p.unculledCheck = true;
     return true;
@@ -638,7 +645,7 @@ void Planner::reprobe(State& s, const PlanInput& input, const std::vector<StageC
   }
   // The unculled check (PlannerOptions::unculledCheckFrames) where no stage probe runs.
   if (!exploring && !p.probe && options_.unculledCheckFrames > 0 && p.stages.any() &&
-      p.box != BoxInView::Outside) {
+      p.box != BoxInView::Outside && uncertainSaving(total(p.stages), total({}))) {
     const uint32_t interval =
         s.unculledInterval > 0 ? s.unculledInterval : options_.unculledCheckFrames;
     if (frameNumber - s.lastUnculled >= interval) {
