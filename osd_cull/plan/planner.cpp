@@ -508,6 +508,12 @@ double Planner::predictedMs(const State& s, const PlanInput& input, const StageC
       .totalMs();
 }
 
+// A probe's next interval: twice `interval`, at most PlannerOptions::maxReprobeFrames (or
+// `first`, the kind's first interval, where that is longer).
+uint32_t Planner::doubledInterval(uint32_t interval, uint32_t first) const {
+  return std::min(std::max(options_.maxReprobeFrames, first), 2 * interval);
+}
+
 // Whether a choice predicted at `culledMs` against `unculledMs` without culling saves too
 // little for the prediction to be sure of it (PlannerOptions::unculledCheckBelow): then the
 // unculled checks run.
@@ -614,8 +620,7 @@ void Planner::reprobe(State& s, const PlanInput& input, const std::vector<StageC
     // ever more rarely, until its inputs change.
     auto probed = [&](CullStage kind) {
       if (s.measured.count(kind))
-        s.probeInterval[kind] = std::min(
-            std::max(options_.maxReprobeFrames, options_.reprobeFrames), 2 * interval(kind));
+        s.probeInterval[kind] = doubledInterval(interval(kind), options_.reprobeFrames);
       p.probe = true;
     };
     if (!p.stages.frustum && p.box == BoxInView::Crossing && due(CullStage::Frustum)) {
@@ -644,15 +649,15 @@ void Planner::reprobe(State& s, const PlanInput& input, const std::vector<StageC
     }
   }
   // The unculled check (PlannerOptions::unculledCheckFrames) where no stage probe runs.
+  // (The predictions last: only on a frame the check is due.)
   if (!exploring && !p.probe && options_.unculledCheckFrames > 0 && p.stages.any() &&
-      p.box != BoxInView::Outside && uncertainSaving(total(p.stages), total({}))) {
+      p.box != BoxInView::Outside) {
     const uint32_t interval =
         s.unculledInterval > 0 ? s.unculledInterval : options_.unculledCheckFrames;
-    if (frameNumber - s.lastUnculled >= interval) {
+    if (frameNumber - s.lastUnculled >= interval && uncertainSaving(total(p.stages), total({}))) {
       p.stages = {};
       p.probe = p.unculledCheck = true;
-      s.unculledInterval =
-          std::min(std::max(options_.maxReprobeFrames, options_.unculledCheckFrames), 2 * interval);
+      s.unculledInterval = doubledInterval(interval, options_.unculledCheckFrames);
     }
   }
 }

@@ -417,6 +417,7 @@ class Planner {
   std::vector<Accuracy> accuracies(const PlanInput& input, const std::string& method) const;
   CullRates ratesFor(const State& state, const StageChoice& stages, BoxInView box) const;
   bool uncertainSaving(double culledMs, double unculledMs) const;
+  uint32_t doubledInterval(uint32_t interval, uint32_t first) const;
   bool choose(State& state, const PlanInput& input, const std::vector<StageChoice>& all, Plan& plan,
               uint64_t frame) const;
   void reprobe(State& state, const PlanInput& input, const std::vector<StageChoice>& all,
