@@ -8,6 +8,7 @@
 // surface-exact tests cull.
 #include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/draw/renderer.h"
+#include "osd_cull/frame/cull/cull_pass.h"
 #include "osd_cull/frame/draw/tess_levels_pass.h"
 #include "osd_cull/frame/verify/cull_verification.h"
 #include "osd_cull/frame/verify/view_sets.h"
@@ -150,6 +151,44 @@ TEST_F(AdaptiveBackPatchTest, PosedBigGuyUnderAdaptiveAndUniformLevelOneKeepsASh
     const auto exact = verify(context(), mesh.patches, mesh.validity, t, false, cameras, what);
     expectRateShare(drawn, exact, 0.5, "posed BigGuy, " + what);
   }
+}
+
+// The kernel takes the exact levels from its first record on: the source of the levels is
+// chosen from the record's own tessellation (CullPass::kernelsFor), not from the previous
+// record's (the first adaptive record of a pass used to read the levels computed from the
+// curves with a slack of two, and culled less than every later record of the same view).
+// Switching between uniform and adaptive levels keeps each record's verdicts its own.
+TEST_F(AdaptiveBackPatchTest, EveryRecordCullsWithItsOwnLevelsFromTheFirstOn) {
+  const PatchSet patches = testSphere();
+  frame::GpuPatchSet gpu(context(), patches);
+  frame::CullSettings settings;
+  settings.frustum = false;
+  settings.backPatch = "ncone";
+  settings.backPatchValidity = {true, "closed sphere"};
+  frame::TessellationOptions uniform1;
+  uniform1.uniformLevel = 1;
+  uint32_t adaptiveCulls = 0;
+  for (const frame::Camera& camera : sphereViews(patches, 4, 11, 200, 150)) {
+    const auto culled = [&](frame::CullPass& pass) {
+      uint32_t n = 0;
+      for (uint32_t r : pass.results()) n += bound::CullCode{r}.culled();
+      return n;
+    };
+    frame::CullPass fresh(context(), gpu, patches, settings);
+    fresh.run(camera, adaptive(8.0));
+    const uint32_t first = culled(fresh);
+    fresh.run(camera, adaptive(8.0));
+    EXPECT_EQ(first, culled(fresh)) << "the first adaptive record of a pass";
+    fresh.run(camera, uniform1);
+    const uint32_t uniform = culled(fresh);
+    frame::CullPass uniformFirst(context(), gpu, patches, settings);
+    uniformFirst.run(camera, uniform1);
+    EXPECT_EQ(uniform, culled(uniformFirst)) << "uniform after adaptive";
+    fresh.run(camera, adaptive(8.0));
+    EXPECT_EQ(first, culled(fresh)) << "adaptive after uniform";
+    adaptiveCulls += first;
+  }
+  EXPECT_GT(adaptiveCulls, 0u);
 }
 
 }  // namespace

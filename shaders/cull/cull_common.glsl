@@ -13,7 +13,6 @@ layout(std430, set = 0, binding = kCullBindingInstances) readonly buffer Instanc
   CullInstance instances[];
 };
 CullConstants pc;
-bool gExactLevels;   // the instance's CullInstance.exactLevels
 uint gLevelBase;     // its first entry in tessLevels[]
 
 // Copies the view's constants and the values of instance `i` into pc.
@@ -22,7 +21,6 @@ void loadInstance(uint i) {
   pc.viewProjection = instances[i].viewProjection;
   pc.eye = instances[i].eye;
   pc.snapPerDistance = instances[i].snapPerDistance;
-  gExactLevels = instances[i].exactLevels != 0u;
   gLevelBase = instances[i].levelSlot * pcView.patchCount;
 }
 

@@ -5,7 +5,7 @@
 // (patch/tess_levels.glsl), bounds the shape of the worst triangle, and from the patch's
 // derivative bounds G and H the largest deviation of a triangle normal from a surface normal.
 // Every quantity is rounded up by kDrawnSafety, far more than its fp32 error. Adaptive levels
-// precomputed by the levels pass (gExactLevels: patch/tess_levels.comp, read by the draws too)
+// precomputed by the levels pass (CULL_LEVELS 2: patch/tess_levels.comp, read by the draws too)
 // are the drawn integers themselves; computed here instead, they get a slack of 2 (the draw
 // shader's fp32 levels may differ from these by one; the double reference allows one). So
 // every GPU cull is a cull of the reference.
@@ -23,7 +23,19 @@ vec2 tessViewportSize() { return pc.viewport.xy; }
 float tessPixelsPerSegment() { return pc.tessPixelsPerSegment; }
 float tessUniformLevel() { return pc.viewport.z; }
 float tessMaxLevel() { return pc.viewport.w; }
-uint tessMode() { return pc.tessPixelsPerSegment > 0.0 ? kTessAdaptive : kTessUniform; }
+// Where the levels come from is fixed when the kernel is composed (CULL_LEVELS, chosen per
+// record by CullPass::levelSource): llvmpipe runs every branch of a kernel under a mask
+// whether or not a lane takes it, so a run-time choice between the three sources paid for
+// all three in every invocation, the 16 curve loads and 32 projections of the computed
+// levels included (twice in the deferring kernel), even where the levels were uniform or
+// read from the levels pass (docs/results/cull-kernel-floor.md, "Branches cost").
+#if CULL_LEVELS == 1  // uniform levels: integers the kernel knows
+uint tessMode() { return kTessUniform; }
+#elif CULL_LEVELS == 2 || CULL_LEVELS == 3  // adaptive: the levels pass's, or computed here
+uint tessMode() { return kTessAdaptive; }
+#else
+#error "CULL_LEVELS must be 1 (uniform), 2 (exact adaptive) or 3 (adaptive from the curves)"
+#endif
 #include "patch/tess_levels.glsl"
 
 layout(std430, set = 0, binding = kCullBindingTessLevels) readonly buffer TessLevels {
@@ -31,7 +43,7 @@ layout(std430, set = 0, binding = kCullBindingTessLevels) readonly buffer TessLe
 };
 
 // Whether the levels below are the drawn integers: uniform, or precomputed for the draws.
-bool drawnLevelsExact() { return tessMode() == kTessUniform || gExactLevels; }
+bool drawnLevelsExact() { return CULL_LEVELS != 3; }
 
 const float kDrawnSafety = 1.001;
 
@@ -47,20 +59,18 @@ vec2 drawnInnerRange(vec2 a, vec2 b) {
 // The Lo and Hi outer levels the draw shaders set for a patch (Bezier or Gregory) in this
 // view.
 void drawnEdgeLevels(uint patchIndex, out vec4 levelLo, out vec4 levelHi) {
-  if (tessMode() == kTessAdaptive && gExactLevels) {
-    unpackTessLevels(tessLevels[gLevelBase + patchIndex], levelLo, levelHi);
-    return;
-  }
-  if (tessMode() == kTessUniform) {  // no curve loads: on lavapipe they dominate the kernel
-    uniformEdgeLevels(params[2u * patchIndex] >> 28u, levelLo, levelHi);
-    return;
-  }
+#if CULL_LEVELS == 2
+  unpackTessLevels(tessLevels[gLevelBase + patchIndex], levelLo, levelHi);
+#elif CULL_LEVELS == 1  // no curve loads: on lavapipe they dominate the kernel
+  uniformEdgeLevels(params[2u * patchIndex] >> 28u, levelLo, levelHi);
+#else
   uint first = firstPoint(patchIndex);
   bool bezier = isBezier(patchIndex);
   vec3 curves[16];
   for (int k = 0; k < 16; ++k)
     curves[k] = controlPoint(first + uint(bezier ? kEdgeCurveBezier[k] : kEdgeCurveGregory[k]));
   curveEdgeLevels(curves, params[2u * patchIndex] >> 28u, levelLo, levelHi);
+#endif
 }
 
 #ifdef CULL_DRAWN_LIST_LEVEL

@@ -155,7 +155,8 @@ struct CullInstance {
   float snapPerDistance;  // CullConstants.snapPerDistance
   // 1: this view's adaptive levels are precomputed (the levels pass, frame::TessLevelsPass):
   // patch p's drawn levels are tessLevels[levelSlot * patchCount + p] (kCullBindingTessLevels),
-  // exact, and the draws of this instance read the same entries.
+  // exact, and the draws of this instance read the same entries. The kernel does not branch
+  // on it: CullPass composes the drawn-triangle kernel for its level source (CULL_LEVELS).
   uint exactLevels;
   uint levelSlot;  // with exactLevels: the instance's slot of tessLevels[] (of patchCount entries)
   float pad2;

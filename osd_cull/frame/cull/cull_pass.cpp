@@ -135,13 +135,31 @@ std::vector<float> packPatchBoxes(const PatchSet& patches) {
   return boxes;
 }
 
-namespace {
-
 // The parts of a drawn-triangle kernel (shaders/cull/cull_main.glsl): the cull kernel that
 // hands the patches the listed-triangle test could decide to the listed-triangle pass, that
 // pass, and the lean cull kernel for views where no patch can be listed
 // (CullPass::leanKernelApplies).
-enum class KernelPart { Deferring, Listed, Lean };
+enum class CullPass::KernelPart { Deferring, Listed, Lean };
+
+// Where a drawn-triangle kernel takes the tessellation levels (CULL_LEVELS in
+// shaders/cull/drawn_triangles.glsl): fixed at composition, since llvmpipe pays for every
+// branch of a kernel whether or not a lane takes it. Uniform levels, the levels pass's exact
+// adaptive levels, or adaptive levels computed from the curves with a slack (no levels
+// pass: nothing can be listed there, so only the lean kernel has that source).
+enum class CullPass::LevelSource : uint32_t { Uniform = 1, Exact = 2, Curves = 3 };
+
+namespace {
+
+using KernelPart = CullPass::KernelPart;
+using LevelSource = CullPass::LevelSource;
+
+// The kernel parts and level sources a drawn-triangle kernel is composed in: the listing
+// needs exact levels, and the lean kernel serves the uniform levels where nothing can be
+// listed and the computed ones (CullPass::kernelFor).
+constexpr std::pair<KernelPart, LevelSource> kDrawnKernels[] = {
+    {KernelPart::Deferring, LevelSource::Uniform}, {KernelPart::Deferring, LevelSource::Exact},
+    {KernelPart::Listed, LevelSource::Uniform},    {KernelPart::Listed, LevelSource::Exact},
+    {KernelPart::Lean, LevelSource::Uniform},      {KernelPart::Lean, LevelSource::Curves}};
 
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
@@ -149,7 +167,7 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
                           bool drawnTriangles, bool drawnEnumerate,
                           const CullMethod::Displaced* displaced, bool pointsByAddress,
                           bool patchBoxes, KernelPart part = KernelPart::Deferring,
-                          bool clusters = false) {
+                          LevelSource levels = LevelSource::Uniform, bool clusters = false) {
   auto has = [&](CullStage s) {
     return std::any_of(stages.begin(), stages.end(),
                        [&](const CullMethod* m) { return m->stage == s; });
@@ -175,6 +193,8 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   text += std::string("#define CULL_DRAWN_ENUMERATE ") + (listed ? "1" : "0") + "\n";
   text += std::string("#define CULL_DRAWN_LISTED ") + (listed ? "1" : "0") + "\n";
   text += std::string("#define CULL_DRAWN_DEFER ") + (deferring ? "1" : "0") + "\n";
+  if (drawn)
+    text += "#define CULL_LEVELS " + std::to_string(static_cast<uint32_t>(levels)) + "\n";
   if (listed || deferring)
     text += "#define CULL_DRAWN_LIST_LEVEL " +
             std::to_string(drawnEnumerate ? 64u : bound::kDrawnListLowLevel) + "\n";
@@ -246,17 +266,17 @@ std::vector<vulkan::ShaderVariant> cullPassShaderVariants() {
                   // without (CullPass::leanKernelApplies).
                   // Clustered (CullSettings::clusters): static points, undisplaced, no
                   // occlusion, a cone method or none.
-                  for (const KernelPart part :
-                       {KernelPart::Deferring, KernelPart::Listed, KernelPart::Lean})
+                  for (const auto& [part, levels] : kDrawnKernels)
                     for (const bool clusters : {false, true}) {
-                      if (part != KernelPart::Deferring && !(drawn && backPatch)) continue;
-                      if (part == KernelPart::Lean && enumerate) continue;
+                      if (!(drawn && backPatch) &&
+                          (part != KernelPart::Deferring || levels != LevelSource::Uniform))
+                        continue;
                       if (clusters &&
                           (!boxes || occlusion || box >= 0 || !clusterMethod(backPatch)))
                         continue;
                       std::string text = composeKernel(stages, lanes, drawn, enumerate,
                                                        box >= 0 ? &displaced : nullptr, bda, boxes,
-                                                       part, clusters);
+                                                       part, levels, clusters);
                       if (texts.insert(text).second)
                         variants.push_back(vulkan::ShaderVariant::glsl(
                             text, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
@@ -498,27 +518,36 @@ ClusterCounts CullPass::clusterCounts() const {
 // The layouts and pipelines of one kernel configuration. Creating a pipeline runs the
 // driver's compiler (lavapipe: LLVM, up to 0.4 s for the tangent-plane kernel), so passes with
 // the same kernel on the same device share one: a scene with many instances of a mesh has a
-// pass per instance and view.
+// pass per instance and view. A drawn-triangle configuration has a kernel per part and level
+// source (kDrawnKernels); each is created the first time a record needs it, so a pass that
+// only ever draws uniform levels compiles no adaptive kernel.
 struct CullPipelines {
   vulkan::UniqueDescriptorSetLayout setLayout;
   vulkan::UniqueDescriptorSetLayout stageSetLayout;
   vulkan::UniquePipelineLayout layout;
-  vulkan::UniquePipeline cull;
-  /// The listed-triangle pass over the patches `cull` deferred to it (null when `cull`
-  /// defers none).
-  vulkan::UniquePipeline cullListed;
-  /// The kernel without the listed-triangle test (null when `cull` has none): for views
-  /// where it cannot run (CullPass::leanKernelApplies).
-  vulkan::UniquePipeline cullLean;
   vulkan::UniquePipeline draws;
   vulkan::UniquePipeline clusters;  ///< cluster_cull.comp, for clustered kernels only
+
+  /// The pipeline of a composed kernel `text`, created on first use.
+  VkPipeline kernel(vulkan::Context& context, const std::string& text) const {
+    const std::lock_guard<std::mutex> lock(mutex);
+    vulkan::UniquePipeline& p = kernels[text];
+    if (!p)
+      p = vulkan::createComputePipeline(
+          context, layout.get(), vulkan::compileGlsl(text, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
+    return p.get();
+  }
+
+ private:
+  mutable std::mutex mutex;
+  mutable std::map<std::string, vulkan::UniquePipeline> kernels;
 };
 
 namespace {
 
 std::shared_ptr<const CullPipelines> sharedPipelines(
-    vulkan::Context& context, const std::string& kernel, const std::string& listedKernel,
-    const std::string& leanKernel, const std::vector<const CullMethod*>& stages, bool clusters) {
+    vulkan::Context& context, const std::string& kernel,
+    const std::vector<const CullMethod*>& stages, bool clusters) {
   static std::mutex mutex;
   static std::map<std::pair<VkDevice, std::string>, std::weak_ptr<const CullPipelines>> cache;
   const std::lock_guard<std::mutex> lock(mutex);
@@ -534,17 +563,6 @@ std::shared_ptr<const CullPipelines> sharedPipelines(
     }
   p->layout = vulkan::createPipelineLayout(context, layouts, sizeof(sh::CullConstants),
                                            VK_SHADER_STAGE_COMPUTE_BIT);
-  const vulkan::Spirv cull =
-      vulkan::compileGlsl(kernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT);
-  p->cull = vulkan::createComputePipeline(context, p->layout.get(), cull);
-  if (!listedKernel.empty() && listedKernel != kernel)
-    p->cullListed = vulkan::createComputePipeline(
-        context, p->layout.get(),
-        vulkan::compileGlsl(listedKernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
-  if (!leanKernel.empty() && leanKernel != kernel)
-    p->cullLean = vulkan::createComputePipeline(
-        context, p->layout.get(),
-        vulkan::compileGlsl(leanKernel, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
   p->draws =
       vulkan::createComputePipeline(context, p->layout.get(), vulkan::compileShader(kWriteDraws));
   if (clusters)
@@ -556,17 +574,38 @@ std::shared_ptr<const CullPipelines> sharedPipelines(
 
 }  // namespace
 
+std::string CullPass::kernelText(KernelPart part, LevelSource levels) const {
+  return composeKernel(stages_, lanes_, settings_.drawnTriangles, settings_.drawnEnumerate,
+                       displaced() ? &displacedKernel_ : nullptr, gpu_.pointsByAddress(),
+                       patchBoxes(), part, levels, settings_.clusters);
+}
+
+CullPass::Kernels CullPass::kernelsFor(const TessellationOptions& tessellation) const {
+  Kernels k;
+  if (!drawnTriangles()) {  // one kernel: nothing is deferred, no level is read
+    k.cull = pipelines_->kernel(context_, kernelText(KernelPart::Deferring, LevelSource::Uniform));
+    return k;
+  }
+  const TessellationOptions t = effectiveOptions(tessellation, gpu_.hasTransitionEdges());
+  const LevelSource levels = t.mode == TessellationOptions::Mode::Uniform ? LevelSource::Uniform
+                             : usesExactLevels(tessellation)              ? LevelSource::Exact
+                                                                          : LevelSource::Curves;
+  // The lean kernel where nothing can be listed: uniform levels above the list level (not
+  // with drawnEnumerate, which lists at every level) and computed adaptive levels.
+  const bool lean = levels == LevelSource::Curves ||
+                    (levels == LevelSource::Uniform && !settings_.drawnEnumerate &&
+                     leanKernelApplies(tessellation));
+  if (lean) {
+    k.cull = pipelines_->kernel(context_, kernelText(KernelPart::Lean, levels));
+    return k;
+  }
+  k.cull = pipelines_->kernel(context_, kernelText(KernelPart::Deferring, levels));
+  k.listed = pipelines_->kernel(context_, kernelText(KernelPart::Listed, levels));
+  return k;
+}
+
 void CullPass::buildPipelines(vulkan::Context& context) {
-  const auto kernel = [&](KernelPart part) {
-    return composeKernel(stages_, lanes_, settings_.drawnTriangles, settings_.drawnEnumerate,
-                         displaced() ? &displacedKernel_ : nullptr, gpu_.pointsByAddress(),
-                         patchBoxes(), part, settings_.clusters);
-  };
-  // Without the drawn-triangle bound the three texts are one (no listed pass, no lean
-  // kernel); with drawnEnumerate the listing runs at every level: no lean kernel.
-  const std::string deferring = kernel(KernelPart::Deferring);
-  pipelines_ = sharedPipelines(context, deferring, kernel(KernelPart::Listed),
-                               settings_.drawnEnumerate ? std::string() : kernel(KernelPart::Lean),
+  pipelines_ = sharedPipelines(context, kernelText(KernelPart::Deferring, LevelSource::Uniform),
                                stages_, settings_.clusters);
   pool_ = std::make_unique<vulkan::DescriptorPool>(context, 1, kBindings);
   set_ = pool_->allocate(pipelines_->setLayout.get());
@@ -718,6 +757,7 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
     throw Error("CullPass::record: " + std::to_string(cameras.size()) + " cameras for " +
                 std::to_string(settings_.instanceCount) + " instances of " + host_.source);
   const sh::CullConstants c = constants(cameras.front(), tessellation);
+  exactLevels_ = usesExactLevels(tessellation);  // of this record, before the instances read it
   // The instances' view · model values (shared/cull_layout.h CullInstance) and, displaced,
   // their camera-space matrices, written in the command buffer so frames in flight keep
   // their own.
@@ -734,7 +774,6 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   chunkGregory_ = c.drawChunkGregory;
   // Exact adaptive levels: the levels pass for every instance (unless the caller recorded it
   // for this frame, recordTessLevels()), read by the kernel and by the survivors' draws.
-  exactLevels_ = usesExactLevels(tessellation);
   if (exactLevels_ && !levelsRecorded_) recordTessLevels(cmd, cameras, tessellation);
   levelsRecorded_ = false;
   if (gpu_.tessLevels().handle() != boundTessLevels_) {  // reserveTessLevelSlots() moved it
@@ -746,8 +785,8 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   // Earlier readers of the outputs (draws, host) and writers of the points come first.
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
   vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
-  const bool lean = pipelines_->cullLean && leanKernelApplies(tessellation);
-  const bool listed = pipelines_->cullListed && !lean;
+  const Kernels kernels = kernelsFor(tessellation);
+  const bool listed = kernels.listed != VK_NULL_HANDLE;
   if (listed) {  // no candidates yet; a dispatch of 0 x 1 x 1 groups
     const uint32_t none[sh::kDeferredHeader] = {0u, 1u, 1u, 0u};
     vkCmdUpdateBuffer(cmd, deferred_.handle(), 0, sizeof(none), none);
@@ -768,8 +807,7 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   const uint32_t n = gpu_.patchCount();
   if (n > 0) {
     if (settings_.clusters) recordClusters(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                      lean ? pipelines_->cullLean.get() : pipelines_->cull.get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernels.cull);
     if (settings_.clusters) {  // the undecided clusters' patches (cluster_cull.comp)
       vkCmdDispatchIndirect(cmd, clusterWork_.handle(), 0);
     } else {
@@ -783,7 +821,7 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
           {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                VK_ACCESS_INDIRECT_COMMAND_READ_BIT});
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->cullListed.get());
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernels.listed);
       vkCmdDispatchIndirect(cmd, deferred_.handle(), 0);
     }
     ++dispatches_;

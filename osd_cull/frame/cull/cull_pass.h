@@ -126,6 +126,11 @@ std::vector<float> packPatchBoxes(const PatchSet& patches);
 /// configuration for one patch set. The patch set must outlive the pass.
 class CullPass {
  public:
+  /// \brief The parts of a drawn-triangle kernel and where it takes the tessellation levels
+  /// (defined in cull_pass.cpp; each part and source is a kernel of its own).
+  enum class KernelPart;
+  enum class LevelSource : uint32_t;
+
   /// \brief Builds the kernel variant for `settings` and uploads the per-mesh data (cones
   /// of the back-patch method, built on the host in double, rounded toward "visible").
   /// \throws osd_cull::Error for unknown method names, a method in the wrong stage, or a
@@ -260,6 +265,15 @@ class CullPass {
   CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& host,
            const CullSettings& settings, const vulkan::Buffer* cullData);
   void buildPipelines(vulkan::Context& context);
+  /// The composed kernel of one part and level source (cull_pass.cpp composeKernel).
+  std::string kernelText(KernelPart part, LevelSource levels) const;
+  /// The kernels a record with these levels runs: the cull kernel and, where it defers
+  /// patches to the listed-triangle pass, that pass (else VK_NULL_HANDLE).
+  struct Kernels {
+    VkPipeline cull = VK_NULL_HANDLE;
+    VkPipeline listed = VK_NULL_HANDLE;
+  };
+  Kernels kernelsFor(const TessellationOptions& tessellation) const;
   void checkLimits(uint32_t patchCount) const;
   void uploadHostCones(vulkan::Context& context);
   void buildClusters(vulkan::Context& context);
