@@ -30,7 +30,9 @@
 //   CULL_DRAWN_LISTED 1: the listed-triangle pass itself, over deferred[] (an indirect
 //                     dispatch after the cull kernel): the listing (CULL_DRAWN_ENUMERATE),
 //                     then the occlusion stage, then the code and the draw list, as the cull
-//                     kernel would have finished them.
+//                     kernel would have finished them. One pass per patch type
+//                     (CULL_DRAWN_LISTED_GREGORY 0: the Bezier list, 1: the Gregory list),
+//                     so that neither evaluates the other type's surface.
 //   CULL_CLUSTERS     1: only the patches the cluster test left undecided
 //                     (cluster_cull.comp lists them in clusterWork), one instance, by an
 //                     indirect dispatch
@@ -48,6 +50,11 @@ layout(std430, set = 0, binding = kCullBindingClusterWork) readonly buffer Work 
 
 #if CULL_DRAWN_DEFER || CULL_DRAWN_LISTED
 layout(std430, set = 0, binding = kCullBindingDeferred) buffer Deferred { uint deferred[]; };
+
+// The first word of the Bezier or the Gregory candidates' list (shared/cull_layout.h).
+uint deferredList(bool bezier) {
+  return bezier ? 0u : kDeferredHeader + 2u * instanceHeader.x * pcView.bezierCount;
+}
 #endif
 
 layout(local_size_x = kCullGroupSize) in;
@@ -64,11 +71,12 @@ void appendSurvivor(uint base, uint counterBase, uint patchIndex) {
 
 #if CULL_DRAWN_LISTED
 void main() {
-  const uint count = deferred[kDeferredCount];
+  const uint list = deferredList(CULL_DRAWN_LISTED_GREGORY == 0);
+  const uint count = deferred[list + kDeferredCount];
   const uint stride = gl_NumWorkGroups.x * kCullGroupSize;
   for (uint i = gl_GlobalInvocationID.x; i < count; i += stride) {
-    const uint instance = deferred[kDeferredHeader + 2u * i];
-    const uint patchIndex = deferred[kDeferredHeader + 2u * i + 1u];
+    const uint instance = deferred[list + kDeferredHeader + 2u * i];
+    const uint patchIndex = deferred[list + kDeferredHeader + 2u * i + 1u];
     loadInstance(instance);
     const uint base = instance * pc.patchCount;
     uint result = results[base + patchIndex];
@@ -160,13 +168,14 @@ void main() {
 #if CULL_DRAWN && CULL_DRAWN_DEFER
   if (defer) {  // finished by the listed-triangle pass
     results[base + patchIndex] = result;
-    const uint i = atomicAdd(deferred[kDeferredCount], 1u);
-    deferred[kDeferredHeader + 2u * i] = instance;
-    deferred[kDeferredHeader + 2u * i + 1u] = patchIndex;
+    const uint list = deferredList(isBezier(patchIndex));
+    const uint i = atomicAdd(deferred[list + kDeferredCount], 1u);
+    deferred[list + kDeferredHeader + 2u * i] = instance;
+    deferred[list + kDeferredHeader + 2u * i + 1u] = patchIndex;
     // The groups the pass needs, ceil(count / kCullGroupSize), from the first candidate of
     // each group (the indices are 0..count-1): one atomic per group, not per candidate.
     if (i % kCullGroupSize == 0u)
-      atomicMax(deferred[0], min(i / kCullGroupSize + 1u, kDeferredMaxGroups));
+      atomicMax(deferred[list], min(i / kCullGroupSize + 1u, kDeferredMaxGroups));
     return;
   }
 #endif

@@ -16,11 +16,16 @@
 #define OSD_CULL_CULL_DRAWN_TRIANGLE_SET_GLSL
 #include "drawn_triangles.glsl"
 
-const int kDrawnRowPoints = 65;  // the largest listed level (64) plus one
+// The largest listed level plus one: rows of points live in memory per SIMD lane on
+// lavapipe, so they are no longer than the listing needs (CULL_DRAWN_LIST_LEVEL: 2 by
+// default, 64 with CullSettings::drawnEnumerate).
+const int kDrawnRowPoints = CULL_DRAWN_LIST_LEVEL + 1;
 vec3 gDrawnNet[16];  // the Bezier net of the patch being tested (Gregory: drawnPoint fills
                      // the interior points 5, 6, 10, 9 at each (u, v))
 vec3 gDrawnFace[8];  // Gregory: Fp, Fm of corners (0,0), (1,0), (1,1), (0,1)
-bool gDrawnGregory;
+// The type this listed pass lists (CULL_DRAWN_LISTED_GREGORY): a constant, so that a pass
+// evaluates one kind of surface (lavapipe runs both sides of a branch on the patch type).
+const bool gDrawnGregory = CULL_DRAWN_LISTED_GREGORY != 0;
 float gDrawnEps;  // the corner displacement the test allows
 
 // Osd_EvalBasisGregory's interior multiplier of Fp: a / (a + b), 1 where a + b vanishes
@@ -183,7 +188,7 @@ bool drawnTrianglesFaceAway(uint patchIndex) {
   bool allOnes;
   if (!drawnListedLevels(patchIndex, lo, hi, outer, allOnes)) return false;
   uint first = firstPoint(patchIndex);
-  gDrawnGregory = !isBezier(patchIndex);
+  if (isBezier(patchIndex) == gDrawnGregory) return false;  // the other pass's type
   float g, maxAbs, maxDistance, evalUlps = 24.0;
   if (gDrawnGregory) {
     vec3 d = drawnLoadGregory(first);

@@ -52,9 +52,12 @@ OSD_CULL_CONST uint kCounterCount = 4u;
 // cones[4p+3] = (max radius rounded up, half-angle in radians rounded up, 0, 0): what
 // bound::widenCone needs.
 // deferred[]: the patches the cull kernel hands to the listed-triangle pass
-// (CULL_DRAWN_DEFER, shaders/cull/cull_main.glsl): [0..2] VkDispatchIndirectCommand of that
-// pass (x: groups, at most kDeferredMaxGroups, the least maxComputeWorkGroupCount[0] Vulkan
-// allows; the pass loops over the rest), [3] candidates, then (instance, patch) per candidate.
+// (CULL_DRAWN_DEFER, shaders/cull/cull_main.glsl), in two lists: the Bezier candidates from
+// word 0, the Gregory ones from word kDeferredHeader + 2 * instances * bezierCount (each type
+// has its own listed pass: lavapipe pays for both evaluations in every invocation of a pass
+// that can meet either). Each list: [0..2] VkDispatchIndirectCommand of its pass (x: groups,
+// at most kDeferredMaxGroups, the least maxComputeWorkGroupCount[0] Vulkan allows; the pass
+// loops over the rest), [3] candidates, then (instance, patch) per candidate.
 OSD_CULL_CONST uint kDeferredCount = 3u;
 OSD_CULL_CONST uint kDeferredHeader = 4u;
 OSD_CULL_CONST uint kDeferredMaxGroups = 65535u;

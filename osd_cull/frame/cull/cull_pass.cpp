@@ -136,10 +136,10 @@ std::vector<float> packPatchBoxes(const PatchSet& patches) {
 }
 
 // The parts of a drawn-triangle kernel (shaders/cull/cull_main.glsl): the cull kernel that
-// hands the patches the listed-triangle test could decide to the listed-triangle pass, that
-// pass, and the lean cull kernel for views where no patch can be listed
-// (CullPass::leanKernelApplies).
-enum class CullPass::KernelPart { Deferring, Listed, Lean };
+// hands the patches the listed-triangle test could decide to the listed-triangle passes,
+// those passes (one per patch type: Bezier, Gregory), and the lean cull kernel for views
+// where no patch can be listed (CullPass::leanKernelApplies).
+enum class CullPass::KernelPart { Deferring, Listed, ListedGregory, Lean };
 
 // Where a drawn-triangle kernel takes the tessellation levels (CULL_LEVELS in
 // shaders/cull/drawn_triangles.glsl): fixed at composition, since llvmpipe pays for every
@@ -159,6 +159,8 @@ using LevelSource = CullPass::LevelSource;
 constexpr std::pair<KernelPart, LevelSource> kDrawnKernels[] = {
     {KernelPart::Deferring, LevelSource::Uniform}, {KernelPart::Deferring, LevelSource::Exact},
     {KernelPart::Listed, LevelSource::Uniform},    {KernelPart::Listed, LevelSource::Exact},
+    {KernelPart::ListedGregory, LevelSource::Uniform},
+    {KernelPart::ListedGregory, LevelSource::Exact},
     {KernelPart::Lean, LevelSource::Uniform},      {KernelPart::Lean, LevelSource::Curves}};
 
 // The kernel source of one configuration: generated declarations, then the stage files,
@@ -188,11 +190,15 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   // docs/results/cull-kernel-floor.md). The lean kernel, for views where no patch can be
   // listed (CullPass::record chooses it, leanKernelApplies()), defers nothing.
   const bool drawn = drawnTriangles && has(CullStage::BackPatch);
-  const bool listed = drawn && part == KernelPart::Listed;
+  const bool listed =
+      drawn && (part == KernelPart::Listed || part == KernelPart::ListedGregory);
   const bool deferring = drawn && part == KernelPart::Deferring;
   text += std::string("#define CULL_DRAWN_ENUMERATE ") + (listed ? "1" : "0") + "\n";
   text += std::string("#define CULL_DRAWN_LISTED ") + (listed ? "1" : "0") + "\n";
   text += std::string("#define CULL_DRAWN_DEFER ") + (deferring ? "1" : "0") + "\n";
+  if (listed)
+    text += std::string("#define CULL_DRAWN_LISTED_GREGORY ") +
+            (part == KernelPart::ListedGregory ? "1" : "0") + "\n";
   if (drawn)
     text += "#define CULL_LEVELS " + std::to_string(static_cast<uint32_t>(levels)) + "\n";
   if (listed || deferring)
@@ -384,7 +390,7 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
   const size_t codes = std::max<size_t>(1, instances * n);
   results_ = vulkan::Buffer(context, codes * 4, storage, vulkan::MemoryUse::Readback);
   drawList_ = vulkan::Buffer(context, codes * 4, storage);
-  deferred_ = vulkan::Buffer(context, (sh::kDeferredHeader + 2 * instances * n) * 4, indirect);
+  deferred_ = vulkan::Buffer(context, (2 * sh::kDeferredHeader + 2 * instances * n) * 4, indirect);
   counters_ = vulkan::Buffer(context, instances * sh::kCounterCount * 4, indirect,
                              vulkan::MemoryUse::Readback);
   commands_ = vulkan::Buffer(context, instances * (size_t{n} + 2) * sizeof(VkDrawIndirectCommand),
@@ -410,7 +416,7 @@ void CullPass::checkLimits(uint32_t n) const {
                                   "CullPass: the cones" + of);
   vulkan::checkStorageBufferRange(context_, instances * n * 4, "CullPass: the result codes" + of);
   vulkan::checkStorageBufferRange(context_, instances * n * 4, "CullPass: the draw list" + of);
-  vulkan::checkStorageBufferRange(context_, (sh::kDeferredHeader + 2 * instances * n) * 4,
+  vulkan::checkStorageBufferRange(context_, (2 * sh::kDeferredHeader + 2 * instances * n) * 4,
                                   "CullPass: the listed-triangle candidates" + of);
   vulkan::checkStorageBufferRange(context_,
                                   instances * (uint64_t{n} + 2) * sizeof(VkDrawIndirectCommand),
@@ -600,7 +606,10 @@ CullPass::Kernels CullPass::kernelsFor(const TessellationOptions& tessellation) 
     return k;
   }
   k.cull = pipelines_->kernel(context_, kernelText(KernelPart::Deferring, levels));
-  k.listed = pipelines_->kernel(context_, kernelText(KernelPart::Listed, levels));
+  if (gpu_.bezierCount() > 0)
+    k.listed = pipelines_->kernel(context_, kernelText(KernelPart::Listed, levels));
+  if (gpu_.gregoryCount() > 0)
+    k.listedGregory = pipelines_->kernel(context_, kernelText(KernelPart::ListedGregory, levels));
   return k;
 }
 
@@ -786,10 +795,14 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
   vulkan::memoryBarrier(cmd, vulkan::scope::kAll, vulkan::scope::kTransferWrite);
   vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
   const Kernels kernels = kernelsFor(tessellation);
-  const bool listed = kernels.listed != VK_NULL_HANDLE;
-  if (listed) {  // no candidates yet; a dispatch of 0 x 1 x 1 groups
+  const bool listed = kernels.listed != VK_NULL_HANDLE || kernels.listedGregory != VK_NULL_HANDLE;
+  // The first word of the Gregory candidates' list (shared/cull_layout.h deferred[]).
+  const VkDeviceSize gregoryList =
+      (sh::kDeferredHeader + 2 * VkDeviceSize{settings_.instanceCount} * gpu_.bezierCount()) * 4;
+  if (listed) {  // no candidates yet; dispatches of 0 x 1 x 1 groups
     const uint32_t none[sh::kDeferredHeader] = {0u, 1u, 1u, 0u};
     vkCmdUpdateBuffer(cmd, deferred_.handle(), 0, sizeof(none), none);
+    vkCmdUpdateBuffer(cmd, deferred_.handle(), gregoryList, sizeof(none), none);
   }
   updateBuffer(cmd, instances_, instanceData.data(), instanceData.size());
   if (displaced()) {
@@ -821,8 +834,18 @@ void CullPass::record(VkCommandBuffer cmd, std::span<const Camera> cameras,
           {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                VK_ACCESS_INDIRECT_COMMAND_READ_BIT});
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernels.listed);
-      vkCmdDispatchIndirect(cmd, deferred_.handle(), 0);
+      if (kernels.listed != VK_NULL_HANDLE) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernels.listed);
+        vkCmdDispatchIndirect(cmd, deferred_.handle(), 0);
+      }
+      if (kernels.listedGregory != VK_NULL_HANDLE) {
+        // Both passes append to the same draw lists and counters.
+        if (kernels.listed != VK_NULL_HANDLE)
+          vulkan::memoryBarrier(cmd, vulkan::scope::kComputeReadWrite,
+                                vulkan::scope::kComputeReadWrite);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, kernels.listedGregory);
+        vkCmdDispatchIndirect(cmd, deferred_.handle(), gregoryList);
+      }
     }
     ++dispatches_;
   }

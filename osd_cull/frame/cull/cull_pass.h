@@ -268,10 +268,12 @@ class CullPass {
   /// The composed kernel of one part and level source (cull_pass.cpp composeKernel).
   std::string kernelText(KernelPart part, LevelSource levels) const;
   /// The kernels a record with these levels runs: the cull kernel and, where it defers
-  /// patches to the listed-triangle pass, that pass (else VK_NULL_HANDLE).
+  /// patches to the listed-triangle passes, the pass of each patch type the set has (else
+  /// VK_NULL_HANDLE).
   struct Kernels {
     VkPipeline cull = VK_NULL_HANDLE;
-    VkPipeline listed = VK_NULL_HANDLE;
+    VkPipeline listed = VK_NULL_HANDLE;         ///< Bezier candidates
+    VkPipeline listedGregory = VK_NULL_HANDLE;  ///< Gregory candidates
   };
   Kernels kernelsFor(const TessellationOptions& tessellation) const;
   void checkLimits(uint32_t patchCount) const;
