@@ -126,8 +126,7 @@ Case meshFile(const std::string& file, uint32_t level, double scale, double tran
   // Recentred as osd-cull recentres a far mesh file at load (samples/osd-cull/mesh_patches.cpp),
   // so the planner sees what the program runs, not fp32 world coordinates that no form of
   // the program draws.
-  const glm::dvec3 offset = scene::farMeshOffset(m.patches.points);
-  for (glm::dvec3& p : m.patches.points) p -= offset;
+  const glm::dvec3 offset = scene::recentreFar(m.patches.points);
   Case c;
   c.name = std::filesystem::path(file).filename().string() + " level " + std::to_string(level);
   if (scale != 1.0 || translate != 0.0) {

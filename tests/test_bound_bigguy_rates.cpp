@@ -88,16 +88,27 @@ TEST(BoundBigGuyRates, BackPatchCullRatesOverSphereViewsAreConservative) {
   std::printf("BigGuy level 2: %zu Bézier + %zu Gregory patches, %d sphere views\n", bezier.size(),
               gregory.size(), views);
   std::printf(
-      "  Bézier:  truly back-facing %.1f%%  TCONE %.1f%%  NCONE %.1f%%  tangent plane %.1f%%\n",
+      "  Bézier:  truly back-facing %.2f%%  TCONE %.2f%%  NCONE %.2f%%  tangent plane %.2f%%\n",
       100 * oracleB / nb, 100 * tcone / nb, 100 * ncull / nb, 100 * tplane / nb);
-  std::printf("  Gregory: truly back-facing %.1f%%  Gregory TCONE %.1f%%\n", 100 * oracleG / ng,
+  std::printf("  Gregory: truly back-facing %.2f%%  Gregory TCONE %.2f%%\n", 100 * oracleG / ng,
               100 * gcull / ng);
   std::printf(
       "  CPU double reference per patch: TCONE build+test %.0f ns, NCONE test %.0f ns, "
       "tangent plane %.0f ns\n",
       tTcone / nb, tNcone / nb, tPlane / nb);
-  EXPECT_GT(tplane / nb, 0.30);
-  EXPECT_GE(tplane, ncull / 2);
+  // Floors two points below the rates measured on these 40 views (fixed seed, double
+  // precision: the same on every run), so that a method that culls less fails:
+  // `./tests/test_bound_bigguy_rates` (2026-12-07) measured Bézier truly back-facing 44.72%,
+  // TCONE 36.39%, NCONE 42.17%, tangent plane 44.67%; Gregory TCONE 17.04% (published on
+  // 10k views: TCONE 35%, NCONE 45%, tangent plane 48%). The tangent plane culls every truly
+  // back-facing Bézier patch of these views but a few (99.9%), and more than either cone.
+  EXPECT_GT(tplane / nb, 0.427);
+  EXPECT_GT(ncull / nb, 0.402);
+  EXPECT_GT(tcone / nb, 0.344);
+  EXPECT_GT(gcull / ng, 0.150);
+  EXPECT_GT(double(tplane), 0.99 * double(oracleB));
+  EXPECT_GT(tplane, ncull);
+  EXPECT_GT(ncull, tcone);
 }
 
 }  // namespace

@@ -30,23 +30,28 @@ TEST(CommandNotes, RenderAndVerifySayWhatTheLoaderDropped) {
   const std::string mesh = dir.write("cube.obj", kCube +
                                                      "t vertexedit 2/1/0 1 2 0.5\n"
                                                      "t interpolateboundary 1/0/0 1\n"
-                                                     "t interpolateboundary 1/0/0 2\n")
+                                                     "t interpolateboundary 1/0/0 2\n"
+                                                     "t crease 2/1/0 1 2 -3\n")
                                .string();
   const std::string dropped = "note: ignored 1 tag line(s) with unknown tag 'vertexedit'";
   const std::string conflict = "tag 'interpolateboundary' conflicts with line 16";
+  const std::string negative = "negative sharpness value(s) clamped to 0";  // issue 23
   const auto info = osdCull("info " + mesh);
   ASSERT_EQ(info.exitCode(), 0) << info.output;
   EXPECT_NE(info.output.find(dropped.substr(6)), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find(negative), std::string::npos) << info.output;
   const auto render = osdCull("render " + mesh + " --width 32 --height 32 --out " +
                               (dir.path() / "cube.png").string());
   ASSERT_EQ(render.exitCode(), 0) << render.output;
   EXPECT_NE(render.output.find(dropped), std::string::npos) << render.output;
   EXPECT_NE(render.output.find(conflict), std::string::npos) << render.output;
+  EXPECT_NE(render.output.find(negative), std::string::npos) << render.output;
   const auto verify =
       osdCull("verify " + mesh + " --views 1 --width 32 --height 32 --methods frustum");
   ASSERT_EQ(verify.exitCode(), 0) << verify.output;
   EXPECT_NE(verify.output.find(dropped), std::string::npos) << verify.output;
   EXPECT_NE(verify.output.find(conflict), std::string::npos) << verify.output;
+  EXPECT_NE(verify.output.find(negative), std::string::npos) << verify.output;
 }
 
 TEST(CommandNotes, EveryCommandRefusesCoordinatesBeyondTheFp32Range) {

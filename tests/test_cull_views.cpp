@@ -13,6 +13,8 @@
 
 #include <glm/geometric.hpp>
 
+#include <cstdio>
+#include <map>
 #include <random>
 
 namespace osd_cull {
@@ -76,7 +78,6 @@ TEST_F(CullViewsTest, BigGuyNeverCullsWhatTheReferenceOrTheOracleKeeps) {
     EXPECT_GT(t.referenceAgreement(), t.name == "frustum" ? 0.9999 : 0.99) << t.name;
     EXPECT_GE(t.oracleInvisibleRate(), t.cullRate()) << t.name;
   }
-  EXPECT_GT(test::totalsOf(verifier, "frustum").cullRate(), 0.05);  // the close-up views
   const auto bezierRate = [&](const std::string& m) {
     const auto& t = test::totalsOf(verifier, m);
     return double(t.culledBezier) / double(t.bezierViews);
@@ -84,8 +85,21 @@ TEST_F(CullViewsTest, BigGuyNeverCullsWhatTheReferenceOrTheOracleKeeps) {
   // The surface test culls what the paper's does; the drawn-triangle bound keeps part of it
   // at this coarse tessellation (docs/results/backpatch.md).
   const auto& tp = test::totalsOf(verifier, "tangent-plane");
-  EXPECT_GT(double(tp.culled + tp.keptForDrawnTriangles) / double(tp.patchViews), 0.33);
-  EXPECT_GT(bezierRate("tangent-plane"), 0.12);
+  const double surface = double(tp.culled + tp.keptForDrawnTriangles) / double(tp.patchViews);
+  std::printf(
+      "BigGuy, %zu views: frustum %.2f%%, tangent-plane surface %.2f%%, Bezier tangent-plane "
+      "%.2f%% ncone %.2f%% tcone %.2f%%\n",
+      cameras.size(), 100 * test::totalsOf(verifier, "frustum").cullRate(), 100 * surface,
+      100 * bezierRate("tangent-plane"), 100 * bezierRate("ncone"), 100 * bezierRate("tcone"));
+  // Floors a point or two under the rates measured (2026-12-07, lavapipe; the views are
+  // seeded, so the figures repeat): with 120 views frustum 7.09%, tangent-plane surface
+  // 40.51%, Bézier tangent plane 15.01%, NCONE 13.61%, TCONE 9.66%; with the 60 views of a
+  // sanitizer build 7.78%, 40.79%, 15.37%, 13.99%, 10.02%.
+  EXPECT_GT(test::totalsOf(verifier, "frustum").cullRate(), 0.06);  // the close-up views
+  EXPECT_GT(surface, 0.385);
+  EXPECT_GT(bezierRate("tangent-plane"), 0.13);
+  EXPECT_GT(bezierRate("ncone"), 0.12);
+  EXPECT_GT(bezierRate("tcone"), 0.08);
   EXPECT_GT(bezierRate("tangent-plane"), bezierRate("ncone"));
   EXPECT_GT(bezierRate("ncone"), bezierRate("tcone"));
   // The one-thread kernel computes the coefficients by the factored form with its own fp32
@@ -115,10 +129,29 @@ TEST_F(CullViewsTest, BigGuyCulledPatchesHaveNoVisibleSampleAndCullingLosesNoPix
   }
 }
 
+// Floors of the tangent-plane surface rate (culled, or kept only for the drawn triangles) of
+// each closed shape, two points under the lower of the rates measured (2026-12-07, lavapipe,
+// seeded views) with 120 views and with the 30 of a sanitizer build: chaikin0 45.77/45.28%,
+// cube 39.87/40.21%, cube_corner0 40.10/40.31%, cube_creases0 40.03/41.18%, cubes_infsharp
+// 38.96/37.73%, cubes_semisharp 35.46/35.36%, pyramid_creases0 28.55/26.88%, smoothtris0
+// 26.44/26.57%, toroidal_tet 31.15/31.07%, torus 20.26/20.73%, torus_creases0 33.62/37.01%.
+// A shape not listed (other data) must cull a tenth.
+double surfaceFloor(const std::string& shape) {
+  static const std::map<std::string, double> floors = {
+      {"catmark_chaikin0.obj", 0.43},         {"catmark_cube.obj", 0.37},
+      {"catmark_cube_corner0.obj", 0.38},     {"catmark_cube_creases0.obj", 0.38},
+      {"catmark_cubes_infsharp.obj", 0.35},   {"catmark_cubes_semisharp.obj", 0.33},
+      {"catmark_pyramid_creases0.obj", 0.24}, {"catmark_smoothtris0.obj", 0.24},
+      {"catmark_toroidal_tet.obj", 0.29},     {"catmark_torus.obj", 0.18},
+      {"catmark_torus_creases0.obj", 0.31}};
+  const auto it = floors.find(shape);
+  return it == floors.end() ? 0.1 : it->second;
+}
+
 TEST_F(CullViewsTest, EveryCatmarkShapeNeverCullsWhatTheReferenceOrTheOracleKeeps) {
   OSD_CULL_REQUIRE_DATA();
   uint32_t closedShapes = 0;
-  uint64_t drawnCulled = 0, drawnPatchViews = 0;
+  uint64_t drawnCulled = 0, surfaceCulled = 0, drawnPatchViews = 0;
   for (const auto& path : test::catmarkShapes()) {
     const test::CullMesh mesh = test::loadCullMesh(path);
     if (mesh.patches.patchCount() == 0) continue;
@@ -137,17 +170,26 @@ TEST_F(CullViewsTest, EveryCatmarkShapeNeverCullsWhatTheReferenceOrTheOracleKeep
     for (const auto& camera : cameras) verifier.verifyView(camera);
     test::expectNoViolations(verifier, mesh.name);
     if (mesh.validity.enabled) {
-      // The surface test culls a tenth or more (culled, or kept only for the drawn
-      // triangles at this coarse tessellation); the drawn-triangle bound keeps some of it.
+      // The surface test culls its share (culled, or kept only for the drawn triangles at
+      // this coarse tessellation); the drawn-triangle bound keeps some of it.
       const frame::MethodTotals& tp = test::totalsOf(verifier, "tangent-plane");
-      EXPECT_GT(double(tp.culled + tp.keptForDrawnTriangles) / double(tp.patchViews), 0.1)
-          << mesh.name;
+      const double surface = double(tp.culled + tp.keptForDrawnTriangles) / double(tp.patchViews);
+      std::printf("%s: tangent-plane surface %.2f%%, drawn %.2f%%\n", mesh.name.c_str(),
+                  100 * surface, 100 * double(tp.culled) / double(tp.patchViews));
+      EXPECT_GT(surface, surfaceFloor(mesh.name)) << mesh.name;
       drawnCulled += tp.culled;
+      surfaceCulled += tp.culled + tp.keptForDrawnTriangles;
       drawnPatchViews += tp.patchViews;
     }
   }
   EXPECT_GE(closedShapes, 10u);
-  EXPECT_GT(double(drawnCulled) / double(drawnPatchViews), 0.05);
+  std::printf("closed shapes: %u, tangent-plane surface %.2f%%, drawn %.2f%%\n", closedShapes,
+              100 * double(surfaceCulled) / double(drawnPatchViews),
+              100 * double(drawnCulled) / double(drawnPatchViews));
+  // Measured over the 11 shapes: surface 33.73% and drawn 14.05% with 120 views, 33.79% and
+  // 14.19% with 30.
+  EXPECT_GT(double(surfaceCulled) / double(drawnPatchViews), 0.31);
+  EXPECT_GT(double(drawnCulled) / double(drawnPatchViews), 0.12);
 }
 
 }  // namespace

@@ -3,14 +3,17 @@
 // precision of the same mesh at the origin (issue 23).
 #include "adapters/image_png.h"
 #include "osd_cull/frame/camera.h"
+#include "osd_cull/plan/calibration.h"
 #include "osd_cull/scene/loaded_scene.h"
 #include "osd_cull/scene/procedural.h"
+#include "support/obj_file.h"
+#include "support/plan_calibration.h"
 #include "support/run_command.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <cstdio>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -19,22 +22,6 @@ namespace osd_cull {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The cage as an OBJ file, positions at full double precision.
-void writeObj(const CageMesh& cage, const fs::path& file) {
-  std::ofstream out(file);
-  char line[128];
-  for (const glm::dvec3& p : cage.positions) {
-    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
-    out << line;
-  }
-  size_t k = 0;
-  for (const int n : cage.faceSizes) {
-    out << "f";
-    for (int i = 0; i < n; ++i) out << " " << cage.faceVertices[k++] + 1;
-    out << "\n";
-  }
-}
 
 TEST(FarMeshOffset, IsTheBoundingBoxCentreOnlyWhenTheOriginLiesOutsideTheBoundingSphere) {
   CageMesh cage = scene::cube();  // the unit cube about the origin
@@ -59,6 +46,37 @@ TEST(FarMeshOffset, RecentreMovesTheBoundingBoxCentreToTheOrigin) {
   EXPECT_NEAR(glm::length(b.center()), 0.0, 1e-9);
 }
 
+TEST(FarMeshOffset, RecentreFarMovesOnlyAMeshWhoseBoundingSphereMissesTheOrigin) {
+  CageMesh cage = scene::cube();
+  scene::translate(cage, {0.3, 0.0, 0.0});
+  const std::vector<glm::dvec3> near = cage.positions;
+  EXPECT_EQ(scene::recentreFar(cage.positions), glm::dvec3(0.0));
+  EXPECT_EQ(cage.positions, near);  // left as authored
+  scene::translate(cage, glm::dvec3(1e5));
+  const glm::dvec3 offset = scene::recentreFar(cage.positions);
+  EXPECT_NEAR(offset.x, 1e5 + 0.3, 1e-9);
+  EXPECT_NEAR(offset.y, 1e5, 1e-9);
+  EXPECT_NEAR(glm::length(frame::boundsOf(cage.positions).center()), 0.0, 1e-9);
+  EXPECT_NEAR(cage.positions[0].x, near[0].x - 0.3, 1e-9);  // the same shape, about the origin
+}
+
+// The character cage about the origin (origin/mesh.obj) and moved by +1e5 on every axis
+// (far/mesh.obj): the same file name, so that the commands print the same mesh name.
+struct FarPair {
+  fs::path origin, far;
+};
+
+FarPair writeFarPair(const fs::path& dir) {
+  fs::create_directories(dir / "origin");
+  fs::create_directories(dir / "far");
+  CageMesh cage = scene::character();
+  scene::recentre(cage.positions);
+  test::writeObj(cage, dir / "origin" / "mesh.obj");
+  scene::translate(cage, glm::dvec3(1e5));
+  test::writeObj(cage, dir / "far" / "mesh.obj");
+  return {dir / "origin" / "mesh.obj", dir / "far" / "mesh.obj"};
+}
+
 // The frame's statistics and image of `mesh` culled with every stage.
 struct Rendered {
   nlohmann::json frame;
@@ -81,14 +99,9 @@ TEST(FarMeshRender, CullsAndDrawsAsTheSameMeshAtTheOrigin) {
   if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
   const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "far_mesh";
   fs::create_directories(dir);
-  CageMesh cage = scene::character();
-  scene::recentre(cage.positions);
-  writeObj(cage, dir / "origin.obj");
-  scene::translate(cage, glm::dvec3(1e5));
-  writeObj(cage, dir / "far.obj");
-
-  const Rendered origin = renderAll(dir / "origin.obj", dir, "origin");
-  const Rendered far = renderAll(dir / "far.obj", dir, "far");
+  const FarPair files = writeFarPair(dir);
+  const Rendered origin = renderAll(files.origin, dir, "origin");
+  const Rendered far = renderAll(files.far, dir, "far");
   EXPECT_EQ(origin.output.find("recentred"), std::string::npos) << origin.output;
   EXPECT_NE(far.output.find("note: the mesh lies far from the origin: recentred by (100000"),
             std::string::npos)
@@ -103,7 +116,7 @@ TEST(FarMeshRender, CullsAndDrawsAsTheSameMeshAtTheOrigin) {
   }
   // verify (random views framed on the recentred bounds) says so too, and finds no false cull.
   const test::CommandResult v =
-      test::runCommand(test::osdCullProgram().string() + " verify " + (dir / "far.obj").string() +
+      test::runCommand(test::osdCullProgram().string() + " verify " + files.far.string() +
                        " --level 1 --views 3 --width 64 --height 64 --tess 2");
   EXPECT_EQ(v.exitCode(), 0) << v.output;
   EXPECT_NE(v.output.find("note: the mesh lies far from the origin"), std::string::npos)
@@ -113,6 +126,41 @@ TEST(FarMeshRender, CullsAndDrawsAsTheSameMeshAtTheOrigin) {
   for (size_t i = 0; i < origin.image.samples8.size(); ++i)
     differing += far.image.samples8[i] != origin.image.samples8[i];
   EXPECT_EQ(differing, 0u);
+}
+
+// The printed plan without its header (which names the file) and the loader's notes.
+std::string planWithoutHeaderAndNotes(const std::string& output) {
+  std::string kept;
+  size_t start = 0;
+  while (start < output.size()) {
+    const size_t end = std::min(output.find('\n', start), output.size());
+    const std::string line = output.substr(start, end - start);
+    if (line.rfind("note: ", 0) != 0 && line.rfind("plan of ", 0) != 0) kept += line + "\n";
+    start = end + 1;
+  }
+  return kept;
+}
+
+TEST(FarMeshPlan, PlansAsTheSameMeshAtTheOrigin) {
+  if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "far_mesh_plan";
+  const FarPair files = writeFarPair(dir);
+  const fs::path calibration = dir / "synthetic.txt";
+  plan::storeCalibration(test::syntheticCalibration(), calibration);
+  auto plan = [&](const fs::path& mesh) {
+    const test::CommandResult r = test::runCommand(
+        "OSD_CULL_CALIBRATION_CACHE=off " + test::osdCullProgram().string() + " plan " +
+        mesh.string() + " --level 1 --calibration " + calibration.string());
+    EXPECT_EQ(r.exitCode(), 0) << r.output;
+    return r.output;
+  };
+  const std::string origin = plan(files.origin), far = plan(files.far);
+  EXPECT_EQ(origin.find("recentred"), std::string::npos) << origin;
+  EXPECT_NE(far.find("note: the mesh lies far from the origin: recentred by (100000"),
+            std::string::npos)
+      << far;
+  ASSERT_NE(planWithoutHeaderAndNotes(origin).find("predicted:"), std::string::npos) << origin;
+  EXPECT_EQ(planWithoutHeaderAndNotes(far), planWithoutHeaderAndNotes(origin));
 }
 
 }  // namespace

@@ -185,9 +185,11 @@ TEST_F(PlanCommand, ADamagedCalibrationFileIsRefusedAlikeByPlanAndRender) {
   huge.replace(huge.find("submit "), huge.find('\n', huge.find("submit ")) - huge.find("submit "),
                "submit 1e308");
   const fs::path big = dir_.write("huge.txt", huge);
+  const fs::path old = dir_.write("old.txt", "osd_cull-calibration 2\ndevice x\n");
   for (const auto& [file, expected] :
        {std::pair{cut, "cut.txt: no 'bounds' line"},
-        std::pair{big, "huge.txt:15: 'submit': ms 1e308 is out of range"}}) {
+        std::pair{big, "huge.txt:15: 'submit': ms 1e308 is out of range"},
+        std::pair{old, "old.txt:1: calibration file format 2, this library reads format"}}) {
     const auto p = run("plan --calibration " + file.string());
     EXPECT_EQ(p.exitCode(), 1) << p.output;
     EXPECT_NE(p.output.find(expected), std::string::npos) << expected << "\n" << p.output;

@@ -4,6 +4,9 @@
 // an animated scene moves while playing and stands still while paused, timed frames come
 // at the chosen interval with non-zero figures, scene files open, validation stays silent).
 #include "adapters/image_png.h"
+#include "osd_cull/scene/loaded_scene.h"
+#include "osd_cull/scene/procedural.h"
+#include "support/obj_file.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 #include "support/test_data.h"
@@ -442,6 +445,35 @@ TEST_F(ViewerWindow, OpensAMeshFile) {
   EXPECT_EQ(clocks[2].sceneFrame, 0u);  // playing moves nothing
   EXPECT_GT(clocks[2].culled, 0u);      // back patches of the closed cube
   EXPECT_EQ(run.image.width, 320u);
+}
+
+// Issue 23: a mesh file authored far from the origin is recentred at load by the viewer
+// too (cmd_view.cpp, meshPatches), so it culls and draws as the same mesh at the origin.
+TEST_F(ViewerWindow, AMeshFileFarFromTheOriginCullsAndDrawsAsAtTheOrigin) {
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer_far_mesh";
+  fs::create_directories(dir);
+  CageMesh cage = scene::character();
+  scene::recentre(cage.positions);
+  test::writeObj(cage, dir / "origin.obj");
+  scene::translate(cage, glm::dvec3(1e5));
+  test::writeObj(cage, dir / "far.obj");
+  const ViewRun origin = view("far_mesh_origin", 3, "@1 space",
+                              "--no-hud --cull all " + (dir / "origin.obj").string());
+  const ViewRun far =
+      view("far_mesh_far", 3, "@1 space", "--no-hud --cull all " + (dir / "far.obj").string());
+  ASSERT_EQ(origin.result.exitCode(), 0) << origin.result.output;
+  ASSERT_EQ(far.result.exitCode(), 0) << far.result.output;
+  EXPECT_NE(far.result.output.find("note: the mesh lies far from the origin: recentred by"),
+            std::string::npos)
+      << far.result.output;
+  const std::vector<FrameClock> a = frameClocks(origin.result.output);
+  const std::vector<FrameClock> b = frameClocks(far.result.output);
+  ASSERT_EQ(a.size(), 3u) << origin.result.output;
+  ASSERT_EQ(b.size(), 3u) << far.result.output;
+  ASSERT_EQ(a[2].total, b[2].total);
+  EXPECT_GT(a[2].culled, a[2].total / 50);  // the comparison means something
+  EXPECT_NEAR(double(b[2].culled), double(a[2].culled), 0.01 * a[2].total);  // within one point
+  EXPECT_EQ(differingPixels(origin.image, far.image), 0u);
 }
 
 TEST(ViewerCommand, UnknownScriptKeyIsAUsageErrorWithAShortMessage) {

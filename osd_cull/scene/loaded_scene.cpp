@@ -28,16 +28,29 @@ std::unique_ptr<CageAnimation> makeProceduralAnimation(const AnimationSource& a,
   throw Error("an OBJ sequence is a file: load it with adapters::loadScene()");
 }
 
-glm::dvec3 recentre(std::span<glm::dvec3> points) {
-  const glm::dvec3 offset = frame::boundsOf(points).center();
-  for (glm::dvec3& p : points) p -= offset;
+namespace {
+
+// The one recentring step of both forms: moves `points` by -offset, returns offset.
+glm::dvec3 moveToOrigin(std::span<glm::dvec3> points, const glm::dvec3& offset) {
+  if (offset != glm::dvec3(0.0))
+    for (glm::dvec3& p : points) p -= offset;
   return offset;
+}
+
+}  // namespace
+
+glm::dvec3 recentre(std::span<glm::dvec3> points) {
+  return moveToOrigin(points, frame::boundsOf(points).center());
 }
 
 glm::dvec3 farMeshOffset(std::span<const glm::dvec3> points) {
   if (points.empty()) return glm::dvec3(0.0);
   const frame::Bounds b = frame::boundsOf(points);
   return glm::length(b.center()) > b.radius() ? b.center() : glm::dvec3(0.0);
+}
+
+glm::dvec3 recentreFar(std::span<glm::dvec3> points) {
+  return moveToOrigin(points, farMeshOffset(points));
 }
 
 SceneMesh makeSceneMesh(std::string name, CageMesh cage, const PatchOptions& options, bool recentre,

@@ -65,6 +65,11 @@ glm::dvec3 recentre(std::span<glm::dvec3> points);
 /// `points`: zero.
 glm::dvec3 farMeshOffset(std::span<const glm::dvec3> points);
 
+/// \brief The recentring of the mesh form (render, verify, view and plan MESH): recentres
+/// `points` as recentre() does when farMeshOffset() is not zero, and returns that offset
+/// (zero: `points` are left as authored). One code path with the scenes' recentre().
+glm::dvec3 recentreFar(std::span<glm::dvec3> points);
+
 /// \brief Fills a SceneMesh from a cage: recentres it (when `recentre`), refines it with
 /// `options`, and records its validity and rest bounds. `animation` (may be null) must
 /// produce the original, not recentred, positions.

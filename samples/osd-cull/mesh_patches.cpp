@@ -29,11 +29,9 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
   out.name = mesh.name;
   if (mesh.bezier) {
     out.patches = *mesh.bezier;
-    out.recentreOffset = scene::farMeshOffset(out.patches.points);
-    if (out.recentreOffset != glm::dvec3(0.0)) {
-      for (glm::dvec3& p : out.patches.points) p -= out.recentreOffset;
+    out.recentreOffset = scene::recentreFar(out.patches.points);
+    if (out.recentreOffset != glm::dvec3(0.0))
       out.notes.push_back(recentreNote(out.recentreOffset));
-    }
     out.backPatch = {false,
                      "a Bezier patch file carries no topology to show that the surface is "
                      "closed and oriented outward"};
@@ -42,10 +40,9 @@ MeshPatches meshPatches(const LoadedMesh& mesh, const PatchOptions& options) {
   // Recentred before refinement, as scenes are (scene::makeSceneMesh): the patch points are
   // then computed near the origin too. The cage is copied only when it is far.
   std::optional<CageMesh> recentred;
-  out.recentreOffset = scene::farMeshOffset(mesh.cage->positions);
-  if (out.recentreOffset != glm::dvec3(0.0)) {
+  if (scene::farMeshOffset(mesh.cage->positions) != glm::dvec3(0.0)) {
     recentred = *mesh.cage;
-    for (glm::dvec3& p : recentred->positions) p -= out.recentreOffset;
+    out.recentreOffset = scene::recentreFar(recentred->positions);
   }
   const CageMesh& cage = recentred ? *recentred : *mesh.cage;
   out.notes = cage.notes;

@@ -29,9 +29,9 @@ struct MeshPatches {
   /// empty without texture coordinates.
   std::vector<glm::dvec2> uvCorners;
   /// Subtracted from every position at load when the mesh lies far from the origin
-  /// (scene::recentreFar; zero otherwise): `patches` are in the file's coordinates minus
-  /// this offset, and a camera or occluder given in the file's coordinates must be moved by
-  /// it too. A note says so when it is not zero.
+  /// (scene::recentreFar, the recentring scenes use; zero otherwise): `patches` are in the file's
+  /// coordinates minus this offset, and a camera or occluder given in the file's coordinates must
+  /// be moved by it too. A note says so when it is not zero.
   glm::dvec3 recentreOffset{0.0};
 };
 
