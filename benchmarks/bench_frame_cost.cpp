@@ -5,7 +5,9 @@
 //     same 2x2 max chain from a depth array of the image's size, timed in the same run) with
 //     the ratio build / floor; with an empty submission and the unculled tess-4 frame;
 //  F. per camera path and tessellation level, per cull configuration (frustum; frustum +
-//     back-patch; frustum + Hi-Z occlusion; all three): x (share of patches not drawn),
+//     back-patch, the tangent plane; frustum + NCONE; frustum + Hi-Z occlusion; all three,
+//     with the tangent plane; each with the per-patch boxes the library precomputes for a
+//     static mesh, CullSettings::staticPoints): x (share of patches not drawn),
 //     the three sides unculled U, free culling F (the same frame drawing exactly the
 //     patches the culled frame drew, in one pass from lists prepared on the host, no cull,
 //     pyramid or status work: DESIGN.md) and culled C, the overhead (C - F) / U, the share
@@ -142,15 +144,21 @@ Path walkPath(const Options& o) {
 // One cull configuration of the frame.
 struct Config {
   std::string name;
-  bool backPatch = false, occlusion = false;
+  std::string backPatch;  // the back-patch method, or none
+  bool occlusion = false;
 };
-const Config kConfigs[] = {{"frustum", false, false},
-                           {"frustum + back-patch", true, false},
-                           {"frustum + occlusion", false, true},
-                           {"all", true, true}};
+const Config kConfigs[] = {{"frustum", "", false},
+                           {"frustum + back-patch", "tangent-plane", false},
+                           {"frustum + ncone", "ncone", false},
+                           {"frustum + occlusion", "", true},
+                           {"all", "tangent-plane", true}};
 
+// The settings the library runs for a static mesh (session::MeshSession): the precomputed
+// per-patch boxes (CullSettings::staticPoints; used where there is no occlusion stage).
 frame::CullSettings settings(const Config& c, const Scene& s) {
-  return {true, c.backPatch ? "tangent-plane" : "", c.occlusion ? "hiz" : "", s.validity};
+  frame::CullSettings settings{true, c.backPatch, c.occlusion ? "hiz" : "", s.validity};
+  settings.staticPoints = true;
+  return settings;
 }
 
 // Per configuration and tessellation level, over the frames of one path: wall times of

@@ -3,6 +3,8 @@
 // the calibration cache off (tests/CMakeLists.txt), so nothing depends on this machine's.
 #include "osd_cull/measure/calibrate.h"
 #include "osd_cull/plan/calibration.h"
+#include "osd_cull/version.h"
+#include "osd_cull/vk/shader_compiler.h"
 #include "support/plan_calibration.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
@@ -11,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -133,6 +136,25 @@ TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
 }
 
 class PlanCommandCache : public test::VkTest {};
+
+// The costs are the embedded kernels': a build whose kernels changed (same library version)
+// has another key, so its cache file is another one and a stale calibration is not used.
+TEST_F(PlanCommandCache, TheKeyNamesTheLibraryVersionAndItsKernels) {
+  const plan::CalibrationKey key = measure::calibrationKey(context());
+  char kernels[32];
+  std::snprintf(kernels, sizeof(kernels), "%016llx",
+                static_cast<unsigned long long>(vulkan::embeddedSpirvWordsHash()));
+  EXPECT_EQ(key.library, std::string(libraryVersion()) + " kernels " + kernels);
+  plan::CalibrationKey other = key;
+  other.library = libraryVersion();  // a cache written before the kernels were in the key
+  test::TempDir cache("osd_cull_plan_key_");
+  setenv("OSD_CULL_CALIBRATION_CACHE", cache.path().c_str(), 1);
+  const fs::path file = plan::calibrationCacheFile(key);
+  const fs::path otherFile = plan::calibrationCacheFile(other);
+  unsetenv("OSD_CULL_CALIBRATION_CACHE");
+  EXPECT_FALSE(file.empty());
+  EXPECT_NE(file, otherFile);
+}
 
 TEST_F(PlanCommandCache, AnOutdatedCachedCalibrationIsSaidAndMeasuredAgainByPlanAndRenderAlike) {
   if (!fs::exists(test::osdCullProgram())) GTEST_SKIP() << "osd-cull not built";

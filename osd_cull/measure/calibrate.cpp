@@ -16,11 +16,13 @@
 #include "osd_cull/scene/procedural_displacement.h"
 #include "osd_cull/version.h"
 #include "osd_cull/vk/context.h"
+#include "osd_cull/vk/shader_compiler.h"
 
 #include <osd_cull/shared/cull_layout.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <span>
@@ -493,7 +495,13 @@ void fillCalibration(Calibration& c, const Rigs& rigs, const Samples& s,
 }  // namespace
 
 CalibrationKey calibrationKey(const vulkan::Context& context) {
-  return {context.info().name, context.info().driver, libraryVersion()};
+  // The library version and the hash of its embedded kernels: the costs are the kernels',
+  // so a build whose kernels changed measures again instead of planning with stale costs.
+  char kernels[32];
+  std::snprintf(kernels, sizeof(kernels), "%016llx",
+                static_cast<unsigned long long>(vulkan::embeddedSpirvWordsHash()));
+  return {context.info().name, context.info().driver,
+          std::string(libraryVersion()) + " kernels " + kernels};
 }
 
 Calibration calibrate(vulkan::Context& context, const CalibrateOptions& o) {
