@@ -276,11 +276,13 @@ TEST(MeshSessionMemory, FlatOverTenThousandFramesWithoutTheLayer) {
               static_cast<unsigned long long>(at1000), static_cast<unsigned long long>(at10000),
               s.summary().planChanges);
   EXPECT_GT(s.summary().planChanges, 1000u) << "the test exercises plan changes";
-  // 9,000 frames: under 2 MB, i.e. about 230 bytes a frame (glibc's arenas move by pages).
+  // 9,000 frames: under 4 MB, i.e. about 460 bytes a frame (glibc's arenas move by pages).
   // Measured (session 12, ~5,000 plan changes): 0.7 to 1.7 MB, with and without the unculled
-  // checks, so the 1 MB bound of session 8 failed now and then on a loaded machine. The
-  // bound still catches the 90 KB per frame 400 times over.
-  EXPECT_LT(at10000, at1000 + 2048);
+  // checks; session 13: 1.2 and 1.6 MB alone, over 2 MB once in a ctest -j2 run beside the
+  // validated memory test, so the 1 MB bound of session 8 and the 2 MB one of session 12
+  // failed now and then on a loaded machine. The bound still catches the 90 KB per
+  // frame 200 times over.
+  EXPECT_LT(at10000, at1000 + 4096);
 }
 
 }  // namespace

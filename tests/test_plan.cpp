@@ -736,18 +736,35 @@ TEST(Plan, AnUnculledCheckMeasuresTheFrameWithoutCullingAndSwitchesOffWhatDoesNo
     if (f < 2) {
       ASSERT_TRUE(p.culls()) << "exploring: " << planTable({&p, 1});
     }
-    if (f >= 4) {
+    if (f >= 10) {
       EXPECT_FALSE(p.culls()) << "frame " << f << ": " << planTable({&p, 1});
     }
     const double ms = p.culls() ? p.predicted.totalMs() : 0.5 * p.predictedUnculled.totalMs();
     planner.observe("k", p, atPredictedRates(p, 2000, ms, NAN));
   }
+  // The first check comes PlannerOptions::unculledCheckFrames after the inputs were first
+  // seen (no checks right after exploring by default); culling is off from the frame after.
+  EXPECT_EQ(checks, (std::vector<uint64_t>{8}));
+  // With unculledFirstChecks, right after exploring.
+  PlannerOptions early;
+  early.unculledFirstChecks = 2;
+  Planner first(syntheticCalibration(), early);
+  checks.clear();
+  for (uint64_t f = 0; f < 12; ++f) {
+    const Plan p = first.plan("k", in, f);
+    if (p.unculledCheck) checks.push_back(f);
+    if (f >= 4) {
+      EXPECT_FALSE(p.culls()) << "frame " << f << ": " << planTable({&p, 1});
+    }
+    const double ms = p.culls() ? p.predicted.totalMs() : 0.5 * p.predictedUnculled.totalMs();
+    first.observe("k", p, atPredictedRates(p, 2000, ms, NAN));
+  }
   EXPECT_EQ(checks, (std::vector<uint64_t>{2, 3}));
 }
 
 // Where culling pays, the unculled frame measures as predicted and culling stays; the checks
-// come right after exploring (two), then 8, 16, 32 frames apart (each doubles the interval), and
-// start over 8 frames after the inputs change (the level at frame 100).
+// come 8 frames after the inputs are first seen, then 16, 32 frames apart (each doubles the
+// interval), and start over 8 frames after the inputs change (the level at frame 100).
 TEST(Plan, UnculledChecksComeEverMoreRarelyWhereCullingPays) {
   Planner planner(syntheticCalibration());
   PlanInput in = meshAt(6.0, 4.0);
@@ -762,7 +779,7 @@ TEST(Plan, UnculledChecksComeEverMoreRarelyWhereCullingPays) {
     const double ms = p.culls() ? p.predicted.totalMs() : p.predictedUnculled.totalMs();
     planner.observe("k", p, atPredictedRates(p, 2000, ms, NAN));
   }
-  EXPECT_EQ(checks, (std::vector<uint64_t>{2, 3, 11, 27, 59, 108}));
+  EXPECT_EQ(checks, (std::vector<uint64_t>{8, 24, 56, 108}));
   // A saving beyond PlannerOptions::unculledCheckBelow is not checked: none at 0.
   PlannerOptions sure;
   sure.unculledCheckBelow = 0.0;
