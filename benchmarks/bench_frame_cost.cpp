@@ -20,7 +20,7 @@
 // Every table ends with the load average and the peak RSS.
 //
 //   bench-frame-cost [--width 1280] [--height 720] [--tess 1,4,8,16,32] [--adaptive 4,8,16]
-//                    [--frames 8]
+//                    [--frames 8] [--orbit-step 3]
 //                    [--paths default-orbit,default-walk,bigguy-orbit,bigguy-closeup]
 //                    [--bigguy-level 2] [--only PFB] [--repeats 20] [--csv FILE]
 //                    [--device X]
@@ -66,6 +66,10 @@ struct Options {
   std::string paths = "default-orbit,default-walk,bigguy-orbit,bigguy-closeup";
   std::string only = "PFB";
   std::string csv, device;
+  // Degrees the orbit paths turn per frame (0: the whole circle over --frames, frames far
+  // apart): a renderer's camera moves a few degrees a frame, and the two-pass frame carries
+  // the visibility of the previous one.
+  double orbitStep = 3.0;
 };
 
 using osd_cull::bench::nameList;
@@ -76,6 +80,7 @@ bool parse(int argc, char** argv, Options& o) {
   return bench::CommandLine("bench-frame-cost", "bench_frame_cost.cpp")
       .imageAndDevice(o.width, o.height, o.repeats, o.device)
       .number("--frames", o.frames, 1)
+      .real("--orbit-step", o.orbitStep, 0.0)
       .number("--bigguy-level", o.bigguyLevel)
       .numbers("--tess", o.tess)
       .numbers("--adaptive", o.adaptive)
@@ -116,7 +121,8 @@ using Path = std::function<frame::Camera(uint32_t frame)>;
 
 // An orbit around the scene's bounds from the distance that frames them at 40 degrees; a
 // narrower field of view (a close-up: parts of the scene off screen) keeps the eye there,
-// outside the bounding sphere.
+// outside the bounding sphere. Frame f is at 7 + f * --orbit-step degrees (the warm-up
+// frame at frame 0's camera).
 Path orbitPath(const Scene& s, const Options& o, double fovyDegrees) {
   const frame::Bounds b = frame::boundsOf(s.patches.points);
   const frame::Camera framed =
@@ -125,7 +131,7 @@ Path orbitPath(const Scene& s, const Options& o, double fovyDegrees) {
   const frame::Camera start =
       frame::Camera::lookAt(framed.eye(), b.center(), s.up, fovyDegrees, o.width, o.height,
                             std::max(d - 1.5 * r, d * 1e-3), d + 1.5 * r);
-  const double step = 360.0 / o.frames;
+  const double step = o.orbitStep > 0.0 ? o.orbitStep : 360.0 / o.frames;
   return [=](uint32_t f) { return frame::orbit(start, b.center(), s.up, step * f + 7.0); };
 }
 
