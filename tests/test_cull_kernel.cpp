@@ -4,6 +4,8 @@
 #include "osd_cull/bound/cull_reference.h"
 #include "osd_cull/error.h"
 #include "osd_cull/frame/cull/cull_pass.h"
+#include "osd_cull/frame/draw/render_target.h"
+#include "osd_cull/frame/draw/renderer.h"
 #include "osd_cull/frame/verify/view_sets.h"
 #include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/vk/transfer.h"
@@ -19,6 +21,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 
 namespace osd_cull {
@@ -149,6 +152,35 @@ TEST_F(CullKernelTest, TangentPlaneWithOneAndSixteenThreadsGiveTheSameVerdicts) 
   // Only the summation order differs: verdicts may differ only within rounding.
   EXPECT_GE(same, total - total / 200);
   EXPECT_GT(culled, total / 4);
+}
+
+// A pass gives its draw set back to the patch set when it goes: a program (or a benchmark)
+// that makes passes for many configurations over one patch set, in turn, never runs out of
+// the patch set's kMaxDrawListSets, and each pass draws the patches it kept.
+TEST_F(CullKernelTest, PassesGiveTheirDrawSetsBackWhenDestroyed) {
+  const PatchSet set = scene::bezierSphere({0.2, -0.1, 0.3}, 1.5, 4);
+  frame::GpuPatchSet gpu(context(), set);
+  frame::Renderer renderer(context());
+  frame::RenderTarget target(context(), 32, 32);
+  const auto camera =
+      frame::Camera::lookAt({0.2, -4.0, 0.3}, {0.2, -0.1, 0.3}, {0, 0, 1}, 40.0, 32, 32, 0.5, 20.0);
+  frame::RenderOptions options;
+  options.cullBackFaces = true;
+  for (uint32_t i = 0; i < 2 * frame::GpuPatchSet::kMaxDrawListSets + 1; ++i) {
+    CullPass pass(context(), gpu, set, backPatchOnly(i % 2 ? "ncone" : "tcone"));
+    const frame::FrameStats stats = frame::renderCulled(renderer, target, camera, pass, {}, options);
+    EXPECT_EQ(stats.patchesDrawn, pass.counts().survivors()) << "pass " << i;
+    EXPECT_GT(stats.patchesDrawn, 0u) << "pass " << i;
+    EXPECT_LT(stats.patchesDrawn, set.patchCount()) << "pass " << i;
+  }
+  // At once, the limit still holds and is named.
+  std::vector<std::unique_ptr<CullPass>> live;
+  for (uint32_t i = 0; i < frame::GpuPatchSet::kMaxDrawListSets; ++i) {
+    live.push_back(std::make_unique<CullPass>(context(), gpu, set, backPatchOnly("ncone")));
+    frame::renderCulled(renderer, target, camera, *live.back(), {}, options);
+  }
+  CullPass extra(context(), gpu, set, backPatchOnly("ncone"));
+  EXPECT_THROW(frame::renderCulled(renderer, target, camera, extra, {}, options), Error);
 }
 
 TEST_F(CullKernelTest, SurvivorListAndIndirectCommandsMatchTheResultCodes) {

@@ -22,7 +22,7 @@ UniqueDescriptorSetLayout createDescriptorSetLayout(Context& context,
 }
 
 DescriptorPool::DescriptorPool(Context& context, uint32_t maxSets,
-                               std::span<const DescriptorBinding> perSet)
+                               std::span<const DescriptorBinding> perSet, bool freeable)
     : device_(context.device()) {
   std::map<VkDescriptorType, uint32_t> counts;
   for (const auto& d : perSet) counts[d.type] += d.count * maxSets;
@@ -30,6 +30,7 @@ DescriptorPool::DescriptorPool(Context& context, uint32_t maxSets,
   for (const auto& [type, n] : counts) sizes.push_back({type, n});
   VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   info.maxSets = maxSets;
+  if (freeable) info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
   info.poolSizeCount = static_cast<uint32_t>(sizes.size());
   info.pPoolSizes = sizes.data();
   VkDescriptorPool pool = VK_NULL_HANDLE;
@@ -48,6 +49,10 @@ VkDescriptorSet DescriptorPool::allocate(VkDescriptorSetLayout layout) {
 }
 
 void DescriptorPool::reset() { OSD_CULL_VK(vkResetDescriptorPool(device_, pool_.get(), 0)); }
+
+void DescriptorPool::free(VkDescriptorSet set) {
+  OSD_CULL_VK(vkFreeDescriptorSets(device_, pool_.get(), 1, &set));
+}
 
 DescriptorWriter& DescriptorWriter::buffer(uint32_t binding, const Buffer& buffer,
                                            VkDescriptorType type, VkDeviceSize offset,

@@ -29,13 +29,17 @@ UniqueDescriptorSetLayout createDescriptorSetLayout(Context& context,
 /// Sets are freed all at once with reset() or when the pool goes away.
 class DescriptorPool {
  public:
-  /// \brief Room for `maxSets` sets, each with at most the bindings given.
-  DescriptorPool(Context& context, uint32_t maxSets, std::span<const DescriptorBinding> perSet);
+  /// \brief Room for `maxSets` sets, each with at most the bindings given; with `freeable`,
+  /// sets can be returned one by one (free()).
+  DescriptorPool(Context& context, uint32_t maxSets, std::span<const DescriptorBinding> perSet,
+                 bool freeable = false);
   /// \brief A new set of `layout`.
   /// \throws osd_cull::Error when the pool is exhausted.
   VkDescriptorSet allocate(VkDescriptorSetLayout layout);
   /// \brief Frees every set allocated from the pool.
   void reset();
+  /// \brief Returns one set to a pool made `freeable`.
+  void free(VkDescriptorSet set);
   VkDescriptorPool handle() const { return pool_.get(); }
 
  private:

@@ -404,7 +404,10 @@ CullPass::CullPass(vulkan::Context& context, GpuPatchSet& gpu, const PatchSet& h
   buildPipelines(context);
 }
 
-CullPass::~CullPass() = default;
+CullPass::~CullPass() {
+  // The draw set names this pass's draw list: the patch set must not keep (or rewrite) it.
+  if (drawSet_ != VK_NULL_HANDLE) gpu_.releaseDrawListSet(drawSet_);
+}
 
 void CullPass::checkLimits(uint32_t n) const {
   // Everything the pass binds, dispatches or draws, named, before any buffer exists

@@ -87,7 +87,8 @@ GpuPatchSet::GpuPatchSet(vulkan::Context& context, const PatchSet& patches)
   }
   setLayout_ = vulkan::createDescriptorSetLayout(context, patchSetBindings());
   pool_ =
-      std::make_unique<vulkan::DescriptorPool>(context, 1 + kMaxDrawListSets, patchSetBindings());
+      std::make_unique<vulkan::DescriptorPool>(context, 1 + kMaxDrawListSets, patchSetBindings(),
+                                               /*freeable=*/true);
   set_ = pool_->allocate(setLayout_.get());
   writeDescriptorSet(context.device(), set_, drawList_);
   if (n == 0) return;
@@ -113,6 +114,15 @@ VkDescriptorSet GpuPatchSet::descriptorSetWithDrawList(vulkan::Context& context,
   extraSetLists_.emplace_back(set, &drawList);
   writeDescriptorSet(context.device(), set, drawList);
   return set;
+}
+
+void GpuPatchSet::releaseDrawListSet(VkDescriptorSet set) {
+  const auto it = std::find_if(extraSetLists_.begin(), extraSetLists_.end(),
+                               [&](const auto& entry) { return entry.first == set; });
+  if (it == extraSetLists_.end()) return;
+  extraSetLists_.erase(it);
+  --extraSets_;
+  pool_->free(set);
 }
 
 void GpuPatchSet::reserveTessLevelSlots(vulkan::Context& context, uint32_t slots) {

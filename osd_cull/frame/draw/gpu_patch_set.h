@@ -88,11 +88,15 @@ class GpuPatchSet {
   /// patchSetBindings() (shaders/shared/draw_layout.h kBinding*).
   VkDescriptorSet descriptorSet() const { return set_; }
   /// \brief A descriptor set like descriptorSet() but reading the draw list from
-  /// `drawList` (e.g. survivors a cull pass appended). Up to kMaxDrawListSets per set;
-  /// `drawList` must outlive every draw that uses the returned set.
+  /// `drawList` (e.g. survivors a cull pass appended). Up to kMaxDrawListSets at a time;
+  /// `drawList` must outlive every draw that uses the returned set, and the set is given
+  /// back with releaseDrawListSet() before `drawList` goes (CullPass does, when destroyed).
   /// \throws osd_cull::Error when the sets are used up.
   VkDescriptorSet descriptorSetWithDrawList(vulkan::Context& context,
                                             const vulkan::Buffer& drawList);
+  /// \brief Returns a set of descriptorSetWithDrawList() (no command buffer that uses it
+  /// may still run); a set this patch set did not make is ignored.
+  void releaseDrawListSet(VkDescriptorSet set);
   static constexpr uint32_t kMaxDrawListSets = 15;
   /// \brief Adaptive levels of every patch, `tessLevelSlots()` views (instances) of them:
   /// slot s, patch p at uvec2 entry s * patchCount() + p (shaders/shared/draw_layout.h
