@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
-"""Frame time ratio (culled / unculled) against tessellation level, next to the ideal 1 - x.
+"""Frame time ratio (culled / unculled) against tessellation level, next to free culling.
 
-Reads the CSV that `bench-frame-cost --csv FILE` writes and draws one panel per camera path
-with matplotlib: per cull configuration the measured median ratio (solid, dots) and the
-ideal ratio 1 - x (dashed, same color), x being the share of patches not drawn; the
-break-even line at 1.
+Reads the CSV that `bench-frame-cost --csv FILE` writes and draws, with matplotlib, one
+column of panels per camera path: on top the uniform levels, below the screen-space
+adaptive ones (rows "aN", N pixels per segment) where the CSV has them. Per cull
+configuration the measured median ratio culled / unculled (solid, dots) and the free-culling
+frame's free / unculled (dashed, same color: the same patches drawn with no cull work, the
+limit of culling on the device); the break-even line at 1.
 
     scripts/plots/frame_cost.py docs/results/frame-cost/frame_cost.csv \
         docs/results/frame-cost/ratio.svg
@@ -20,7 +22,36 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLORS = {"frustum": "#1f77b4", "frustum + back-patch": "#2ca02c",
-          "frustum + occlusion": "#ff7f0e", "all": "#d62728"}
+          "frustum + ncone": "#9467bd", "frustum + occlusion": "#ff7f0e", "all": "#d62728"}
+
+
+def level(row, adaptive):
+    """The row's level: uniform N, or adaptive pixels N of "aN"; None for the other kind."""
+    t = row["tess"]
+    if adaptive:
+        return int(t[1:]) if t.startswith("a") and t[1:].isdigit() else None
+    return int(t) if t.isdigit() else None
+
+
+def panel(ax, rows, path, adaptive):
+    for stage, color in COLORS.items():
+        pts = sorted((level(r, adaptive), float(r["ratio"]),
+                      float(r["free_ms"]) / float(r["unculled_ms"]))
+                     for r in rows if r["path"] == path and r["stages"] == stage
+                     and level(r, adaptive) is not None)
+        if not pts:
+            continue
+        x = [p[0] for p in pts]
+        ax.plot(x, [p[1] for p in pts], "o-", color=color, label=stage)
+        ax.plot(x, [p[2] for p in pts], "--", color=color, alpha=0.6)
+    ax.axhline(1.0, color="black", linewidth=0.8)
+    ax.set_xscale("log", base=2)
+    ticks = sorted({level(r, adaptive) for r in rows if r["path"] == path} - {None})
+    ax.set_xticks(ticks)
+    ax.set_xticklabels([str(t) for t in ticks])
+    ax.set_title(path + (" (adaptive)" if adaptive else ""), fontsize=10)
+    ax.set_xlabel("pixels per segment" if adaptive else "uniform tessellation level")
+    ax.grid(alpha=0.3)
 
 
 def main():
@@ -33,26 +64,13 @@ def main():
     if not rows:
         sys.exit(f"frame_cost.py: {args.csv}: no bench-frame-cost row")
     paths = list(dict.fromkeys(r["path"] for r in rows))
-    fig, axes = plt.subplots(1, len(paths), figsize=(4.2 * len(paths), 4.0), sharey=True,
-                             squeeze=False)
-    for ax, path in zip(axes[0], paths):
-        for stage, color in COLORS.items():
-            pts = sorted((int(r["tess"]), float(r["ratio"]), 1.0 - float(r["not_drawn"]))
-                         for r in rows if r["path"] == path and r["stages"] == stage
-                         and r["tess"].isdigit())  # uniform levels; "aN" rows are adaptive
-            if not pts:
-                continue
-            tess = [p[0] for p in pts]
-            ax.plot(tess, [p[1] for p in pts], "o-", color=color, label=stage)
-            ax.plot(tess, [p[2] for p in pts], "--", color=color, alpha=0.6)
-        ax.axhline(1.0, color="black", linewidth=0.8)
-        ax.set_xscale("log", base=2)
-        ax.set_xticks([1, 4, 8, 16, 32])
-        ax.set_xticklabels(["1", "4", "8", "16", "32"])
-        ax.set_title(path, fontsize=10)
-        ax.set_xlabel("tessellation level")
-        ax.grid(alpha=0.3)
-    axes[0][0].set_ylabel("frame time culled / unculled (dashed: ideal 1 - x)")
+    kinds = [False] + ([True] if any(level(r, True) is not None for r in rows) else [])
+    fig, axes = plt.subplots(len(kinds), len(paths), figsize=(4.6 * len(paths), 4.0 * len(kinds)),
+                             sharey=True, squeeze=False)
+    for k, adaptive in enumerate(kinds):
+        for ax, path in zip(axes[k], paths):
+            panel(ax, rows, path, adaptive)
+        axes[k][0].set_ylabel("frame ms / unculled (dashed: free culling)")
     axes[0][-1].legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(args.out)
