@@ -6,7 +6,8 @@ column of panels per camera path: on top the uniform levels, below the screen-sp
 adaptive ones (rows "aN", N pixels per segment) where the CSV has them. Per cull
 configuration the measured median ratio culled / unculled (solid, dots) and the free-culling
 frame's free / unculled (dashed, same color: the same patches drawn with no cull work, the
-limit of culling on the device); the break-even line at 1.
+limit of culling on the device; 1 - x, x the share of patches not drawn, for CSVs from
+before the free-culling frame); the break-even line at 1.
 
     scripts/plots/frame_cost.py docs/results/frame-cost/frame_cost.csv \
         docs/results/frame-cost/ratio.svg
@@ -33,10 +34,16 @@ def level(row, adaptive):
     return int(t) if t.isdigit() else None
 
 
+def limit(row):
+    """free / unculled; the ideal 1 - x for CSVs written before the free-culling frame."""
+    if row.get("free_ms") and row.get("unculled_ms"):
+        return float(row["free_ms"]) / float(row["unculled_ms"])
+    return 1.0 - float(row["not_drawn"])
+
+
 def panel(ax, rows, path, adaptive):
     for stage, color in COLORS.items():
-        pts = sorted((level(r, adaptive), float(r["ratio"]),
-                      float(r["free_ms"]) / float(r["unculled_ms"]))
+        pts = sorted((level(r, adaptive), float(r["ratio"]), limit(r))
                      for r in rows if r["path"] == path and r["stages"] == stage
                      and level(r, adaptive) is not None)
         if not pts:
