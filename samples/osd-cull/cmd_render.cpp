@@ -19,6 +19,7 @@
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/session/mesh_session.h"
 
+#include "adapters/image_legend.h"
 #include "adapters/image_png.h"
 #include "adapters/load_occluder.h"
 #include "osd_cull/bound/cull_reference.h"
@@ -240,7 +241,10 @@ void writeFrameImages(const RenderArgs& args, vulkan::Context& context,
                       const frame::RenderTarget& target, uint32_t f, bool last) {
   if (args.outDir.empty() && !last) return;
   const uint32_t width = target.width(), height = target.height();
-  const auto color = adapters::colorImage(width, height, target.readColor(context));
+  // --debug-colors: the strip shows the colours of the first patches' indices.
+  const adapters::PngImage plain = adapters::colorImage(width, height, target.readColor(context));
+  const auto color =
+      args.debugColors ? adapters::withLegend(plain, adapters::patchIndexLegend()) : plain;
   if (!args.outDir.empty()) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%04u.png", f);
@@ -273,8 +277,10 @@ void writeStatusAndPyramid(const RenderArgs& args, vulkan::Context& context,
     for (const auto& [statusCamera, suffix] :
          {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
       cullFrame.renderStatusView(viewTarget, statusCamera, occluders);
-      adapters::writePng(sibling(out, suffix),
-                         adapters::colorImage(width, height, viewTarget.readColor(context)));
+      adapters::writePng(
+          sibling(out, suffix),
+          adapters::withLegend(adapters::colorImage(width, height, viewTarget.readColor(context)),
+                               adapters::statusLegend()));
       std::cout << "wrote " << sibling(out, suffix).string() << "\n";
     }
   }

@@ -8,6 +8,7 @@
 #include "plan_options.h"
 #include "scene_source.h"
 
+#include "adapters/image_legend.h"
 #include "adapters/image_png.h"
 #include "osd_cull/error.h"
 #include "osd_cull/session/scene_player.h"
@@ -167,7 +168,9 @@ void writeStatusView(vulkan::Context& context, session::ScenePlayer& player,
   player.cullFrame(v).renderStatusView(statusTarget, side, player.occluders());
   adapters::writePng(
       fs::path(outDir) / frameFile(vf.view, "status_", f),
-      adapters::colorImage(target.width(), target.height(), statusTarget.readColor(context)));
+      adapters::withLegend(
+          adapters::colorImage(target.width(), target.height(), statusTarget.readColor(context)),
+          adapters::statusLegend()));
 }
 
 /// \brief The end-of-run summary of each view, named after it.
