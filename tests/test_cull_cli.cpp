@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <span>
@@ -114,6 +115,36 @@ TEST(RenderCullCommand, StatusViewsAndDebugColorsCarryALegendStripOfTheirColours
   const auto colors = swatchColors(debug, 90, adapters::patchIndexLegend());
   for (size_t i = 0; i < colors.size(); ++i)
     EXPECT_EQ(colors[i], adapters::patchIndexLegend()[i].rgb) << i;
+}
+
+// The share of the image's width and height that the pixels differing from the corner
+// (background) pixel span, in the top `imageHeight` rows.
+std::pair<double, double> objectSpan(const adapters::PngImage& png, uint32_t imageHeight) {
+  uint32_t x0 = png.width, x1 = 0, y0 = imageHeight, y1 = 0;
+  for (uint32_t y = 0; y < imageHeight; ++y)
+    for (uint32_t x = 0; x < png.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        if (png.samples8[4 * (size_t(y) * png.width + x) + c] != png.samples8[c]) {
+          x0 = std::min(x0, x), x1 = std::max(x1, x + 1), y0 = std::min(y0, y), y1 = std::max(y1, y + 1);
+        }
+  if (x1 <= x0) return {0.0, 0.0};
+  return {double(x1 - x0) / png.width, double(y1 - y0) / imageHeight};
+}
+
+TEST(RenderCullCommand, StatusViewsOfTheDefaultFramingFrameTheMesh) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = freshOutputDir("render_status_framing");
+  const test::CommandResult r = runCommand(program().string() + " render --out " +
+                                           (dir / "s.png").string() +
+                                           " --width 320 --height 180 --cull all --status-view");
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  for (const char* f : {"s_status.png", "s_status_side.png"}) {
+    const auto [w, h] = objectSpan(adapters::readPng(dir / f), 180);
+    std::printf("%s: the object spans %.0f%% of the width, %.0f%% of the height\n", f, 100 * w,
+                100 * h);
+    EXPECT_GE(std::max(w, h), 0.8) << f;  // fits one side: at most 92% plus perspective
+    EXPECT_GE(w * h, 0.3) << f;
+  }
 }
 
 TEST(RenderCullCommand, CullOptionsAreCheckedWithAClearMessage) {

@@ -91,6 +91,32 @@ Camera frameBounds(const Bounds& bounds, const glm::dvec3& fromDirection, const 
                         std::max(distance - r * 1.5, distance * 1e-3), distance + r * 1.5);
 }
 
+Camera frameTightly(const Camera& camera, std::span<const glm::dvec3> points, double fill) {
+  if (camera.projection[3][3] != 0.0 || points.empty()) return camera;  // orthographic
+  const double tanX = 1.0 / std::abs(camera.projection[0][0]);
+  const double tanY = 1.0 / std::abs(camera.projection[1][1]);
+  const glm::dmat3 rotation(camera.view);  // world to view: rows right, up, back
+  const glm::dmat3 toWorld = glm::transpose(rotation);
+  const Bounds bounds = boundsOf(points);
+  const glm::dvec3 center = bounds.center();
+  // Eye at center + d * back: a point at view-space offset o lies d - o.z in front and
+  // fits where |o.x| <= fill * tanX * (d - o.z), likewise y.
+  double d = bounds.radius() * 1e-6 + 1e-12;
+  for (const glm::dvec3& p : points) {
+    const glm::dvec3 o = rotation * (p - center);
+    d = std::max({d, o.z + std::abs(o.x) / (fill * tanX), o.z + std::abs(o.y) / (fill * tanY)});
+  }
+  double nearest = d, farthest = d;
+  for (const glm::dvec3& p : points) {
+    const double depth = d - (rotation * (p - center)).z;
+    nearest = std::min(nearest, depth);
+    farthest = std::max(farthest, depth);
+  }
+  const double fovyDegrees = glm::degrees(2.0 * std::atan(tanY));
+  return Camera::lookAt(center + toWorld[2] * d, center, toWorld[1], fovyDegrees, camera.width,
+                        camera.height, std::max(nearest * 0.5, d * 1e-4), farthest * 1.5);
+}
+
 Camera instanceCamera(const Camera& camera, const glm::dmat4& model) {
   Camera c = camera;
   c.view = camera.view * model;

@@ -61,6 +61,14 @@ Bounds unite(const Bounds& a, const Bounds& b);
 Camera frameBounds(const Bounds& bounds, const glm::dvec3& fromDirection, const glm::dvec3& up,
                    double fovyDegrees, uint32_t width, uint32_t height);
 
+/// \brief The perspective `camera` moved along its own view axis and aimed at the centre of
+/// the points' bounds so that every point just fits within `fill` of the image's half-extent
+/// on its tighter side (direction, up, field of view and image size kept; near and far
+/// enclose the points). Given an object's control points, the object fills the image where
+/// frameBounds' bounding sphere leaves a flat or elongated one a third of it. An
+/// orthographic camera, or no points, returns `camera` unchanged.
+Camera frameTightly(const Camera& camera, std::span<const glm::dvec3> points, double fill = 0.92);
+
 /// \brief The camera of an object placed by `model` (object → world): view · model, composed
 /// in double. Culling and drawing with it work in the object's own coordinates, so the GPU
 /// never rounds world coordinates to float: a mesh 1e5 from the origin, seen from nearby,

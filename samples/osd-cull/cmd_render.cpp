@@ -268,14 +268,19 @@ void writeStatusAndPyramid(const RenderArgs& args, vulkan::Context& context,
                            frame::CullFrame& cullFrame,
                            std::span<const frame::GpuTriangleMesh* const> occluders,
                            const frame::Camera& view, const glm::dvec3& pivot,
-                           const glm::dvec3& up) {
+                           const glm::dvec3& up, std::span<const glm::dvec3> points) {
   const fs::path out = args.out;
   if (args.statusView) {
     const uint32_t width = view.width, height = view.height;
     frame::RenderTarget viewTarget(context, width, height);
+    // Without --camera both views frame the patches' control points tightly from their
+    // directions (the frame's camera fits the bounding sphere: a flat mesh got a third).
     const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
+    const auto framed = [&](const frame::Camera& c) {
+      return args.camera.empty() ? frame::frameTightly(c, points) : c;
+    };
     for (const auto& [statusCamera, suffix] :
-         {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
+         {std::pair{framed(view), "_status"}, std::pair{framed(side), "_status_side"}}) {
       cullFrame.renderStatusView(viewTarget, statusCamera, occluders);
       adapters::writePng(
           sibling(out, suffix),
@@ -533,7 +538,7 @@ int run(const RenderArgs& args) {
                rendered, summary, meshSession.cullFrame(), sessionOptions.frame, crackPixels);
   if (frame::CullFrame* cullFrame = meshSession.cullFrame())
     writeStatusAndPyramid(args, context, *cullFrame, gpu.occluders, rendered.lastView, start.pivot,
-                          start.up);
+                          start.up, scene.patches.points);
   return finishRun(context);
 }
 
