@@ -431,7 +431,7 @@ RenderedFrames renderFrames(const RenderArgs& args, vulkan::Context& context,
     rendered.lastView = frame::orbit(start.camera, start.pivot, start.up, args.orbitDegrees * f);
     const session::SessionFrame frame = meshSession.render(rendered.lastView);
     if (frame.plan && frame.planChanged)
-      printPlanChange(lastPlan ? &*lastPlan : nullptr, *frame.plan, std::cout);
+      printPlanChange(lastPlan ? &*lastPlan : nullptr, *frame.plan, std::cout, "", args.verbose);
     if (frame.plan) lastPlan = frame.plan;
     rendered.json.push_back(printFrame(f, frame));
     writeFrameImages(args, context, target, f, f + 1 == frames);
@@ -584,6 +584,9 @@ Runner setup(CLI::App& app) {
                "also write the item buffer (patch ID + 1 per pixel, 24-bit RGB)\n"
                "as FILE_ids.png and the depth as FILE_depth.png");
   app.add_flag("--debug-colors", args->debugColors, "color each patch by its index");
+  app.add_flag("--verbose", args->verbose,
+               "print each plan whole: every stage on or off with its reason, and\n"
+               "what changed at a plan change (default: the plan's one-line headline)");
   app.add_option("--stats", args->stats, "write the per-frame figures as JSON")
       ->type_name("FILE.json");
   addDeviceOptions(app, args->device);

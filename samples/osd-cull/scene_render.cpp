@@ -40,7 +40,8 @@ std::string frameFile(const std::string& view, const char* kind, uint32_t frame)
 
 // Prints each instance's plan of this frame that differs from the one printed last (all
 // of them at the first frame), naming instance and view.
-void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& printed) {
+void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& printed,
+                     bool verbose) {
   printed.resize(vf.plans.size());
   for (size_t i = 0; i < vf.plans.size(); ++i) {
     const plan::Plan& p = vf.plans[i];
@@ -49,7 +50,7 @@ void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& prin
     if (!first && p.stages == last.stages && plan::planChange(last, p).empty()) continue;
     const std::string who =
         "instance " + std::to_string(i) + " '" + p.mesh + "' in view '" + p.view + "'";
-    printPlanChange(first ? nullptr : &last, p, std::cout, who);
+    printPlanChange(first ? nullptr : &last, p, std::cout, who, verbose);
     last = p;
   }
 }
@@ -257,7 +258,7 @@ int renderScene(const RenderArgs& args) {
     const std::vector<session::ViewFrame> views = player.render(f);
     for (size_t v = 0; v < views.size(); ++v) {
       const session::ViewFrame& vf = views[v];
-      printScenePlans(vf, printed[v]);
+      printScenePlans(vf, printed[v], args.verbose);
       addToSummary(summaries[v], lastStages[v], vf);
       std::printf("view %s %s\n", vf.view.c_str(), cullFrameLine(f, vf.stats).c_str());
       nlohmann::json j = viewFrameJson(f, vf);
