@@ -114,8 +114,20 @@ std::string keyHelp() {
          "  r        turntable (the orbit camera turns) on/off\n"
          "  v        look through the scene's camera (and its path) / the orbit camera\n"
          "  z        freeze the cull camera and fly around what it culled\n"
-         "  f        reset the camera;  h  HUD on/off;  q / Esc  quit\n"
-         "  mouse    left drag: orbit, right drag or wheel: zoom\n";
+         "  f        reset the camera;  h  HUD on/off;  q / Esc  quit (as glViewer)\n"
+         "  mouse    left drag: orbit, right drag or wheel: zoom\n"
+         "Unlike OpenSubdiv's glViewer: its number keys set the refinement level; here 1 2 3\n"
+         "switch the cull stages, the stages being what this viewer is about, and + / -\n"
+         "set the tessellation level (the patches are refined once, adaptively, at load).\n"
+         "Its middle-drag pan has no counterpart: the orbit camera turns about the scene's\n"
+         "centre, which the culled bounds and the status view are framed on.\n";
+}
+
+std::string keyHelpCompact() {
+  return "+/- tess  a adaptive  p plan  1 2 3 stages  c all  m method\n"
+         "s status colors  t type colors  w wireframe  space play\n"
+         "r turntable  v scene camera  z freeze cull  f reset  h HUD\n"
+         "q/Esc quit   drag: orbit   right drag/wheel: zoom\n";
 }
 
 std::vector<ScriptStep> parseScript(std::string_view text) {
@@ -202,7 +214,8 @@ std::string screenshotPath(const std::string& screenshot, uint32_t frame) {
 }
 
 bool PassTiming::due(uint32_t frame) const {
-  return interval_ != 0 && (!last_ || frame >= *last_ + interval_);
+  if (interval_ == 0) return false;
+  return last_ ? frame >= *last_ + interval_ : !madeAt_ || frame != *madeAt_;
 }
 
 void PassTiming::record(uint32_t frame, double pass1Ms, double pyramidMs, double cullMs,

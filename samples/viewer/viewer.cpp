@@ -277,7 +277,7 @@ class ViewerLoop {
         continue;
       }
       if (r != VK_SUBOPTIMAL_KHR) OSD_CULL_VK(r);
-      display_.hud.build(figures_, keys_, state_.showHud);
+      display_.hud.build(figures_, keyHelpCompact(), state_.showHud);
       display_.window.setUiCapture(display_.hud.wantsMouse(), display_.hud.wantsKeyboard());
       const bool last = options_.frames != 0 && f + 1 == options_.frames;
       const bool capture = (last || shot) && options_.screenshot.has_value();
@@ -353,7 +353,7 @@ class ViewerLoop {
       std::cout << "note: no effect plan in this viewer (no calibration of this device, or "
                    "--cull given): the stages are chosen by hand\n";
     }
-    makePlayerFor(render, extent);
+    makePlayerFor(render, extent, f);
     const uint32_t sceneFrame = description_.settings.frameStart + state_.sceneFrame;
     if (shownFrame_ != sceneFrame) {
       player_->seek(sceneFrame);
@@ -373,7 +373,7 @@ class ViewerLoop {
 
   /// \brief Makes the player again when it is missing or the cull stages changed: they
   /// are fixed when a CullFrame is made (with none, it culls nothing and draws every patch).
-  void makePlayerFor(const frame::RenderOptions& render, VkExtent2D extent) {
+  void makePlayerFor(const frame::RenderOptions& render, VkExtent2D extent, uint32_t f) {
     if (player_ && state_.cullLabel() == builtCull_) return;
     dropPlayer();
     scene::ViewDescription& view = description_.views.front();
@@ -390,7 +390,7 @@ class ViewerLoop {
     statusTarget_ = std::make_unique<frame::RenderTarget>(context_, extent.width, extent.height);
     builtCull_ = state_.cullLabel();
     shownFrame_.reset();
-    timing_.forget();
+    timing_.forget(f);
   }
 
   /// \brief The HUD's lines that describe the view: stages, tessellation, animation and
@@ -410,6 +410,8 @@ class ViewerLoop {
                           ? "scene camera '" + description_.views.front().name + "'"
                           : std::string("orbit") + (state_.turntable ? " (turntable)" : "");
     figures_.notes.clear();
+    figures_.plan.clear();
+    figures_.legend = state_.typeColors ? HudFigures::Legend::PatchType : HudFigures::Legend::None;
   }
 
   /// \brief The plan draws the frame (session::ScenePlayer with a planner): the stages it
@@ -427,12 +429,28 @@ class ViewerLoop {
     figures_.timing = timed ? "GPU timestamps of this frame" : "wall clock (drawn without culling)";
     figures_.cull = "plan";
     for (const plan::Plan& p : view.plans) addPlanNotes(p);
+    figures_.plan = planLine(view.plans);
     figures_.mode = view.culled ? "culled draw (plan)" : "all patches (the plan culls nothing)";
     if (state_.statusColors || state_.freezeCull)
       figures_.notes.push_back(
           "status colors and the frozen cull camera need the stages by "
           "hand (1, 2, 3 or c)");
     return &player_->target(0);
+  }
+
+  /// \brief The HUD's line of the plan: the first instance's current choice and the reason
+  /// of its back-patch and occlusion effects (first clause), and how many more instances.
+  static std::string planLine(const std::vector<plan::Plan>& plans) {
+    if (plans.empty()) return "";
+    const plan::Plan& p = plans.front();
+    std::string line = p.mesh + ": " + p.stages.describe() + (p.probe ? " [re-probe]" : "");
+    for (const auto& [kind, e] : p.effects())
+      if (kind == plan::EffectKind::BackPatch || kind == plan::EffectKind::Occlusion)
+        line += std::string("; ") + plan::toString(kind) + (e->on ? " on: " : " off: ") +
+                e->reason.substr(0, e->reason.find(';'));
+    if (plans.size() > 1)
+      line += " (+" + std::to_string(plans.size() - 1) + " instances: details)";
+    return line;
   }
 
   /// \brief The HUD's notes for one instance's plan: its stages and predicted times, then
@@ -480,6 +498,7 @@ class ViewerLoop {
       // Every patch from the current camera, colored by what the (frozen) cull camera did.
       cullFrame.renderStatusView(*statusTarget_, camera, player_->occluders());
       figures_.mode = "status colors";
+      figures_.legend = HudFigures::Legend::Status;
       return statusTarget_.get();
     }
     figures_.mode = state_.anyCull() ? "culled draw" : "all patches";
@@ -593,6 +612,7 @@ class ViewerLoop {
         figures_.culledOcclusion, static_cast<unsigned long long>(figures_.tesInvocations),
         figures_.frameMs, state_.sceneFrame, frameCount_, state_.playing ? "playing" : "paused",
         figures_.pass1Ms, figures_.pyramidMs, figures_.cullMs, figures_.pass2Ms, timedAt.c_str());
+    if (!figures_.plan.empty()) std::printf("  plan: %s\n", figures_.plan.c_str());  // as the HUD
   }
 
   /// \brief Writes the read-back window image as the script's shot of frame `f` and/or
