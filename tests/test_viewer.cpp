@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -85,7 +86,7 @@ TEST(ViewerKeys, PTogglesThePlanAndAStageKeyTakesOverByHand) {
   // Where the keys differ from OpenSubdiv's glViewer, the help says why.
   EXPECT_NE(viewer::keyHelp().find("Esc  quit (as glViewer)"), std::string::npos);
   EXPECT_NE(viewer::keyHelp().find("its number keys set the refinement level"), std::string::npos);
-  EXPECT_NE(viewer::keyHelp().find("middle-drag pan"), std::string::npos);
+  EXPECT_NE(viewer::keyHelp().find("middle drag: pan (as glViewer)"), std::string::npos);
 }
 
 TEST(ViewerKeys, SpacePlaysTheAnimationAndRTurnsTheTable) {
@@ -207,8 +208,25 @@ TEST(ViewerScript, AppliesStepsBeforeTheirFrame) {
   EXPECT_TRUE(player.done());
 }
 
+TEST(ViewerScript, PanMovesTheOrbitPivotWithinItsLimitsAndFResetsIt) {
+  // Middle drag pans, as in OpenSubdiv's glViewer; the script's pan:RIGHT,UP does the same.
+  viewer::ScriptPlayer player(viewer::parseScript("pan:0.5,-0.25 @1 pan:10,0"));
+  ViewState s;
+  EXPECT_EQ(player.beforeFrame(0, s).size(), 1u);
+  EXPECT_DOUBLE_EQ(s.panX, 0.5);
+  EXPECT_DOUBLE_EQ(s.panY, -0.25);
+  player.beforeFrame(1, s);
+  EXPECT_DOUBLE_EQ(s.panX, 4.0);  // clamped to 4 bounding radii
+  viewer::panCamera(s, std::nan(""), 1.0);
+  EXPECT_DOUBLE_EQ(s.panY, -0.25);  // a non-finite drag is ignored
+  EXPECT_EQ(pressKey(s, "f"), "camera reset");
+  EXPECT_DOUBLE_EQ(s.panX, 0.0);
+  EXPECT_DOUBLE_EQ(s.panY, 0.0);
+}
+
 TEST(ViewerScript, RejectsBadTokensWithTheirName) {
-  for (const char* bad : {"@x", "@3 @1", "orbit:1", "zoom:0", "zoom:abc", "bogus", "@-1"}) {
+  for (const char* bad :
+       {"@x", "@3 @1", "orbit:1", "pan:1", "pan:a,1", "zoom:0", "zoom:abc", "bogus", "@-1"}) {
     try {
       viewer::parseScript(bad);
       ADD_FAILURE() << "accepted '" << bad << "'";
@@ -375,6 +393,28 @@ TEST_F(ViewerWindow, ThePlansCurrentChoiceAndReasonAreShownEachFrame) {
   const std::regex re(R"(  plan: [^\n]*: (ncone|tcone|tangent-plane)[^\n]*; back-patch on: )"
                       R"([^\n]*; occlusion (on|off): [^\n]+)");
   EXPECT_TRUE(std::regex_search(run.result.output, re)) << run.result.output;
+}
+
+TEST_F(ViewerWindow, PanShiftsTheModelOnScreen) {
+  const ViewRun still = view("pan_still", 2, "");
+  const ViewRun panned = view("pan_right", 2, "@0 pan:0.5,0");
+  ASSERT_EQ(still.result.exitCode(), 0) << still.result.output;
+  ASSERT_EQ(panned.result.exitCode(), 0) << panned.result.output;
+  // The centroid of the model's pixels (differing from the corner's background) moves left
+  // when the pivot moves right.
+  const auto centroidX = [](const adapters::PngImage& image) {
+    double sum = 0.0, n = 0.0;
+    const size_t c = size_t(image.channels);
+    for (uint32_t y = 0; y < image.height; ++y)
+      for (uint32_t x = 0; x < image.width; ++x) {
+        const size_t i = (size_t(y) * image.width + x) * c;
+        if (!std::equal(image.samples8.begin(), image.samples8.begin() + 3,
+                        image.samples8.begin() + i))
+          sum += x, n += 1.0;
+      }
+    return n > 0.0 ? sum / n : 0.0;
+  };
+  EXPECT_LT(centroidX(panned.image), centroidX(still.image) - 20.0);
 }
 
 // The frame lines' animation and per-pass timing figures.

@@ -44,6 +44,9 @@ struct ViewState {
   double yawDegrees = 0.0;    ///< camera orbit about the up axis
   double pitchDegrees = 0.0;  ///< and about the camera's right axis, in [-85, 85]
   double zoom = 1.0;          ///< eye distance scale, in [0.05, 20]
+  /// Pan of the orbit pivot along the view's right and up axes (middle drag, as in
+  /// OpenSubdiv's glViewer), in units of the framed bounding radius, each in [-4, 4].
+  double panX = 0.0, panY = 0.0;
 
   bool anyCull() const { return frustum || backPatch || occlusion; }
   /// \brief "plan", "frustum+backpatch(tcone)+hiz", or "none".
@@ -105,10 +108,10 @@ std::string keyHelpCompact();
 /// \brief One step of a --script: press a key, drag the camera, wait for a frame, or keep
 /// the image of the coming frame.
 struct ScriptStep {
-  enum class Kind { Key, Orbit, Zoom, WaitFrame, Shot } kind = Kind::Key;
+  enum class Kind { Key, Orbit, Pan, Zoom, WaitFrame, Shot } kind = Kind::Key;
   std::string key;     ///< Kind::Key
-  double a = 0.0;      ///< Orbit: yaw degrees; Zoom: factor
-  double b = 0.0;      ///< Orbit: pitch degrees
+  double a = 0.0;      ///< Orbit: yaw degrees; Pan: right (bounding radii); Zoom: factor
+  double b = 0.0;      ///< Orbit: pitch degrees; Pan: up (bounding radii)
   uint32_t frame = 0;  ///< WaitFrame: the frame the following steps apply before
 };
 
@@ -155,5 +158,7 @@ void advanceAnimation(ViewState& state, uint32_t frameCount);
 /// \brief Applies a camera drag (degrees) and zoom factor within the state's limits.
 void orbitCamera(ViewState& state, double yawDegrees, double pitchDegrees);
 void zoomCamera(ViewState& state, double factor);
+/// \brief Pans the orbit pivot by (`right`, `up`) bounding radii within the state's limits.
+void panCamera(ViewState& state, double right, double up);
 
 }  // namespace osd_cull::viewer

@@ -62,8 +62,15 @@ frame::Camera viewCamera(const ViewState& s, const frame::Bounds& bounds, const 
       glm::rotate(glm::dmat4(1.0), glm::radians(s.pitchDegrees), glm::normalize(right));
   offset = glm::dvec3(yaw * pitch * glm::dvec4(offset, 0.0)) * s.zoom;
   const double d = glm::length(offset), r = bounds.radius();
-  return frame::Camera::lookAt(pivot + offset, pivot, up, 40.0, width, height,
-                               std::max(d - r, (d + r) * 1e-4), d + r);
+  // Middle-drag pan: the pivot moves along the view's right and up axes (scaled by zoom,
+  // so a drag moves the model about as far on screen at any distance).
+  glm::dvec3 viewRight = glm::cross(-offset, up);
+  viewRight = glm::length(viewRight) > 1e-12 * d ? glm::normalize(viewRight) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 viewUp = glm::cross(viewRight, -offset / d);
+  const glm::dvec3 shift = (s.panX * viewRight + s.panY * viewUp) * r * s.zoom;
+  const double far = std::sqrt(d * d + glm::dot(shift, shift)) + r;  // the box from the eye
+  return frame::Camera::lookAt(pivot + shift + offset, pivot + shift, up, 40.0, width, height,
+                               std::max(d - r, (d + r) * 1e-4), far);
 }
 
 frame::RenderOptions renderOptions(const ViewState& s, const vulkan::Context& context,
@@ -316,6 +323,7 @@ class ViewerLoop {
       if (auto line = pressKey(state_, k)) std::cout << "key: " << *line << "\n";
     orbitCamera(state_, -0.3 * input.orbitX, -0.3 * input.orbitY);
     zoomCamera(state_, std::pow(1.01, input.zoomY) * std::pow(0.9, input.wheel));
+    panCamera(state_, -0.005 * input.panX, 0.005 * input.panY);  // the model follows the mouse
     return shot;
   }
 
