@@ -14,10 +14,8 @@ namespace {
 // The largest |x| and |y| in normalized device coordinates of the box's 8 corners.
 glm::dvec2 projectedExtent(const frame::Camera& c, const frame::Bounds& b) {
   glm::dvec2 extent(0.0);
-  for (int k = 0; k < 8; ++k) {
-    const glm::dvec4 p = c.viewProjection() *
-                         glm::dvec4((k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y,
-                                    (k & 4) ? b.hi.z : b.lo.z, 1.0);
+  for (const glm::dvec3& corner : b.corners()) {
+    const glm::dvec4 p = c.viewProjection() * glm::dvec4(corner, 1.0);
     EXPECT_GT(p.w, 0.0);
     EXPECT_GE(p.z / p.w, 0.0);
     EXPECT_LE(p.z / p.w, 1.0);
@@ -38,11 +36,7 @@ TEST(FrameTightly, AFlatSlabFillsTheImageWhereTheBoundingSphereLeavesAThird) {
   const frame::Camera sphere = frame::frameBounds(slab, from, up, 40.0, 640, 360);
   const glm::dvec2 before = projectedExtent(sphere, slab);
   EXPECT_LT(std::max(before.x, before.y), 0.7);
-  std::vector<glm::dvec3> corners;
-  for (int k = 0; k < 8; ++k)
-    corners.emplace_back((k & 1) ? slab.hi.x : slab.lo.x, (k & 2) ? slab.hi.y : slab.lo.y,
-                         (k & 4) ? slab.hi.z : slab.lo.z);
-  const frame::Camera tight = frame::frameTightly(sphere, corners);
+  const frame::Camera tight = frame::frameTightly(sphere, slab.corners());
   const glm::dvec2 after = projectedExtent(tight, slab);
   EXPECT_NEAR(std::max(after.x, after.y), 0.92, 0.005);  // one side just fits
   EXPECT_LE(after.x, 0.9201);

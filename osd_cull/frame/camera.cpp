@@ -62,6 +62,13 @@ Camera Camera::orthographic(const glm::dmat4& view, double left, double right, d
 
 double Bounds::radius() const { return 0.5 * glm::length(hi - lo); }
 
+std::array<glm::dvec3, 8> Bounds::corners() const {
+  std::array<glm::dvec3, 8> c;
+  for (int k = 0; k < 8; ++k)
+    c[k] = {(k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z};
+  return c;
+}
+
 Bounds boundsOf(std::span<const glm::dvec3> points) {
   Bounds b;
   if (points.empty()) return b;

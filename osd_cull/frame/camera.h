@@ -9,6 +9,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -50,6 +51,8 @@ struct Bounds {
   glm::dvec3 hi{0.0};
   glm::dvec3 center() const { return 0.5 * (lo + hi); }
   double radius() const;  ///< half the diagonal
+  /// \brief The 8 corners (bit 0: x, bit 1: y, bit 2: z; set: hi).
+  std::array<glm::dvec3, 8> corners() const;
 };
 Bounds boundsOf(std::span<const glm::dvec3> points);
 /// \brief The bounds of both (componentwise min of lo, max of hi).
