@@ -11,11 +11,11 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
-#include <span>
-#include <vector>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace osd_cull {
 namespace {
@@ -86,7 +86,8 @@ TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyr
 }
 
 // The first pixel of each swatch of a legend strip under an image `imageHeight` tall.
-std::vector<std::array<uint8_t, 3>> swatchColors(const adapters::PngImage& png, uint32_t imageHeight,
+std::vector<std::array<uint8_t, 3>> swatchColors(const adapters::PngImage& png,
+                                                 uint32_t imageHeight,
                                                  std::span<const adapters::LegendEntry> entries) {
   std::vector<std::array<uint8_t, 3>> colors;
   for (const adapters::LegendSwatch& s : adapters::legendLayout(png.width, entries)) {
@@ -125,7 +126,8 @@ std::pair<double, double> objectSpan(const adapters::PngImage& png, uint32_t ima
     for (uint32_t x = 0; x < png.width; ++x)
       for (int c = 0; c < 3; ++c)
         if (png.samples8[4 * (size_t(y) * png.width + x) + c] != png.samples8[c]) {
-          x0 = std::min(x0, x), x1 = std::max(x1, x + 1), y0 = std::min(y0, y), y1 = std::max(y1, y + 1);
+          x0 = std::min(x0, x), x1 = std::max(x1, x + 1), y0 = std::min(y0, y),
+          y1 = std::max(y1, y + 1);
         }
   if (x1 <= x0) return {0.0, 0.0};
   return {double(x1 - x0) / png.width, double(y1 - y0) / imageHeight};
@@ -134,9 +136,9 @@ std::pair<double, double> objectSpan(const adapters::PngImage& png, uint32_t ima
 TEST(RenderCullCommand, StatusViewsOfTheDefaultFramingFrameTheMesh) {
   if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
   const fs::path dir = freshOutputDir("render_status_framing");
-  const test::CommandResult r = runCommand(program().string() + " render --out " +
-                                           (dir / "s.png").string() +
-                                           " --width 320 --height 180 --cull all --status-view");
+  const test::CommandResult r =
+      runCommand(program().string() + " render --out " + (dir / "s.png").string() +
+                 " --width 320 --height 180 --cull all --status-view");
   ASSERT_EQ(r.exitCode(), 0) << r.output;
   for (const char* f : {"s_status.png", "s_status_side.png"}) {
     const auto [w, h] = objectSpan(adapters::readPng(dir / f), 180);

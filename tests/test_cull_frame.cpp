@@ -128,8 +128,8 @@ class CullFrameTest : public test::VkTest {
       const ImageDiff d = compare(target, reference, cam, o.render);
       EXPECT_EQ(d.uncovered, 0u) << w << "x" << h << " frame " << f << " mode "
                                  << toString(o.drawMode) << " first " << toString(o.firstFrame);
-      EXPECT_EQ(d.different, 0u)
-          << d.different << " pixels differ, " << w << "x" << h << " frame " << f;
+      EXPECT_EQ(d.different, 0u) << d.different << " pixels differ, " << w << "x" << h << " frame "
+                                 << f;
     }
     return total;
   }

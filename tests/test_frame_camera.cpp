@@ -25,8 +25,8 @@ glm::dvec2 projectedExtent(const frame::Camera& c, const frame::Bounds& b) {
 }
 
 TEST(FrameTightly, NoPointsOrAnOrthographicCameraLeaveTheCameraAsItIs) {
-  const frame::Camera c = frame::frameBounds({{-1, -1, -1}, {1, 1, 1}}, {0, 0, 1}, {0, 1, 0}, 40.0,
-                                             64, 64);
+  const frame::Camera c =
+      frame::frameBounds({{-1, -1, -1}, {1, 1, 1}}, {0, 0, 1}, {0, 1, 0}, 40.0, 64, 64);
   EXPECT_EQ(frame::frameTightly(c, {}).view, c.view);
 }
 

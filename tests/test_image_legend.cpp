@@ -43,7 +43,8 @@ void expectSwatches(const adapters::PngImage& out, uint32_t imageHeight,
 }
 
 TEST(ImageLegend, StatusStripHasTheFiveDocumentedColoursUnderTheImage) {
-  const adapters::PngImage out = adapters::withLegend(blackImage(640, 40), adapters::statusLegend());
+  const adapters::PngImage out =
+      adapters::withLegend(blackImage(640, 40), adapters::statusLegend());
   EXPECT_EQ(out.width, 640u);
   EXPECT_EQ(out.height, 40u + adapters::kLegendRowHeight);  // one row at 640 wide
   // patch.frag kStatusColors x 255: green drawn, yellow newly visible, blue frustum,

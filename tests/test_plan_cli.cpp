@@ -104,9 +104,8 @@ TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
 
 TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
   const fs::path out = dir_.path() / "r.png";
-  auto r =
-      run("render --out " + out.string() + " --tess 8 --verbose --plan-calibration " +
-          calibration_.string());
+  auto r = run("render --out " + out.string() + " --tess 8 --verbose --plan-calibration " +
+               calibration_.string());
   ASSERT_EQ(r.exitCode(), 0) << r.output;
   // The built-in scene at 640x480, tess 8: its box is inside the view (no frustum stage);
   // the first frames explore: every other stage runs to measure its rate, the cheapest

@@ -130,7 +130,7 @@ TEST(ViewerPassTiming, TimesTheFirstFrameThenEveryInterval) {
   EXPECT_DOUBLE_EQ(t.cullMs(), 0.5);
   EXPECT_DOUBLE_EQ(t.pass2Ms(), 0.75);
   EXPECT_NE(t.describe(5).find("timed frame 2 (3 frames ago"), std::string::npos) << t.describe(5);
-  t.forget(3);  // a new cull frame made at frame 3: its pipelines are built then, so the
+  t.forget(3);             // a new cull frame made at frame 3: its pipelines are built then, so the
   EXPECT_FALSE(t.due(3));  // per-pass times start at the frame after (no one-off work)
   EXPECT_TRUE(t.due(4));
   viewer::PassTiming never(0);
@@ -252,10 +252,9 @@ ViewRun viewOn(const std::string& name, const std::string& screen, const std::st
   const fs::path shot = dir / (name + ".png");
   fs::remove(shot);
   ViewRun run;
-  run.result = test::runCommand("xvfb-run -a -s '-screen 0 " + screen + "x24' " +
-                                test::osdCullProgram().string() + " view " + options +
-                                " --screenshot " + shot.string() + " --script '" + script + "' " +
-                                extra);
+  run.result = test::runCommand(
+      "xvfb-run -a -s '-screen 0 " + screen + "x24' " + test::osdCullProgram().string() + " view " +
+      options + " --screenshot " + shot.string() + " --script '" + script + "' " + extra);
   if (run.result.exitCode() == 0 && fs::exists(shot)) run.image = adapters::readPng(shot);
   return run;
 }

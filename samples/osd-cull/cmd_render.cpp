@@ -267,8 +267,8 @@ void writeFrameImages(const RenderArgs& args, vulkan::Context& context,
 void writeStatusAndPyramid(const RenderArgs& args, vulkan::Context& context,
                            frame::CullFrame& cullFrame,
                            std::span<const frame::GpuTriangleMesh* const> occluders,
-                           const frame::Camera& view, const glm::dvec3& pivot,
-                           const glm::dvec3& up, std::span<const glm::dvec3> points) {
+                           const frame::Camera& view, const glm::dvec3& pivot, const glm::dvec3& up,
+                           std::span<const glm::dvec3> points) {
   const fs::path out = args.out;
   if (args.statusView) {
     const uint32_t width = view.width, height = view.height;

@@ -40,8 +40,7 @@ std::string frameFile(const std::string& view, const char* kind, uint32_t frame)
 
 // Prints each instance's plan of this frame that differs from the one printed last (all
 // of them at the first frame), naming instance and view.
-void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& printed,
-                     bool verbose) {
+void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& printed, bool verbose) {
   printed.resize(vf.plans.size());
   for (size_t i = 0; i < vf.plans.size(); ++i) {
     const plan::Plan& p = vf.plans[i];
@@ -167,11 +166,10 @@ void writeStatusView(vulkan::Context& context, session::ScenePlayer& player,
   const frame::Camera side =
       frame::orbit(vf.camera, player.bounds().center(), loaded.description.views[v].up, 120.0);
   player.cullFrame(v).renderStatusView(statusTarget, side, player.occluders());
-  adapters::writePng(
-      fs::path(outDir) / frameFile(vf.view, "status_", f),
-      adapters::withLegend(
-          adapters::colorImage(target.width(), target.height(), statusTarget.readColor(context)),
-          adapters::statusLegend()));
+  adapters::writePng(fs::path(outDir) / frameFile(vf.view, "status_", f),
+                     adapters::withLegend(adapters::colorImage(target.width(), target.height(),
+                                                               statusTarget.readColor(context)),
+                                          adapters::statusLegend()));
 }
 
 /// \brief The end-of-run summary of each view, named after it.

@@ -169,12 +169,11 @@ void Hud::build(const HudFigures& f, const std::string& keys, bool show) {
     ImGui::SetNextWindowBgAlpha(0.6f);
     ImGui::Begin("osd_cull", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 420.0f);  // a compact window
-    ImGui::Text("cull: %s   tess: %s   %s", f.cull.c_str(), f.tessellation.c_str(),
-                f.mode.c_str());
+    ImGui::Text("cull: %s   tess: %s   %s", f.cull.c_str(), f.tessellation.c_str(), f.mode.c_str());
     if (!f.plan.empty()) ImGui::TextWrapped("plan: %s", f.plan.c_str());
     ImGui::Text("drawn %u of %u (%u + %u); culled F %u B %u O %u; TES %llu", drawn, f.patches,
-                f.drawnPass1, f.drawnPass2, f.culledFrustum, f.culledBackPatch,
-                f.culledOcclusion, static_cast<unsigned long long>(f.tesInvocations));
+                f.drawnPass1, f.drawnPass2, f.culledFrustum, f.culledBackPatch, f.culledOcclusion,
+                static_cast<unsigned long long>(f.tesInvocations));
     ImGui::Text("ms: frame %.1f; pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f", f.frameMs,
                 f.pass1Ms, f.pyramidMs, f.cullMs, f.pass2Ms);
     plot("cull %", cullRate_, 0.0f, 100.0f);

@@ -456,8 +456,7 @@ class ViewerLoop {
       if (kind == plan::EffectKind::BackPatch || kind == plan::EffectKind::Occlusion)
         line += std::string("; ") + plan::toString(kind) + (e->on ? " on: " : " off: ") +
                 e->reason.substr(0, e->reason.find(';'));
-    if (plans.size() > 1)
-      line += " (+" + std::to_string(plans.size() - 1) + " instances: details)";
+    if (plans.size() > 1) line += " (+" + std::to_string(plans.size() - 1) + " instances: details)";
     return line;
   }
 
