@@ -15,7 +15,7 @@ mkdir -p "$out/demo"
 "$build/samples/osd-cull" info
 echo
 "$build/samples/osd-cull" render built-in:scene --frames 24 --width 640 --height 360 \
-  --backpatch-method ncone --compare --status-view --out-dir "$out/demo" --out "$out/demo.png" \
+  --backpatch-method ncone --verbose --compare --status-view --out-dir "$out/demo" --out "$out/demo.png" \
   --stats "$out/demo/stats.json" "$@" |
   awk '
     /^view .* frame [0-9]+:/ {

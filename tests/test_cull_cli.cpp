@@ -1,5 +1,6 @@
 // `osd-cull render --cull occlusion`: the two-pass frame from the command line, with the
 // per-frame report, JSON statistics, the status debug view and the pyramid levels.
+#include "adapters/image_legend.h"
 #include "adapters/image_png.h"
 #include "support/run_command.h"
 #include "support/test_data.h"
@@ -7,10 +8,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace osd_cull {
 namespace {
@@ -21,11 +26,17 @@ using test::runCommand;
 
 fs::path program() { return test::osdCullProgram(); }
 
-TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyramid) {
-  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
-  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "render_cull_cli";
+// An empty folder test_output/NAME in the build tree.
+fs::path freshOutputDir(const char* name) {
+  const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
+  return dir;
+}
+
+TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyramid) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = freshOutputDir("render_cull_cli");
   const test::CommandResult r =
       runCommand(program().string() + " render --out " + (dir / "s.png").string() +
                  " --width 120 --height 90 --frames 3 --orbit 20 --cull occlusion "
@@ -72,6 +83,70 @@ TEST(RenderCullCommand, OcclusionFramesReportPassesAndWriteStatsStatusViewAndPyr
     EXPECT_LE(f1["ms"]["gpu"].get<double>(), f1["ms"]["total"].get<double>() * 1.01 + 0.05);
   }
   EXPECT_EQ(doc["options"]["drawMode"], "filtered");
+}
+
+// The first pixel of each swatch of a legend strip under an image `imageHeight` tall.
+std::vector<std::array<uint8_t, 3>> swatchColors(const adapters::PngImage& png,
+                                                 uint32_t imageHeight,
+                                                 std::span<const adapters::LegendEntry> entries) {
+  std::vector<std::array<uint8_t, 3>> colors;
+  for (const adapters::LegendSwatch& s : adapters::legendLayout(png.width, entries)) {
+    const size_t i = 4 * ((size_t(imageHeight) + s.y + s.size / 2) * png.width + s.x + s.size / 2);
+    colors.push_back({png.samples8[i], png.samples8[i + 1], png.samples8[i + 2]});
+  }
+  return colors;
+}
+
+TEST(RenderCullCommand, StatusViewsAndDebugColorsCarryALegendStripOfTheirColours) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = freshOutputDir("render_legend_cli");
+  const test::CommandResult r =
+      runCommand(program().string() + " render --out " + (dir / "s.png").string() +
+                 " --width 400 --height 90 --frames 2 --cull all --status-view --debug-colors");
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  const std::vector<std::array<uint8_t, 3>> status{
+      {89, 191, 89}, {242, 217, 64}, {89, 140, 242}, {179, 102, 230}, {242, 89, 77}};
+  for (const char* f : {"s_status.png", "s_status_side.png"}) {
+    const adapters::PngImage png = adapters::readPng(dir / f);
+    ASSERT_EQ(png.height, 90u + adapters::kLegendRowHeight) << f;
+    EXPECT_EQ(swatchColors(png, 90, adapters::statusLegend()), status) << f;
+  }
+  const adapters::PngImage debug = adapters::readPng(dir / "s.png");
+  ASSERT_EQ(debug.height, 90u + adapters::kLegendRowHeight);
+  const auto colors = swatchColors(debug, 90, adapters::patchIndexLegend());
+  for (size_t i = 0; i < colors.size(); ++i)
+    EXPECT_EQ(colors[i], adapters::patchIndexLegend()[i].rgb) << i;
+}
+
+// The share of the image's width and height that the pixels differing from the corner
+// (background) pixel span, in the top `imageHeight` rows.
+std::pair<double, double> objectSpan(const adapters::PngImage& png, uint32_t imageHeight) {
+  uint32_t x0 = png.width, x1 = 0, y0 = imageHeight, y1 = 0;
+  for (uint32_t y = 0; y < imageHeight; ++y)
+    for (uint32_t x = 0; x < png.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        if (png.samples8[4 * (size_t(y) * png.width + x) + c] != png.samples8[c]) {
+          x0 = std::min(x0, x), x1 = std::max(x1, x + 1), y0 = std::min(y0, y),
+          y1 = std::max(y1, y + 1);
+        }
+  if (x1 <= x0) return {0.0, 0.0};
+  return {double(x1 - x0) / png.width, double(y1 - y0) / imageHeight};
+}
+
+TEST(RenderCullCommand, StatusViewsOfTheDefaultFramingFrameTheMesh) {
+  if (!fs::exists(program())) GTEST_SKIP() << "osd-cull not built";
+  const fs::path dir = freshOutputDir("render_status_framing");
+  const test::CommandResult r =
+      runCommand(program().string() + " render --out " + (dir / "s.png").string() +
+                 " --width 320 --height 180 --cull all --status-view");
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  for (const char* f : {"s_status.png", "s_status_side.png"}) {
+    const auto [w, h] = objectSpan(adapters::readPng(dir / f), 180);
+    std::printf("%s: the object spans %.0f%% of the width, %.0f%% of the height\n", f, 100 * w,
+                100 * h);
+    EXPECT_GE(std::max(w, h), 0.8) << f;  // fits one side: at most 92% plus perspective
+    EXPECT_GE(w * h, 0.3) << f;
+  }
 }
 
 TEST(RenderCullCommand, CullOptionsAreCheckedWithAClearMessage) {

@@ -75,6 +75,26 @@ TEST(StageCounts, CountsTheStageThatCulledEachPatch) {
   EXPECT_EQ(c.culled(), 7u);
 }
 
+TEST(SessionSummary, MeanMedianAndSavingsOfTheFramesAdded) {
+  session::SummaryAccumulator a;
+  for (const double ms : {30.0, 10.0, 280.0, 20.0}) {
+    frame::CullFrameStats s;
+    s.frameMs = ms;
+    s.patchesTotal = 10;
+    s.drawnPass1 = 8;
+    s.pass1.tessEvaluationInvocations = 80;  // 10 per drawn patch: 2 culled save about 20
+    a.add(s, std::nullopt, false);
+  }
+  const session::SessionSummary s = a.summary();
+  EXPECT_EQ(s.frames, 4u);
+  EXPECT_DOUBLE_EQ(s.meanMs, 85.0);
+  EXPECT_DOUBLE_EQ(s.medianMs, 25.0);  // an even count: the mean of the middle two
+  EXPECT_EQ(s.patches, 40u);
+  EXPECT_EQ(s.drawn, 32u);
+  EXPECT_EQ(s.tesSaved, 80u);
+  EXPECT_NE(s.text().find("mean 85.00 ms, median 25.00 ms"), std::string::npos) << s.text();
+}
+
 TEST_F(MeshSessionTest, PlanChangesKeepTheImageAndTheStatus) {
   frame::RenderTarget target(context(), 96, 64), plain(context(), 96, 64);
   plan::Planner planner = restlessPlanner(3);

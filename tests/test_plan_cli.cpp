@@ -12,6 +12,7 @@
 #include "support/vk_test_context.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -106,8 +107,8 @@ TEST_F(PlanCommand, WithoutACalibrationSaysHowToMakeOne) {
 
 TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
   const fs::path out = dir_.path() / "r.png";
-  auto r =
-      run("render --out " + out.string() + " --tess 8 --plan-calibration " + calibration_.string());
+  auto r = run("render --out " + out.string() + " --tess 8 --verbose --plan-calibration " +
+               calibration_.string());
   ASSERT_EQ(r.exitCode(), 0) << r.output;
   // The built-in scene at 640x480, tess 8: its box is inside the view (no frustum stage);
   // the first frames explore: every other stage runs to measure its rate, the cheapest
@@ -133,6 +134,49 @@ TEST_F(PlanCommand, RenderPlansWithoutCullAndPrintsThePlan) {
   EXPECT_NE(r.output.find("no calibration of this device cached"), std::string::npos) << r.output;
   r = run("render --out " + out.string() + " --plan sometimes");
   EXPECT_EQ(r.exitCode(), 2) << r.output;
+}
+
+// Lines of `output` that start with `prefix`.
+size_t linesStartingWith(const std::string& output, const std::string& prefix) {
+  size_t n = 0;
+  for (size_t at = 0; at < output.size();) {
+    n += output.compare(at, prefix.size(), prefix) == 0;
+    const size_t end = output.find('\n', at);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return n;
+}
+
+TEST_F(PlanCommand, RenderPrintsOneLinePerFrameThePlansHeadlineAndAClosingSummary) {
+  const fs::path out = dir_.path() / "r.png", stats = dir_.path() / "r.json";
+  const std::string base = "render --out " + out.string() + " --width 160 --height 90 --frames 3" +
+                           " --stats " + stats.string() + " --plan-calibration " +
+                           calibration_.string();
+  const auto r = run(base);
+  ASSERT_EQ(r.exitCode(), 0) << r.output;
+  EXPECT_EQ(linesStartingWith(r.output, "frame "), 3u) << r.output;
+  EXPECT_EQ(linesStartingWith(r.output, "plan, frame 0: "), 1u) << r.output;
+  EXPECT_EQ(linesStartingWith(r.output, "  "), 0u) << r.output;  // no per-stage reasons
+  EXPECT_EQ(linesStartingWith(r.output, "summary: 3 frames, mean "), 1u) << r.output;
+  EXPECT_NE(r.output.find(" ms, median "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(" saved)"), std::string::npos) << r.output;
+  EXPECT_EQ(linesStartingWith(r.output, "summary: plan changes "), 1u) << r.output;
+  std::ifstream in(stats);
+  const nlohmann::json summary = nlohmann::json::parse(in)["summary"];
+  EXPECT_EQ(summary["frames"], 3);
+  EXPECT_GT(summary["ms"]["mean"].get<double>(), 0.0);
+  EXPECT_GT(summary["ms"]["median"].get<double>(), 0.0);
+  EXPECT_EQ(summary["patches"], 3 * 880);
+  EXPECT_LT(summary["drawn"].get<uint64_t>(), summary["patches"].get<uint64_t>());
+  EXPECT_GT(summary["tes"]["saved"].get<uint64_t>(), 0u);
+  EXPECT_TRUE(summary["plan"].contains("changes"));
+  // --verbose: the whole plan, every stage with its reason.
+  const auto v = run(base + " --verbose");
+  ASSERT_EQ(v.exitCode(), 0) << v.output;
+  EXPECT_EQ(linesStartingWith(v.output, "frame "), 3u) << v.output;
+  for (const char* stage : {"  frustum ", "  back-patch ", "  occlusion ", "  update off: "})
+    EXPECT_EQ(linesStartingWith(v.output, stage), 1u) << stage << "\n" << v.output;
 }
 
 class PlanCommandCache : public test::VkTest {};

@@ -374,7 +374,7 @@ TEST(ScenePlanCommand, RenderPrintsEachInstancesPlanAndItsChangesNamingInstanceA
   plan::storeCalibration(test::syntheticCalibration(), calibration);
   const fs::path scene = dir.write("scene.json", nearFarScene());
   const std::string base = test::osdCullProgram().string() + " render " + scene.string() +
-                           " --validate --tess 2 --frames 2 --plan-calibration " +
+                           " --validate --tess 2 --frames 2 --verbose --plan-calibration " +
                            calibration.string();
   const auto r = test::runCommand(base);
   ASSERT_EQ(r.exitCode(), 0) << r.output;

@@ -65,7 +65,7 @@ void ScenePlayerTest::playAndCompare(const std::string& backPatchMethod) {
       const uint64_t covered = c.covered, differing = c.differing;
       EXPECT_GT(covered, c.pixels / 4) << views[v].view << " frame " << f;
       EXPECT_EQ(c.lost, 0u) << views[v].view << " frame " << f;
-      EXPECT_LE(differing, c.pixels / 10000) << views[v].view << " frame " << f;
+      EXPECT_EQ(differing, 0u) << views[v].view << " frame " << f;
       std::printf("%s frame %u: culled %u of %u, %llu pixels covered, %llu differing\n",
                   views[v].view.c_str(), f, views[v].stats.culled(), views[v].stats.patchesTotal,
                   static_cast<unsigned long long>(covered),
@@ -173,7 +173,7 @@ TEST_F(ScenePlayerTest, DeformingDisplacedMeshDrawsTheUnculledImage) {
     const frame::ItemComparison c = player.compareWithUnculled(0, plain).items;
     EXPECT_GT(c.covered, c.pixels / 20) << "frame " << f;
     EXPECT_EQ(c.lost, 0u) << "frame " << f;
-    EXPECT_LE(c.differing, c.pixels / 10000) << "frame " << f;
+    EXPECT_EQ(c.differing, 0u) << "frame " << f;
   }
   EXPECT_GT(culled, 0u);
   const frame::BoundsPass* bounds =

@@ -3,10 +3,13 @@
 // appear after "s", fewer patches are drawn after culling is switched on, the HUD is drawn,
 // an animated scene moves while playing and stands still while paused, timed frames come
 // at the chosen interval with non-zero figures, scene files open, validation stays silent).
+#include "adapters/image_legend.h"
 #include "adapters/image_png.h"
+#include "osd_cull/plan/calibration.h"
 #include "osd_cull/scene/loaded_scene.h"
 #include "osd_cull/scene/procedural.h"
 #include "support/obj_file.h"
+#include "support/plan_calibration.h"
 #include "support/run_command.h"
 #include "support/temp_dir.h"
 #include "support/test_data.h"
@@ -19,6 +22,8 @@
 #endif
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -78,6 +83,10 @@ TEST(ViewerKeys, PTogglesThePlanAndAStageKeyTakesOverByHand) {
   EXPECT_EQ(s.cullLabel(), "backpatch(tcone)");
   EXPECT_EQ(pressKey(s, "1"), "frustum culling on");  // already by hand: nothing to say
   EXPECT_NE(viewer::keyHelp().find("  p "), std::string::npos);
+  // Where the keys differ from OpenSubdiv's glViewer, the help says why.
+  EXPECT_NE(viewer::keyHelp().find("Esc  quit (as glViewer)"), std::string::npos);
+  EXPECT_NE(viewer::keyHelp().find("its number keys set the refinement level"), std::string::npos);
+  EXPECT_NE(viewer::keyHelp().find("middle drag: pan (as glViewer)"), std::string::npos);
 }
 
 TEST(ViewerKeys, SpacePlaysTheAnimationAndRTurnsTheTable) {
@@ -121,8 +130,9 @@ TEST(ViewerPassTiming, TimesTheFirstFrameThenEveryInterval) {
   EXPECT_DOUBLE_EQ(t.cullMs(), 0.5);
   EXPECT_DOUBLE_EQ(t.pass2Ms(), 0.75);
   EXPECT_NE(t.describe(5).find("timed frame 2 (3 frames ago"), std::string::npos) << t.describe(5);
-  t.forget();  // a new cull frame: time the next frame
-  EXPECT_TRUE(t.due(3));
+  t.forget(3);             // a new cull frame made at frame 3: its pipelines are built then, so the
+  EXPECT_FALSE(t.due(3));  // per-pass times start at the frame after (no one-off work)
+  EXPECT_TRUE(t.due(4));
   viewer::PassTiming never(0);
   EXPECT_FALSE(never.due(0));
   EXPECT_FALSE(never.due(1000));
@@ -198,8 +208,25 @@ TEST(ViewerScript, AppliesStepsBeforeTheirFrame) {
   EXPECT_TRUE(player.done());
 }
 
+TEST(ViewerScript, PanMovesTheOrbitPivotWithinItsLimitsAndFResetsIt) {
+  // Middle drag pans, as in OpenSubdiv's glViewer; the script's pan:RIGHT,UP does the same.
+  viewer::ScriptPlayer player(viewer::parseScript("pan:0.5,-0.25 @1 pan:10,0"));
+  ViewState s;
+  EXPECT_EQ(player.beforeFrame(0, s).size(), 1u);
+  EXPECT_DOUBLE_EQ(s.panX, 0.5);
+  EXPECT_DOUBLE_EQ(s.panY, -0.25);
+  player.beforeFrame(1, s);
+  EXPECT_DOUBLE_EQ(s.panX, 4.0);  // clamped to 4 bounding radii
+  viewer::panCamera(s, std::nan(""), 1.0);
+  EXPECT_DOUBLE_EQ(s.panY, -0.25);  // a non-finite drag is ignored
+  EXPECT_EQ(pressKey(s, "f"), "camera reset");
+  EXPECT_DOUBLE_EQ(s.panX, 0.0);
+  EXPECT_DOUBLE_EQ(s.panY, 0.0);
+}
+
 TEST(ViewerScript, RejectsBadTokensWithTheirName) {
-  for (const char* bad : {"@x", "@3 @1", "orbit:1", "zoom:0", "zoom:abc", "bogus", "@-1"}) {
+  for (const char* bad :
+       {"@x", "@3 @1", "orbit:1", "pan:1", "pan:a,1", "zoom:0", "zoom:abc", "bogus", "@-1"}) {
     try {
       viewer::parseScript(bad);
       ADD_FAILURE() << "accepted '" << bad << "'";
@@ -217,20 +244,27 @@ struct ViewRun {
   adapters::PngImage image;
 };
 
-// Runs the viewer under Xvfb for `frames` frames with `script`, keeping the last frame.
-ViewRun view(const std::string& name, uint32_t frames, const std::string& script,
-             const std::string& extra = "--no-hud") {
+// Runs `view OPTIONS` under an Xvfb screen SCREEN with `script`, keeping the last frame.
+ViewRun viewOn(const std::string& name, const std::string& screen, const std::string& options,
+               const std::string& script, const std::string& extra) {
   const fs::path dir = fs::path(OSD_CULL_BINARY_DIR) / "test_output" / "viewer";
   fs::create_directories(dir);
   const fs::path shot = dir / (name + ".png");
   fs::remove(shot);
   ViewRun run;
   run.result = test::runCommand(
-      "xvfb-run -a -s '-screen 0 800x600x24' " + test::osdCullProgram().string() +
-      " view --width 320 --height 240 --tess 2 --validate --frames " + std::to_string(frames) +
-      " --screenshot " + shot.string() + " --script '" + script + "' " + extra);
+      "xvfb-run -a -s '-screen 0 " + screen + "x24' " + test::osdCullProgram().string() + " view " +
+      options + " --screenshot " + shot.string() + " --script '" + script + "' " + extra);
   if (run.result.exitCode() == 0 && fs::exists(shot)) run.image = adapters::readPng(shot);
   return run;
+}
+
+// Runs the viewer at 320 x 240 for `frames` frames with `script`, keeping the last frame.
+ViewRun view(const std::string& name, uint32_t frames, const std::string& script,
+             const std::string& extra = "--no-hud") {
+  return viewOn(name, "800x600",
+                "--width 320 --height 240 --tess 2 --validate --frames " + std::to_string(frames),
+                script, extra);
 }
 
 // Pixels of the status view's "visible" green (shaded): green clearly above red and blue.
@@ -303,6 +337,83 @@ TEST_F(ViewerWindow, HudIsDrawnOverTheView) {
       differ += bare.image.samples8[i] != hud.image.samples8[i];
     }
   EXPECT_GT(differ, 1000u);
+}
+
+// A run at 960 x 540, the size the HUD must leave the model room in.
+ViewRun view960(const std::string& name, const std::string& script, const std::string& extra) {
+  return viewOn(name, "1024x768", "--width 960 --height 540 --tess 2 --frames 3", script, extra);
+}
+
+size_t pixelsOfColor(const adapters::PngImage& image, const std::array<uint8_t, 3>& rgb) {
+  size_t n = 0;
+  for (size_t i = 0; i + 3 <= image.samples8.size(); i += size_t(image.channels))
+    n += std::equal(rgb.begin(), rgb.end(), image.samples8.begin() + i);
+  return n;
+}
+
+TEST_F(ViewerWindow, CompactHudLeavesTheModelRoomShowsTheKeysAndTheStatusLegend) {
+  const ViewRun bare = view960("hud960_bare", "@1 c s", "--no-hud");
+  const ViewRun hud = view960("hud960", "@1 c s", "");
+  ASSERT_EQ(bare.result.exitCode(), 0) << bare.result.output;
+  ASSERT_EQ(hud.result.exitCode(), 0) << hud.result.output;
+  ASSERT_EQ(hud.image.width, 960u);
+  ASSERT_EQ(bare.image.samples8.size(), hud.image.samples8.size());
+  size_t covered = 0;
+  uint32_t right = 0, bottom = 0;
+  const size_t c = size_t(hud.image.channels);
+  for (uint32_t y = 0; y < 540; ++y)
+    for (uint32_t x = 0; x < 960; ++x) {
+      const size_t i = (size_t(y) * 960 + x) * c;
+      if (std::equal(bare.image.samples8.begin() + i, bare.image.samples8.begin() + i + 3,
+                     hud.image.samples8.begin() + i))
+        continue;
+      ++covered, right = std::max(right, x), bottom = std::max(bottom, y);
+    }
+  std::printf("HUD: %zu pixels (%.1f%% of the window), up to x %u, y %u\n", covered,
+              100.0 * covered / (960.0 * 540.0), right, bottom);
+  EXPECT_LT(covered, 960u * 540u / 4);  // was about half
+  EXPECT_LT(right, 480u);               // the left half of the window
+  EXPECT_GT(bottom, 240u);              // the keys section below the figures, open
+  // The legend of the status colours: a swatch of each (exact colours, unshaded).
+  for (const auto& e : adapters::statusLegend()) {
+    EXPECT_GE(pixelsOfColor(hud.image, e.rgb), 60u) << e.label;
+    EXPECT_LT(pixelsOfColor(bare.image, e.rgb), pixelsOfColor(hud.image, e.rgb)) << e.label;
+  }
+}
+
+TEST_F(ViewerWindow, ThePlansCurrentChoiceAndReasonAreShownEachFrame) {
+  test::TempDir dir("viewer_plan_");
+  const fs::path calibration = dir.path() / "synthetic.txt";
+  plan::storeCalibration(test::syntheticCalibration(), calibration);
+  const ViewRun run = view("plan", 2, "", "--no-hud --plan-calibration " + calibration.string());
+  ASSERT_EQ(run.result.exitCode(), 0) << run.result.output;
+  // The line the HUD shows under the cull stages: the instance's stages and the reasons
+  // of its back-patch and occlusion effects (the viewer shows one mesh: no "+N instances").
+  const std::regex re(R"(  plan: [^\n]*: (ncone|tcone|tangent-plane)[^\n]*; back-patch on: )"
+                      R"([^\n]*; occlusion (on|off): [^\n]+)");
+  EXPECT_TRUE(std::regex_search(run.result.output, re)) << run.result.output;
+}
+
+TEST_F(ViewerWindow, PanShiftsTheModelOnScreen) {
+  const ViewRun still = view("pan_still", 2, "");
+  const ViewRun panned = view("pan_right", 2, "@0 pan:0.5,0");
+  ASSERT_EQ(still.result.exitCode(), 0) << still.result.output;
+  ASSERT_EQ(panned.result.exitCode(), 0) << panned.result.output;
+  // The centroid of the model's pixels (differing from the corner's background) moves left
+  // when the pivot moves right.
+  const auto centroidX = [](const adapters::PngImage& image) {
+    double sum = 0.0, n = 0.0;
+    const size_t c = size_t(image.channels);
+    for (uint32_t y = 0; y < image.height; ++y)
+      for (uint32_t x = 0; x < image.width; ++x) {
+        const size_t i = (size_t(y) * image.width + x) * c;
+        if (!std::equal(image.samples8.begin(), image.samples8.begin() + 3,
+                        image.samples8.begin() + i))
+          sum += x, n += 1.0;
+      }
+    return n > 0.0 ? sum / n : 0.0;
+  };
+  EXPECT_LT(centroidX(panned.image), centroidX(still.image) - 20.0);
 }
 
 // The frame lines' animation and per-pass timing figures.
@@ -380,9 +491,12 @@ TEST_F(ViewerWindow, AnimatedSceneMovesWhilePlayingAndStandsStillWhenPaused) {
     EXPECT_GT(clocks[f].culled, 0u) << "frame " << f;  // culling stays on while playing
     EXPECT_LT(clocks[f].drawn, clocks[f].total) << "frame " << f;
   }
-  // Timed frames at 0, 3 and 6; every frame shows the figures of the last one, all non-zero.
-  for (uint32_t f = 0; f < 8; ++f) {
-    EXPECT_EQ(clocks[f].timedAt, int(f / 3 * 3)) << "frame " << f;
+  // The cull frame is made at frame 0 (its pipelines built then): no per-pass figures
+  // there. Timed frames at 1, 4 and 7; every later frame shows the figures of the last one,
+  // all non-zero.
+  EXPECT_EQ(clocks[0].timedAt, -1);
+  for (uint32_t f = 1; f < 8; ++f) {
+    EXPECT_EQ(clocks[f].timedAt, int(1 + (f - 1) / 3 * 3)) << "frame " << f;
     EXPECT_GT(clocks[f].pass1, 0.0) << "frame " << f;
     EXPECT_GT(clocks[f].pyramid, 0.0) << "frame " << f;
     EXPECT_GT(clocks[f].cull, 0.0) << "frame " << f;

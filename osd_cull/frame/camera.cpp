@@ -62,6 +62,13 @@ Camera Camera::orthographic(const glm::dmat4& view, double left, double right, d
 
 double Bounds::radius() const { return 0.5 * glm::length(hi - lo); }
 
+std::array<glm::dvec3, 8> Bounds::corners() const {
+  std::array<glm::dvec3, 8> c;
+  for (int k = 0; k < 8; ++k)
+    c[k] = {(k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z};
+  return c;
+}
+
 Bounds boundsOf(std::span<const glm::dvec3> points) {
   Bounds b;
   if (points.empty()) return b;
@@ -89,6 +96,32 @@ Camera frameBounds(const Bounds& bounds, const glm::dvec3& fromDirection, const 
   const glm::dvec3 eye = bounds.center() + glm::normalize(fromDirection) * distance;
   return Camera::lookAt(eye, bounds.center(), up, fovyDegrees, width, height,
                         std::max(distance - r * 1.5, distance * 1e-3), distance + r * 1.5);
+}
+
+Camera frameTightly(const Camera& camera, std::span<const glm::dvec3> points, double fill) {
+  if (camera.projection[3][3] != 0.0 || points.empty()) return camera;  // orthographic
+  const double tanX = 1.0 / std::abs(camera.projection[0][0]);
+  const double tanY = 1.0 / std::abs(camera.projection[1][1]);
+  const glm::dmat3 rotation(camera.view);  // world to view: rows right, up, back
+  const glm::dmat3 toWorld = glm::transpose(rotation);
+  const Bounds bounds = boundsOf(points);
+  const glm::dvec3 center = bounds.center();
+  // Eye at center + d * back: a point at view-space offset o lies d - o.z in front and
+  // fits where |o.x| <= fill * tanX * (d - o.z), likewise y.
+  double d = bounds.radius() * 1e-6 + 1e-12;
+  for (const glm::dvec3& p : points) {
+    const glm::dvec3 o = rotation * (p - center);
+    d = std::max({d, o.z + std::abs(o.x) / (fill * tanX), o.z + std::abs(o.y) / (fill * tanY)});
+  }
+  double nearest = d, farthest = d;
+  for (const glm::dvec3& p : points) {
+    const double depth = d - (rotation * (p - center)).z;
+    nearest = std::min(nearest, depth);
+    farthest = std::max(farthest, depth);
+  }
+  const double fovyDegrees = glm::degrees(2.0 * std::atan(tanY));
+  return Camera::lookAt(center + toWorld[2] * d, center, toWorld[1], fovyDegrees, camera.width,
+                        camera.height, std::max(nearest * 0.5, d * 1e-4), farthest * 1.5);
 }
 
 Camera instanceCamera(const Camera& camera, const glm::dmat4& model) {

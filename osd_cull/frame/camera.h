@@ -9,6 +9,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -50,6 +51,8 @@ struct Bounds {
   glm::dvec3 hi{0.0};
   glm::dvec3 center() const { return 0.5 * (lo + hi); }
   double radius() const;  ///< half the diagonal
+  /// \brief The 8 corners (bit 0: x, bit 1: y, bit 2: z; set: hi).
+  std::array<glm::dvec3, 8> corners() const;
 };
 Bounds boundsOf(std::span<const glm::dvec3> points);
 /// \brief The bounds of both (componentwise min of lo, max of hi).
@@ -60,6 +63,14 @@ Bounds unite(const Bounds& a, const Bounds& b);
 /// the smaller field of view; near and far planes enclose the sphere.
 Camera frameBounds(const Bounds& bounds, const glm::dvec3& fromDirection, const glm::dvec3& up,
                    double fovyDegrees, uint32_t width, uint32_t height);
+
+/// \brief The perspective `camera` moved along its own view axis and aimed at the centre of
+/// the points' bounds so that every point just fits within `fill` of the image's half-extent
+/// on its tighter side (direction, up, field of view and image size kept; near and far
+/// enclose the points). Given an object's control points, the object fills the image where
+/// frameBounds' bounding sphere leaves a flat or elongated one a third of it. An
+/// orthographic camera, or no points, returns `camera` unchanged.
+Camera frameTightly(const Camera& camera, std::span<const glm::dvec3> points, double fill = 0.92);
 
 /// \brief The camera of an object placed by `model` (object → world): view · model, composed
 /// in double. Culling and drawing with it work in the object's own coordinates, so the GPU

@@ -240,8 +240,9 @@ SessionSummary SummaryAccumulator::summary() const {
   SessionSummary s = summary_;
   if (!frameMs_.empty()) {
     std::vector<double> sorted = frameMs_;
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    s.medianMs = sorted[sorted.size() / 2];
+    std::sort(sorted.begin(), sorted.end());
+    const size_t n = sorted.size();  // an even count: the mean of the middle two
+    s.medianMs = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
   }
   return s;
 }

@@ -19,6 +19,7 @@
 #include "osd_cull/scene/default_scene.h"
 #include "osd_cull/session/mesh_session.h"
 
+#include "adapters/image_legend.h"
 #include "adapters/image_png.h"
 #include "adapters/load_occluder.h"
 #include "osd_cull/bound/cull_reference.h"
@@ -240,7 +241,10 @@ void writeFrameImages(const RenderArgs& args, vulkan::Context& context,
                       const frame::RenderTarget& target, uint32_t f, bool last) {
   if (args.outDir.empty() && !last) return;
   const uint32_t width = target.width(), height = target.height();
-  const auto color = adapters::colorImage(width, height, target.readColor(context));
+  // --debug-colors: the strip shows the colours of the first patches' indices.
+  const adapters::PngImage plain = adapters::colorImage(width, height, target.readColor(context));
+  const auto color =
+      args.debugColors ? adapters::withLegend(plain, adapters::patchIndexLegend()) : plain;
   if (!args.outDir.empty()) {
     char name[32];
     std::snprintf(name, sizeof(name), "frame_%04u.png", f);
@@ -263,18 +267,25 @@ void writeFrameImages(const RenderArgs& args, vulkan::Context& context,
 void writeStatusAndPyramid(const RenderArgs& args, vulkan::Context& context,
                            frame::CullFrame& cullFrame,
                            std::span<const frame::GpuTriangleMesh* const> occluders,
-                           const frame::Camera& view, const glm::dvec3& pivot,
-                           const glm::dvec3& up) {
+                           const frame::Camera& view, const glm::dvec3& pivot, const glm::dvec3& up,
+                           std::span<const glm::dvec3> points) {
   const fs::path out = args.out;
   if (args.statusView) {
     const uint32_t width = view.width, height = view.height;
     frame::RenderTarget viewTarget(context, width, height);
+    // Without --camera both views frame the patches' control points tightly from their
+    // directions (the frame's camera fits the bounding sphere: a flat mesh got a third).
     const frame::Camera side = frame::orbit(view, pivot, up, 90.0);
+    const auto framed = [&](const frame::Camera& c) {
+      return args.camera.empty() ? frame::frameTightly(c, points) : c;
+    };
     for (const auto& [statusCamera, suffix] :
-         {std::pair{view, "_status"}, std::pair{side, "_status_side"}}) {
+         {std::pair{framed(view), "_status"}, std::pair{framed(side), "_status_side"}}) {
       cullFrame.renderStatusView(viewTarget, statusCamera, occluders);
-      adapters::writePng(sibling(out, suffix),
-                         adapters::colorImage(width, height, viewTarget.readColor(context)));
+      adapters::writePng(
+          sibling(out, suffix),
+          adapters::withLegend(adapters::colorImage(width, height, viewTarget.readColor(context)),
+                               adapters::statusLegend()));
       std::cout << "wrote " << sibling(out, suffix).string() << "\n";
     }
   }
@@ -420,7 +431,7 @@ RenderedFrames renderFrames(const RenderArgs& args, vulkan::Context& context,
     rendered.lastView = frame::orbit(start.camera, start.pivot, start.up, args.orbitDegrees * f);
     const session::SessionFrame frame = meshSession.render(rendered.lastView);
     if (frame.plan && frame.planChanged)
-      printPlanChange(lastPlan ? &*lastPlan : nullptr, *frame.plan, std::cout);
+      printPlanChange(lastPlan ? &*lastPlan : nullptr, *frame.plan, std::cout, "", args.verbose);
     if (frame.plan) lastPlan = frame.plan;
     rendered.json.push_back(printFrame(f, frame));
     writeFrameImages(args, context, target, f, f + 1 == frames);
@@ -527,7 +538,7 @@ int run(const RenderArgs& args) {
                rendered, summary, meshSession.cullFrame(), sessionOptions.frame, crackPixels);
   if (frame::CullFrame* cullFrame = meshSession.cullFrame())
     writeStatusAndPyramid(args, context, *cullFrame, gpu.occluders, rendered.lastView, start.pivot,
-                          start.up);
+                          start.up, scene.patches.points);
   return finishRun(context);
 }
 
@@ -573,6 +584,9 @@ Runner setup(CLI::App& app) {
                "also write the item buffer (patch ID + 1 per pixel, 24-bit RGB)\n"
                "as FILE_ids.png and the depth as FILE_depth.png");
   app.add_flag("--debug-colors", args->debugColors, "color each patch by its index");
+  app.add_flag("--verbose", args->verbose,
+               "print each plan whole: every stage on or off with its reason, and\n"
+               "what changed at a plan change (default: the plan's one-line headline)");
   app.add_option("--stats", args->stats, "write the per-frame figures as JSON")
       ->type_name("FILE.json");
   addDeviceOptions(app, args->device);

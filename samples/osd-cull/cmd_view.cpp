@@ -130,7 +130,7 @@ Runner setup(CLI::App& app) {
   app.add_option("--script", args->script,
                  "keys to press, e.g. \"@2 c @4 s\": `@N` waits for frame N, a key\n"
                  "name presses it (as below; also plus, minus, space, esc),\n"
-                 "orbit:YAW,PITCH and zoom:FACTOR move the camera, shot writes the\n"
+                 "orbit:YAW,PITCH, pan:RIGHT,UP and zoom:FACTOR move the camera, shot writes the\n"
                  "coming frame to FILE-frameN.png (FILE from --screenshot)")
       ->type_name("\"STEPS\"");
   app.add_flag("--no-hud", args->noHud, "start with the HUD hidden (key h)");

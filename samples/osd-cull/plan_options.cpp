@@ -92,13 +92,14 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context
 }
 
 void printPlanChange(const plan::Plan* last, const plan::Plan& p, std::ostream& out,
-                     const std::string& who) {
+                     const std::string& who, bool verbose) {
   char line[160];
   std::snprintf(line, sizeof line,
                 ", frame %llu: %s%s (predicted %.2f ms, without culling %.2f ms)\n",
                 static_cast<unsigned long long>(p.frame), p.stages.describe().c_str(),
                 p.probe ? " [re-probe]" : "", p.predicted.totalMs(), p.predictedUnculled.totalMs());
   out << (who.empty() ? "plan" : "plan of " + who) << line;
+  if (!verbose) return;
   if (last) {
     std::string changes = plan::planChange(*last, p);
     for (size_t start = 0; start < changes.size();) {

@@ -52,7 +52,8 @@ std::unique_ptr<plan::Planner> makePlanner(const PlanArgs& args, vulkan::Context
 /// \brief Prints a plan that differs from `last` (every effect when `last` is null):
 /// `plan, frame F: STAGES (predicted X ms, without culling Y ms)` and its changed effects;
 /// with `who` (a scene's "instance 'NAME' in view 'VIEW'"): `plan of WHO, frame F: ...`.
+/// Without `verbose` (render's default) the headline line alone.
 void printPlanChange(const plan::Plan* last, const plan::Plan& plan, std::ostream& out,
-                     const std::string& who = "");
+                     const std::string& who = "", bool verbose = true);
 
 }  // namespace osd_cull::cli

@@ -40,6 +40,7 @@ struct RenderArgs {
   bool statusView = false;
   std::string pyramidDir;
   bool compare = false;  ///< scene only
+  bool verbose = false;  ///< every plan with each stage's reason, not its headline alone
 };
 
 }  // namespace osd_cull::cli

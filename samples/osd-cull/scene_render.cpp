@@ -8,6 +8,7 @@
 #include "plan_options.h"
 #include "scene_source.h"
 
+#include "adapters/image_legend.h"
 #include "adapters/image_png.h"
 #include "osd_cull/error.h"
 #include "osd_cull/session/scene_player.h"
@@ -39,7 +40,7 @@ std::string frameFile(const std::string& view, const char* kind, uint32_t frame)
 
 // Prints each instance's plan of this frame that differs from the one printed last (all
 // of them at the first frame), naming instance and view.
-void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& printed) {
+void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& printed, bool verbose) {
   printed.resize(vf.plans.size());
   for (size_t i = 0; i < vf.plans.size(); ++i) {
     const plan::Plan& p = vf.plans[i];
@@ -48,7 +49,7 @@ void printScenePlans(const session::ViewFrame& vf, std::vector<plan::Plan>& prin
     if (!first && p.stages == last.stages && plan::planChange(last, p).empty()) continue;
     const std::string who =
         "instance " + std::to_string(i) + " '" + p.mesh + "' in view '" + p.view + "'";
-    printPlanChange(first ? nullptr : &last, p, std::cout, who);
+    printPlanChange(first ? nullptr : &last, p, std::cout, who, verbose);
     last = p;
   }
 }
@@ -165,9 +166,10 @@ void writeStatusView(vulkan::Context& context, session::ScenePlayer& player,
   const frame::Camera side =
       frame::orbit(vf.camera, player.bounds().center(), loaded.description.views[v].up, 120.0);
   player.cullFrame(v).renderStatusView(statusTarget, side, player.occluders());
-  adapters::writePng(
-      fs::path(outDir) / frameFile(vf.view, "status_", f),
-      adapters::colorImage(target.width(), target.height(), statusTarget.readColor(context)));
+  adapters::writePng(fs::path(outDir) / frameFile(vf.view, "status_", f),
+                     adapters::withLegend(adapters::colorImage(target.width(), target.height(),
+                                                               statusTarget.readColor(context)),
+                                          adapters::statusLegend()));
 }
 
 /// \brief The end-of-run summary of each view, named after it.
@@ -254,7 +256,7 @@ int renderScene(const RenderArgs& args) {
     const std::vector<session::ViewFrame> views = player.render(f);
     for (size_t v = 0; v < views.size(); ++v) {
       const session::ViewFrame& vf = views[v];
-      printScenePlans(vf, printed[v]);
+      printScenePlans(vf, printed[v], args.verbose);
       addToSummary(summaries[v], lastStages[v], vf);
       std::printf("view %s %s\n", vf.view.c_str(), cullFrameLine(f, vf.stats).c_str());
       nlohmann::json j = viewFrameJson(f, vf);

@@ -3,6 +3,7 @@
 #include "swapchain.h"
 #include "window.h"
 
+#include "adapters/image_legend.h"
 #include "osd_cull/error.h"
 #include "osd_cull/vk/check.h"
 #include "osd_cull/vk/context.h"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <span>
 
 namespace osd_cull::viewer {
 namespace {
@@ -58,7 +60,7 @@ void plot(const char* label, const std::deque<float>& history, float lo, float h
   char overlay[64];
   std::snprintf(overlay, sizeof(overlay), "%.1f", values.empty() ? 0.0f : values.back());
   ImGui::PlotLines(label, values.data(), static_cast<int>(values.size()), 0, overlay, lo, hi,
-                   ImVec2(260, 50));
+                   ImVec2(150, 28));
 }
 
 }  // namespace
@@ -125,6 +127,34 @@ void Hud::attach(const Swapchain& swapchain) {
   }
 }
 
+namespace {
+
+// One swatch and label per colour of `entries` (the written images' legend strip), on a line.
+void legendLine(std::span<const adapters::LegendEntry> entries) {
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const auto& e = entries[i];
+    const ImVec4 c(e.rgb[0] / 255.0f, e.rgb[1] / 255.0f, e.rgb[2] / 255.0f, 1.0f);
+    if (i > 0) ImGui::SameLine();
+    ImGui::ColorButton(e.label.c_str(), c,
+                       ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoBorder,
+                       ImVec2(10, 10));
+    ImGui::SameLine(0, 3);
+    ImGui::TextUnformatted(e.label.c_str());
+  }
+}
+
+// Folded: where the figures come from and every note.
+void details(const HudFigures& f) {
+  if (!ImGui::CollapsingHeader("details")) return;
+  ImGui::Text("%s", f.device.c_str());
+  ImGui::Text("%s", f.scene.c_str());
+  ImGui::Text("animation: %s   camera: %s", f.animation.c_str(), f.camera.c_str());
+  ImGui::TextWrapped("per pass: %s", f.timing.c_str());
+  for (const auto& note : f.notes) ImGui::TextWrapped("%s", note.c_str());
+}
+
+}  // namespace
+
 void Hud::build(const HudFigures& f, const std::string& keys, bool show) {
   const uint32_t drawn = f.drawnPass1 + f.drawnPass2;
   push(cullRate_, f.patches
@@ -136,27 +166,26 @@ void Hud::build(const HudFigures& f, const std::string& keys, bool show) {
   ImGui::NewFrame();
   if (show) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowBgAlpha(0.75f);
+    ImGui::SetNextWindowBgAlpha(0.6f);
     ImGui::Begin("osd_cull", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-    ImGui::Text("%s", f.device.c_str());
-    ImGui::Text("%s", f.scene.c_str());
-    ImGui::Separator();
-    ImGui::Text("cull: %s", f.cull.c_str());
-    ImGui::Text("tessellation: %s   view: %s", f.tessellation.c_str(), f.mode.c_str());
-    ImGui::Text("animation: %s   camera: %s", f.animation.c_str(), f.camera.c_str());
-    ImGui::Text("patches %u, drawn %u (pass 1: %u, pass 2: %u)", f.patches, drawn, f.drawnPass1,
-                f.drawnPass2);
-    ImGui::Text("culled: frustum %u, back-patch %u, occlusion %u", f.culledFrustum,
-                f.culledBackPatch, f.culledOcclusion);
-    ImGui::Text("TES invocations %llu", static_cast<unsigned long long>(f.tesInvocations));
-    ImGui::Text("ms: pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f; frame %.1f", f.pass1Ms,
-                f.pyramidMs, f.cullMs, f.pass2Ms, f.frameMs);
-    ImGui::TextWrapped("per pass: %s", f.timing.c_str());
-    for (const auto& note : f.notes) ImGui::TextWrapped("%s", note.c_str());
-    plot("cull rate %", cullRate_, 0.0f, 100.0f);
-    plot("frame ms", frameMs_, 0.0f,
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 420.0f);  // a compact window
+    ImGui::Text("cull: %s   tess: %s   %s", f.cull.c_str(), f.tessellation.c_str(), f.mode.c_str());
+    if (!f.plan.empty()) ImGui::TextWrapped("plan: %s", f.plan.c_str());
+    ImGui::Text("drawn %u of %u (%u + %u); culled F %u B %u O %u; TES %llu", drawn, f.patches,
+                f.drawnPass1, f.drawnPass2, f.culledFrustum, f.culledBackPatch, f.culledOcclusion,
+                static_cast<unsigned long long>(f.tesInvocations));
+    ImGui::Text("ms: frame %.1f; pass 1 %.2f, pyramid %.2f, cull %.2f, pass 2 %.2f", f.frameMs,
+                f.pass1Ms, f.pyramidMs, f.cullMs, f.pass2Ms);
+    plot("cull %", cullRate_, 0.0f, 100.0f);
+    ImGui::SameLine();
+    plot("ms", frameMs_, 0.0f,
          std::max(1.0f, *std::max_element(frameMs_.begin(), frameMs_.end()) * 1.1f));
-    if (ImGui::CollapsingHeader("keys")) ImGui::TextUnformatted(keys.c_str());
+    if (f.legend == HudFigures::Legend::Status) legendLine(adapters::statusLegend());
+    if (f.legend == HudFigures::Legend::PatchType) legendLine(adapters::patchTypeLegend());
+    details(f);
+    if (ImGui::CollapsingHeader("keys", ImGuiTreeNodeFlags_DefaultOpen))
+      ImGui::TextUnformatted(keys.c_str());
+    ImGui::PopTextWrapPos();
     ImGui::End();
   }
   ImGui::Render();

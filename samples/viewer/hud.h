@@ -34,6 +34,8 @@ struct HudFigures {
   uint32_t culledFrustum = 0, culledBackPatch = 0, culledOcclusion = 0;
   uint64_t tesInvocations = 0;
   double pass1Ms = 0, pyramidMs = 0, cullMs = 0, pass2Ms = 0, frameMs = 0;
+  std::string plan;  ///< the effect plan's current choice and its reason; empty without a plan
+  enum class Legend { None, Status, PatchType } legend = Legend::None;  ///< colours shown
   std::vector<std::string> notes;
   /// \brief The patch counts of a frame: drawn per pass, culled per stage, TES invocations.
   void counts(const frame::CullFrameStats& s) {
@@ -56,7 +58,9 @@ class Hud {
 
   /// \brief Framebuffers for the swapchain's current images (after a resize).
   void attach(const Swapchain& swapchain);
-  /// \brief Builds this frame's interface from `figures`; `show` false draws nothing.
+  /// \brief Builds this frame's interface from `figures`: a compact window (cull stages,
+  /// the plan's choice, counts, ms, two small plots, the legend of the colours shown),
+  /// details folded, and `keys` in a section open on first start; `show` false draws nothing.
   void build(const HudFigures& figures, const std::string& keys, bool show);
   /// \brief Records the interface into `cmd` over swapchain image `image`, which must be in
   /// COLOR_ATTACHMENT_OPTIMAL; it stays in that layout.

@@ -88,7 +88,7 @@ std::optional<std::string> pressKey(ViewState& s, std::string_view key) {
            std::string((s.freezeCull = !s.freezeCull) ? "frozen" : "follows the view");
   if (key == "h") return "HUD " + onOff(s.showHud = !s.showHud);
   if (key == "f") {
-    s.yawDegrees = s.pitchDegrees = 0.0;
+    s.yawDegrees = s.pitchDegrees = s.panX = s.panY = 0.0;
     s.zoom = 1.0;
     return "camera reset";
   }
@@ -114,8 +114,19 @@ std::string keyHelp() {
          "  r        turntable (the orbit camera turns) on/off\n"
          "  v        look through the scene's camera (and its path) / the orbit camera\n"
          "  z        freeze the cull camera and fly around what it culled\n"
-         "  f        reset the camera;  h  HUD on/off;  q / Esc  quit\n"
-         "  mouse    left drag: orbit, right drag or wheel: zoom\n";
+         "  f        reset the camera;  h  HUD on/off;  q / Esc  quit (as glViewer)\n"
+         "  mouse    left drag: orbit, middle drag: pan (as glViewer), right drag or wheel:\n"
+         "           zoom\n"
+         "Unlike OpenSubdiv's glViewer: its number keys set the refinement level; here 1 2 3\n"
+         "switch the cull stages, the stages being what this viewer is about, and + / -\n"
+         "set the tessellation level (the patches are refined once, adaptively, at load).\n";
+}
+
+std::string keyHelpCompact() {
+  return "+/- tess  a adaptive  p plan  1 2 3 stages  c all  m method\n"
+         "s status colors  t type colors  w wireframe  space play\n"
+         "r turntable  v scene camera  z freeze cull  f reset  h HUD\n"
+         "q/Esc quit  drag: orbit  middle: pan  right/wheel: zoom\n";
 }
 
 std::vector<ScriptStep> parseScript(std::string_view text) {
@@ -136,12 +147,14 @@ std::vector<ScriptStep> parseScript(std::string_view text) {
         throw ScriptError("--script: '" + token + "' comes after @" + std::to_string(lastFrame) +
                           ": frames must not decrease");
       lastFrame = step.frame;
-    } else if (token.starts_with("orbit:")) {
-      const std::string args = token.substr(6);
+    } else if (token.starts_with("orbit:") || token.starts_with("pan:")) {
+      const bool orbit = token.starts_with("orbit:");
+      const std::string args = token.substr(orbit ? 6 : 4);
       const size_t comma = args.find(',');
       if (comma == std::string::npos)
-        throw ScriptError("--script: '" + token + "': expected orbit:YAW,PITCH");
-      step.kind = ScriptStep::Kind::Orbit;
+        throw ScriptError("--script: '" + token + "': expected " +
+                          (orbit ? "orbit:YAW,PITCH" : "pan:RIGHT,UP"));
+      step.kind = orbit ? ScriptStep::Kind::Orbit : ScriptStep::Kind::Pan;
       step.a = parseNumber(args.substr(0, comma), token);
       step.b = parseNumber(args.substr(comma + 1), token);
     } else if (token == "shot") {
@@ -155,7 +168,8 @@ std::vector<ScriptStep> parseScript(std::string_view text) {
       ViewState scratch = probe;
       if (!pressKey(scratch, token))
         throw ScriptError("--script: '" + token +
-                          "' is not a key, orbit:YAW,PITCH, zoom:F, shot or @FRAME "
+                          "' is not a key, orbit:YAW,PITCH, pan:RIGHT,UP, zoom:F, shot or "
+                          "@FRAME "
                           "(`osd-cull view --help` lists the keys)");
       step.key = token;
     }
@@ -173,6 +187,9 @@ std::vector<std::string> ScriptPlayer::beforeFrame(uint32_t frame, ViewState& st
     } else if (step.kind == ScriptStep::Kind::Orbit) {
       orbitCamera(state, step.a, step.b);
       lines.push_back("orbit " + std::to_string(step.a) + ", " + std::to_string(step.b));
+    } else if (step.kind == ScriptStep::Kind::Pan) {
+      panCamera(state, step.a, step.b);
+      lines.push_back("pan " + std::to_string(state.panX) + ", " + std::to_string(state.panY));
     } else if (step.kind == ScriptStep::Kind::Zoom) {
       zoomCamera(state, step.a);
       lines.push_back("zoom " + std::to_string(state.zoom));
@@ -202,7 +219,8 @@ std::string screenshotPath(const std::string& screenshot, uint32_t frame) {
 }
 
 bool PassTiming::due(uint32_t frame) const {
-  return interval_ != 0 && (!last_ || frame >= *last_ + interval_);
+  if (interval_ == 0) return false;
+  return last_ ? frame >= *last_ + interval_ : !madeAt_ || frame != *madeAt_;
 }
 
 void PassTiming::record(uint32_t frame, double pass1Ms, double pyramidMs, double cullMs,
@@ -232,6 +250,12 @@ void advanceAnimation(ViewState& state, uint32_t frameCount) {
 void orbitCamera(ViewState& state, double yawDegrees, double pitchDegrees) {
   state.yawDegrees = std::fmod(state.yawDegrees + yawDegrees, 360.0);
   state.pitchDegrees = std::clamp(state.pitchDegrees + pitchDegrees, -85.0, 85.0);
+}
+
+void panCamera(ViewState& state, double right, double up) {
+  if (!std::isfinite(right) || !std::isfinite(up)) return;
+  state.panX = std::clamp(state.panX + right, -4.0, 4.0);
+  state.panY = std::clamp(state.panY + up, -4.0, 4.0);
 }
 
 void zoomCamera(ViewState& state, double factor) {

@@ -44,6 +44,9 @@ struct ViewState {
   double yawDegrees = 0.0;    ///< camera orbit about the up axis
   double pitchDegrees = 0.0;  ///< and about the camera's right axis, in [-85, 85]
   double zoom = 1.0;          ///< eye distance scale, in [0.05, 20]
+  /// Pan of the orbit pivot along the view's right and up axes (middle drag, as in
+  /// OpenSubdiv's glViewer), in units of the framed bounding radius, each in [-4, 4].
+  double panX = 0.0, panY = 0.0;
 
   bool anyCull() const { return frustum || backPatch || occlusion; }
   /// \brief "plan", "frustum+backpatch(tcone)+hiz", or "none".
@@ -59,12 +62,18 @@ class PassTiming {
   /// \brief Frames between timed frames; 0: never.
   uint32_t interval() const { return interval_; }
   /// \brief True when frame `frame` should be timed: no timed frame since the cull frame
-  /// was made (forget()), or `interval` frames since the last one.
+  /// was made (forget()) and `frame` is not the frame that made it (its pipelines and
+  /// passes are built then: one-off work that is no pass's time), or `interval` frames
+  /// since the last one.
   bool due(uint32_t frame) const;
   /// \brief Keeps the figures of timed frame `frame`.
   void record(uint32_t frame, double pass1Ms, double pyramidMs, double cullMs, double pass2Ms);
-  /// \brief Drops the figures (the cull frame they were measured on is gone).
-  void forget() { last_.reset(); }
+  /// \brief Drops the figures: the cull frame they were measured on is gone; a new one is
+  /// made at frame `madeAt`.
+  void forget(uint32_t madeAt) {
+    last_.reset();
+    madeAt_ = madeAt;
+  }
   /// \brief The frame the figures come from, if any.
   std::optional<uint32_t> lastTimed() const { return last_; }
   double pass1Ms() const { return pass1Ms_; }
@@ -78,6 +87,7 @@ class PassTiming {
  private:
   uint32_t interval_;
   std::optional<uint32_t> last_;
+  std::optional<uint32_t> madeAt_;
   double pass1Ms_ = 0, pyramidMs_ = 0, cullMs_ = 0, pass2Ms_ = 0;
 };
 
@@ -89,16 +99,19 @@ const std::vector<std::string>& backPatchMethods();
 /// Changes to the cull stages are reported so the caller rebuilds its cull frame.
 std::optional<std::string> pressKey(ViewState& state, std::string_view key);
 
-/// \brief The key bindings, one line each, for --help and the HUD.
+/// \brief The key bindings, one line each, for --help and the start of a run, with where
+/// they differ from OpenSubdiv's glViewer and why.
 std::string keyHelp();
+/// \brief The same bindings in four short lines, for the HUD's keys section.
+std::string keyHelpCompact();
 
 /// \brief One step of a --script: press a key, drag the camera, wait for a frame, or keep
 /// the image of the coming frame.
 struct ScriptStep {
-  enum class Kind { Key, Orbit, Zoom, WaitFrame, Shot } kind = Kind::Key;
+  enum class Kind { Key, Orbit, Pan, Zoom, WaitFrame, Shot } kind = Kind::Key;
   std::string key;     ///< Kind::Key
-  double a = 0.0;      ///< Orbit: yaw degrees; Zoom: factor
-  double b = 0.0;      ///< Orbit: pitch degrees
+  double a = 0.0;      ///< Orbit: yaw degrees; Pan: right (bounding radii); Zoom: factor
+  double b = 0.0;      ///< Orbit: pitch degrees; Pan: up (bounding radii)
   uint32_t frame = 0;  ///< WaitFrame: the frame the following steps apply before
 };
 
@@ -145,5 +158,7 @@ void advanceAnimation(ViewState& state, uint32_t frameCount);
 /// \brief Applies a camera drag (degrees) and zoom factor within the state's limits.
 void orbitCamera(ViewState& state, double yawDegrees, double pitchDegrees);
 void zoomCamera(ViewState& state, double factor);
+/// \brief Pans the orbit pivot by (`right`, `up`) bounding radii within the state's limits.
+void panCamera(ViewState& state, double right, double up);
 
 }  // namespace osd_cull::viewer

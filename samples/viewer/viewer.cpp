@@ -62,8 +62,15 @@ frame::Camera viewCamera(const ViewState& s, const frame::Bounds& bounds, const 
       glm::rotate(glm::dmat4(1.0), glm::radians(s.pitchDegrees), glm::normalize(right));
   offset = glm::dvec3(yaw * pitch * glm::dvec4(offset, 0.0)) * s.zoom;
   const double d = glm::length(offset), r = bounds.radius();
-  return frame::Camera::lookAt(pivot + offset, pivot, up, 40.0, width, height,
-                               std::max(d - r, (d + r) * 1e-4), d + r);
+  // Middle-drag pan: the pivot moves along the view's right and up axes (scaled by zoom,
+  // so a drag moves the model about as far on screen at any distance).
+  glm::dvec3 viewRight = glm::cross(-offset, up);
+  viewRight = glm::length(viewRight) > 1e-12 * d ? glm::normalize(viewRight) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 viewUp = glm::cross(viewRight, -offset / d);
+  const glm::dvec3 shift = (s.panX * viewRight + s.panY * viewUp) * r * s.zoom;
+  const double far = std::sqrt(d * d + glm::dot(shift, shift)) + r;  // the box from the eye
+  return frame::Camera::lookAt(pivot + shift + offset, pivot + shift, up, 40.0, width, height,
+                               std::max(d - r, (d + r) * 1e-4), far);
 }
 
 frame::RenderOptions renderOptions(const ViewState& s, const vulkan::Context& context,
@@ -277,7 +284,7 @@ class ViewerLoop {
         continue;
       }
       if (r != VK_SUBOPTIMAL_KHR) OSD_CULL_VK(r);
-      display_.hud.build(figures_, keys_, state_.showHud);
+      display_.hud.build(figures_, keyHelpCompact(), state_.showHud);
       display_.window.setUiCapture(display_.hud.wantsMouse(), display_.hud.wantsKeyboard());
       const bool last = options_.frames != 0 && f + 1 == options_.frames;
       const bool capture = (last || shot) && options_.screenshot.has_value();
@@ -316,6 +323,7 @@ class ViewerLoop {
       if (auto line = pressKey(state_, k)) std::cout << "key: " << *line << "\n";
     orbitCamera(state_, -0.3 * input.orbitX, -0.3 * input.orbitY);
     zoomCamera(state_, std::pow(1.01, input.zoomY) * std::pow(0.9, input.wheel));
+    panCamera(state_, -0.005 * input.panX, 0.005 * input.panY);  // the model follows the mouse
     return shot;
   }
 
@@ -353,7 +361,7 @@ class ViewerLoop {
       std::cout << "note: no effect plan in this viewer (no calibration of this device, or "
                    "--cull given): the stages are chosen by hand\n";
     }
-    makePlayerFor(render, extent);
+    makePlayerFor(render, extent, f);
     const uint32_t sceneFrame = description_.settings.frameStart + state_.sceneFrame;
     if (shownFrame_ != sceneFrame) {
       player_->seek(sceneFrame);
@@ -373,7 +381,7 @@ class ViewerLoop {
 
   /// \brief Makes the player again when it is missing or the cull stages changed: they
   /// are fixed when a CullFrame is made (with none, it culls nothing and draws every patch).
-  void makePlayerFor(const frame::RenderOptions& render, VkExtent2D extent) {
+  void makePlayerFor(const frame::RenderOptions& render, VkExtent2D extent, uint32_t f) {
     if (player_ && state_.cullLabel() == builtCull_) return;
     dropPlayer();
     scene::ViewDescription& view = description_.views.front();
@@ -390,7 +398,7 @@ class ViewerLoop {
     statusTarget_ = std::make_unique<frame::RenderTarget>(context_, extent.width, extent.height);
     builtCull_ = state_.cullLabel();
     shownFrame_.reset();
-    timing_.forget();
+    timing_.forget(f);
   }
 
   /// \brief The HUD's lines that describe the view: stages, tessellation, animation and
@@ -410,6 +418,8 @@ class ViewerLoop {
                           ? "scene camera '" + description_.views.front().name + "'"
                           : std::string("orbit") + (state_.turntable ? " (turntable)" : "");
     figures_.notes.clear();
+    figures_.plan.clear();
+    figures_.legend = state_.typeColors ? HudFigures::Legend::PatchType : HudFigures::Legend::None;
   }
 
   /// \brief The plan draws the frame (session::ScenePlayer with a planner): the stages it
@@ -427,12 +437,27 @@ class ViewerLoop {
     figures_.timing = timed ? "GPU timestamps of this frame" : "wall clock (drawn without culling)";
     figures_.cull = "plan";
     for (const plan::Plan& p : view.plans) addPlanNotes(p);
+    figures_.plan = planLine(view.plans);
     figures_.mode = view.culled ? "culled draw (plan)" : "all patches (the plan culls nothing)";
     if (state_.statusColors || state_.freezeCull)
       figures_.notes.push_back(
           "status colors and the frozen cull camera need the stages by "
           "hand (1, 2, 3 or c)");
     return &player_->target(0);
+  }
+
+  /// \brief The HUD's line of the plan: the first instance's current choice and the reason
+  /// of its back-patch and occlusion effects (first clause), and how many more instances.
+  static std::string planLine(const std::vector<plan::Plan>& plans) {
+    if (plans.empty()) return "";
+    const plan::Plan& p = plans.front();
+    std::string line = p.mesh + ": " + p.stages.describe() + (p.probe ? " [re-probe]" : "");
+    for (const auto& [kind, e] : p.effects())
+      if (kind == plan::EffectKind::BackPatch || kind == plan::EffectKind::Occlusion)
+        line += std::string("; ") + plan::toString(kind) + (e->on ? " on: " : " off: ") +
+                e->reason.substr(0, e->reason.find(';'));
+    if (plans.size() > 1) line += " (+" + std::to_string(plans.size() - 1) + " instances: details)";
+    return line;
   }
 
   /// \brief The HUD's notes for one instance's plan: its stages and predicted times, then
@@ -480,6 +505,7 @@ class ViewerLoop {
       // Every patch from the current camera, colored by what the (frozen) cull camera did.
       cullFrame.renderStatusView(*statusTarget_, camera, player_->occluders());
       figures_.mode = "status colors";
+      figures_.legend = HudFigures::Legend::Status;
       return statusTarget_.get();
     }
     figures_.mode = state_.anyCull() ? "culled draw" : "all patches";
@@ -593,6 +619,7 @@ class ViewerLoop {
         figures_.culledOcclusion, static_cast<unsigned long long>(figures_.tesInvocations),
         figures_.frameMs, state_.sceneFrame, frameCount_, state_.playing ? "playing" : "paused",
         figures_.pass1Ms, figures_.pyramidMs, figures_.cullMs, figures_.pass2Ms, timedAt.c_str());
+    if (!figures_.plan.empty()) std::printf("  plan: %s\n", figures_.plan.c_str());  // as the HUD
   }
 
   /// \brief Writes the read-back window image as the script's shot of frame `f` and/or

@@ -116,6 +116,9 @@ void Window::onCursor(GLFWwindow* w, double x, double y) {
     self->input_.orbitY += dy;
   } else if (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS) {
     self->input_.zoomY += dy;
+  } else if (glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS) {
+    self->input_.panX += dx;
+    self->input_.panY += dy;
   }
 }
 

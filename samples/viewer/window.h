@@ -19,6 +19,7 @@ struct WindowInput {
   std::vector<std::string> keys;      ///< "a", "plus", "space", "esc", ...
   double orbitX = 0.0, orbitY = 0.0;  ///< left-button drag, pixels
   double zoomY = 0.0;                 ///< right-button drag, pixels
+  double panX = 0.0, panY = 0.0;      ///< middle-button drag, pixels
   double wheel = 0.0;                 ///< wheel steps
 };
 
