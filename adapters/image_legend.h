@@ -4,7 +4,7 @@
 /// colour the image uses (status views, patch-type colours, --debug-colors), drawn with a
 /// built-in 5x7 bitmap font, so every picture explains its colours by itself.
 
-#include "adapters/image_png.h"
+#include "image_png.h"  // relative: also resolves where the headers are installed
 
 #include <array>
 #include <cstdint>
