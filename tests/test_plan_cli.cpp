@@ -175,8 +175,12 @@ TEST_F(PlanCommand, RenderPrintsOneLinePerFrameThePlansHeadlineAndAClosingSummar
   const auto v = run(base + " --verbose");
   ASSERT_EQ(v.exitCode(), 0) << v.output;
   EXPECT_EQ(linesStartingWith(v.output, "frame "), 3u) << v.output;
+  // The whole plan each time it is printed: at frame 0 and at a change (the plan is timing-
+  // driven, so a change within 3 frames can happen).
+  const auto plans = linesStartingWith(v.output, "plan, frame ");
+  EXPECT_GE(plans, 1u) << v.output;
   for (const char* stage : {"  frustum ", "  back-patch ", "  occlusion ", "  update off: "})
-    EXPECT_EQ(linesStartingWith(v.output, stage), 1u) << stage << "\n" << v.output;
+    EXPECT_EQ(linesStartingWith(v.output, stage), plans) << stage << "\n" << v.output;
 }
 
 class PlanCommandCache : public test::VkTest {};
