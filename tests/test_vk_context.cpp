@@ -145,6 +145,36 @@ TEST_F(VkTest, UploadThenReadbackRoundTrips) {
   EXPECT_THROW(vulkan::upload<uint32_t>(context(), buffer, values, 1), Error);
 }
 
+// A fresh buffer filled by initializeGenerated holds what the pieces wrote, through the
+// direct path where the memory is host-coherent (lavapipe: device-local memory is) and
+// through staging otherwise (an Upload buffer is coherent too; the staging path is what
+// uploadGenerated tests above); the pieces are whole kUploadChunkBytes from offset 0.
+TEST_F(VkTest, InitializeGeneratedFillsAFreshBufferPieceByPiece) {
+  const VkDeviceSize bytes = vulkan::kUploadChunkBytes + 4096;  // two pieces
+  vulkan::Buffer buffer(context(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  std::vector<VkDeviceSize> offsets;
+  vulkan::initializeGenerated(context(), buffer, bytes,
+                              [&](std::span<std::byte> piece, VkDeviceSize offset) {
+                                offsets.push_back(offset);
+                                auto* words = reinterpret_cast<uint32_t*>(piece.data());
+                                for (size_t i = 0; i < piece.size() / 4; ++i)
+                                  words[i] = uint32_t(offset / 4 + i) * 3u + 1u;
+                              });
+  EXPECT_EQ(offsets, (std::vector<VkDeviceSize>{0, vulkan::kUploadChunkBytes}));
+  const auto back = vulkan::readback<uint32_t>(context(), buffer);
+  ASSERT_EQ(back.size(), bytes / 4);
+  size_t wrong = 0;
+  for (size_t i = 0; i < back.size(); ++i) wrong += back[i] != uint32_t(i) * 3u + 1u;
+  EXPECT_EQ(wrong, 0u);
+  // lavapipe's single memory type is host-visible and coherent: the direct path ran.
+  if (context().info().name.find("llvmpipe") != std::string::npos) {
+    EXPECT_TRUE(buffer.hostCoherent());
+  }
+  EXPECT_THROW(vulkan::initializeGenerated(context(), buffer, bytes + 4,
+                                           [](std::span<std::byte>, VkDeviceSize) {}),
+               Error);
+}
+
 TEST_F(VkTest, FailedVulkanCallNamesTheCallAndResult) {
   try {
     vulkan::check(VK_ERROR_DEVICE_LOST, "vkQueueSubmit(queue, ...)");

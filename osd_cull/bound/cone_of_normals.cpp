@@ -53,25 +53,59 @@ struct DirectionCone {
 // one from `axis`, widened by its uncertainty), and in *farthest the last index that
 // reaches it (left as it is when no angle compares >= 0, i.e. all are NaN).
 //
-// Exhaustive: one atan2 per vector, the definition. Filtered (ConeSearch::Filtered, when
-// every slack is 0, as for TCONE and the Gregory cones): the same value and index with
-// atan2 (and the square root) only for the few vectors that can be the largest, identified
-// by the key k(θ) = sin²θ for d >= 0 and 2 - sin²θ for d < 0, computed as
-// s2 / (s2 + d²) from s2 = |a x u|², d = a . u. Proof that it returns the same: k is
-// increasing on [0, π] with |k'| = |sin 2θ| <= min(2θ, 1), and k(θ) >= (2θ/π)² on
-// [0, π/2], k >= 1 beyond. Let j be an index of the largest computed angle
-// A_j = atan2(sqrt(s2_j), d_j) and m one of the largest key. atan2 and sqrt are within a few
-// ulps (relative error e <= 1e-15) of the exact angle θ_i of the computed terms, so
-// θ_j >= θ_m (1 - 2e), hence k(θ_m) - k(θ_j) <= 2e θ_m min(2θ_m, 1) <= 10 e k(θ_m); the
-// computed keys are within 4 ulps of k. So key_j > key_m (1 - 1e-9): every index that can
-// reach the largest angle (ties included) passes the filter, in the same order, and the
-// vectors filtered out have smaller angles and could never be the last to reach it. A NaN
-// key falls back to the exhaustive loop.
-double widestExhaustive(const glm::dvec3& axis, std::span<const glm::dvec3> units,
-                        std::span<const double> slack, size_t* farthest) {
+// Exhaustive: one atan2 (and one asin for an uncertain direction) per vector, the
+// definition. Filtered: the same value and index with atan2 and asin only for the few
+// vectors that can be the largest, identified by a key computed with one square root and
+// no trigonometry. With θ the angle to the axis (sin θ = sqrt(s2), cos θ = d for
+// s2 = |a x u|², d = a . u) and σ the slack (sin σ = e / |v|, cos σ = sqrt(1 - sin²σ)),
+// x = θ + σ lies in [0, 3π/2] and the key is
+//   k(x) = sin x = sin θ cos σ + cos θ sin σ      where cos x = cos θ cos σ - sin θ sin σ >= 0,
+//   k(x) = 2 - sin x                              otherwise,
+// increasing on [0, 3π/2] and continuous at π/2. Proof that it keeps every index that can
+// be the largest: while cos x >= 0 (so θ <= π/2 and both products are >= 0) the key is a
+// sum of non-negative products, within a few ulps *relative* of sin x even for tiny angles;
+// beyond, k >= 1 and its absolute error of a few ulps is relative too. The computed angle
+// A_i = atan2(..) + asin(..) is within a few ulps (relative error e <= 1e-15) of the exact x_i
+// of the computed terms, and |k'| <= 1, k(x) >= 2x/π on [0, π/2], so k(A_i) is within
+// (say) 10 e of k(x_i) relatively, and so of the computed key. Let j be an index of the
+// largest computed angle and m one of the largest key: A_j >= A_m gives k(A_j) >= k(A_m),
+// hence key_j >= key_m (1 - 40 e) > key_m (1 - 1e-9): every index that can reach the largest
+// angle (ties included) passes the filter, in the same order, and the vectors filtered out
+// have smaller angles and could never be the last to reach it. A NaN key falls back to the
+// exhaustive loop. (Before session 14 only vectors without slack were filtered, so NCONE,
+// whose 36 coefficients all carry an error bound, took 360 atan2 and 36 asin per patch.)
+struct Directions {
+  std::vector<glm::dvec3> units;
+  std::vector<double> x, y, z;   // the units again, structure of arrays (the key loop)
+  std::vector<double> sinSlack;  // e_i / |v_i|, 0 for an exact vector
+  std::vector<double> cosSlack;  // sqrt(1 - sinSlack²)
+  std::vector<double> slack;     // asin(sinSlack), NaN until needed (filtered search)
+  std::vector<double> s2, d, key;
+};
+
+double slackOf(Directions& dir, size_t i) {
+  double& s = dir.slack[i];
+  // asin(0) is +0, as the exhaustive loop's.
+  if (std::isnan(s)) s = dir.sinSlack[i] == 0.0 ? 0.0 : std::asin(dir.sinSlack[i]);
+  return s;
+}
+
+// |axis x u|² and axis . u of direction i, as angleTerms() forms them from glm::cross and
+// glm::dot (the same products and sums in the same order), on the arrays: one expression
+// for both searches, so that they agree bit for bit however the compiler contracts it.
+inline void termsOf(double ax, double ay, double az, double x, double y, double z, double* s2,
+                    double* d) {
+  const double cx = ay * z - y * az, cy = az * x - z * ax, cz = ax * y - x * ay;
+  *s2 = cx * cx + cy * cy + cz * cz;
+  *d = ax * x + ay * y + az * z;
+}
+
+double widestExhaustive(const glm::dvec3& axis, Directions& dir, size_t* farthest) {
   double worst = 0.0;
-  for (size_t i = 0; i < units.size(); ++i) {
-    const double a = angleBetween(axis, units[i]) + slack[i];
+  for (size_t i = 0; i < dir.units.size(); ++i) {
+    double s2, d;
+    termsOf(axis.x, axis.y, axis.z, dir.x[i], dir.y[i], dir.z[i], &s2, &d);
+    const double a = std::atan2(std::sqrt(s2), d) + slackOf(dir, i);
     if (a >= worst) worst = a, *farthest = i;
   }
   return worst;
@@ -79,24 +113,46 @@ double widestExhaustive(const glm::dvec3& axis, std::span<const glm::dvec3> unit
 
 constexpr double kPseudoAngleFilter = 1e-9;
 
-double widestFiltered(const glm::dvec3& axis, std::span<const glm::dvec3> units,
-                      std::span<const double> slack, std::span<AngleTerms> terms,
-                      std::span<double> pseudo, size_t* farthest) {
-  double top = 0.0;
-  for (size_t i = 0; i < units.size(); ++i) {
-    const AngleTerms t = angleTerms(axis, units[i]);
-    const double sin2 = t.s2 / (t.s2 + t.d * t.d);
-    const double q = t.d >= 0.0 ? sin2 : 2.0 - sin2;
-    if (!(q >= 0.0)) return widestExhaustive(axis, units, slack, farthest);
-    terms[i] = t;
-    pseudo[i] = q;
-    top = std::max(top, q);
+// The key of every direction, and the largest key (NaN if any key is not >= 0, NaN
+// included): a branch-free loop over arrays that the compiler vectorizes (this file is
+// built with -fno-math-errno -fno-trapping-math: sqrt without an errno path, the selects
+// if-converted; out of line, where the vectorizer sees plain pointers; cloned for AVX2,
+// whose results are the same: no contraction into FMA).
+[[gnu::noinline, gnu::target_clones("avx2", "default")]] double directionKeys(
+    double ax, double ay, double az, const double* __restrict x, const double* __restrict y,
+    const double* __restrict z, const double* __restrict cs, const double* __restrict ss,
+    double* __restrict s2, double* __restrict dd, double* __restrict key, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    double s, d;
+    termsOf(ax, ay, az, x[i], y[i], z[i], &s, &d);
+    const double sinTheta = std::sqrt(s);
+    const double sinX = sinTheta * cs[i] + d * ss[i], beyond = 2.0 - sinX;
+    const bool within = d * cs[i] - sinTheta * ss[i] >= 0.0;
+    s2[i] = s;
+    dd[i] = d;
+    key[i] = within ? sinX : beyond;
   }
+  double top = 0.0;
+  size_t bad = 0;  // keys not >= 0 (NaN included)
+  for (size_t i = 0; i < n; ++i) {
+    top = top < key[i] ? key[i] : top;
+    bad += key[i] >= 0.0 ? 0 : 1;
+  }
+  return bad == 0 ? top : std::numeric_limits<double>::quiet_NaN();
+}
+
+double widestFiltered(const glm::dvec3& axis, Directions& dir, size_t* farthest) {
+  const size_t n = dir.units.size();
+  const double top = directionKeys(axis.x, axis.y, axis.z, dir.x.data(), dir.y.data(), dir.z.data(),
+                                   dir.cosSlack.data(), dir.sinSlack.data(), dir.s2.data(),
+                                   dir.d.data(), dir.key.data(), n);
+  if (std::isnan(top)) return widestExhaustive(axis, dir, farthest);
+  const double *key = dir.key.data(), *s2 = dir.s2.data(), *dd = dir.d.data();
   const double threshold = top * (1.0 - kPseudoAngleFilter);
   double worst = 0.0;
-  for (size_t i = 0; i < units.size(); ++i) {
-    if (pseudo[i] < threshold) continue;
-    const double a = std::atan2(std::sqrt(terms[i].s2), terms[i].d) + slack[i];
+  for (size_t i = 0; i < n; ++i) {
+    if (key[i] < threshold) continue;
+    const double a = std::atan2(std::sqrt(s2[i]), dd[i]) + slackOf(dir, i);
     if (a >= worst) worst = a, *farthest = i;
   }
   return worst;
@@ -110,30 +166,38 @@ double widestFiltered(const glm::dvec3& axis, std::span<const glm::dvec3> units,
 DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<const double> errors,
                               ConeSearch search) {
   // Scratch buffers of this thread, reused from call to call (no allocation per patch).
-  thread_local std::vector<glm::dvec3> units;
-  thread_local std::vector<double> slack;  // angular uncertainty of each direction
-  thread_local std::vector<AngleTerms> terms;
-  thread_local std::vector<double> pseudo;
-  units.clear();
-  slack.clear();
+  thread_local Directions dir;
+  dir.units.clear();
+  dir.sinSlack.clear();
   for (size_t i = 0; i < vectors.size(); ++i) {
     const double len = glm::length(vectors[i]);
     if (len == 0.0 && errors[i] == 0.0) continue;
     if (!(len > errors[i])) return {glm::dvec3(0.0), 0.0, false, BackPatchVerdict::WideCone};
-    units.push_back(vectors[i] / len);
-    // asin(0) is +0: skipped for exact vectors.
-    slack.push_back(errors[i] == 0.0 ? 0.0 : std::asin(errors[i] / len));
+    // One division: the unit is within an ulp or two of vectors[i] / len, far inside the
+    // angle margin; both searches read the same units.
+    const double inverse = 1.0 / len;
+    dir.units.push_back(vectors[i] * inverse);
+    dir.sinSlack.push_back(errors[i] == 0.0 ? 0.0 : errors[i] * inverse);
   }
-  if (units.empty()) return {};
-
-  const bool filtered = search == ConeSearch::Filtered &&
-                        std::all_of(slack.begin(), slack.end(), [](double x) { return x == 0.0; });
-  terms.resize(filtered ? units.size() : 0);
-  pseudo.resize(terms.size());
+  if (dir.units.empty()) return {};
+  const size_t n = dir.units.size();
+  dir.cosSlack.resize(n);
+  for (size_t i = 0; i < n; ++i)
+    dir.cosSlack[i] = std::sqrt(1.0 - dir.sinSlack[i] * dir.sinSlack[i]);
+  dir.slack.assign(n, std::numeric_limits<double>::quiet_NaN());
+  dir.x.resize(n);
+  dir.y.resize(n);
+  dir.z.resize(n);
+  for (size_t i = 0; i < n; ++i)
+    dir.x[i] = dir.units[i].x, dir.y[i] = dir.units[i].y, dir.z[i] = dir.units[i].z;
+  dir.s2.resize(n);
+  dir.d.resize(n);
+  dir.key.resize(n);
+  const bool filtered = search == ConeSearch::Filtered;
   auto widest = [&](const glm::dvec3& axis, size_t* farthest) {
-    return filtered ? widestFiltered(axis, units, slack, terms, pseudo, farthest)
-                    : widestExhaustive(axis, units, slack, farthest);
+    return filtered ? widestFiltered(axis, dir, farthest) : widestExhaustive(axis, dir, farthest);
   };
+  const std::vector<glm::dvec3>& units = dir.units;
   glm::dvec3 sum(0.0);
   for (const glm::dvec3& u : units) sum += u;
   if (!(glm::length(sum) > 0.0)) return {glm::dvec3(0.0), 0.0, false, BackPatchVerdict::WideCone};
@@ -144,8 +208,9 @@ DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<con
   // The farthest vector from normalize(centre) is the one found for the previous
   // candidate (the same vector, bit for bit), so each step evaluates one direction.
   glm::dvec3 centre = axis;
-  size_t f = 0;
-  widest(glm::normalize(centre), &f);
+  size_t f = far;
+  // normalize(axis) is axis itself but for an ulp now and then: search again only then.
+  if (const glm::dvec3 start = glm::normalize(centre); start != axis) f = 0, widest(start, &f);
   for (int k = 1; k <= 8; ++k) {
     centre += (units[f] - centre) / static_cast<double>(k + 1);
     if (!(glm::length(centre) > 0.0)) break;
@@ -286,23 +351,50 @@ DirectionCone gregoryTangentCone(const std::vector<glm::dvec3>& d, const std::ve
 
 }  // namespace
 
+namespace {
+
+// The products of Bernstein bases of the normal patch: B2_i(u) B3_k(u) = kDegreeU[i][k]
+// B5_{i+k}(u) with kDegreeU[i][k] = C(2,i) C(3,k) / C(5,i+k), and B3_j(v) B2_l(v) = kDegreeV[j][l]
+// B5_{j+l}(v); computed at compile time with the same operations the loops used to do.
+struct DegreeProducts {
+  double u[3][4], v[4][3];
+};
+constexpr DegreeProducts degreeProducts() {
+  constexpr double C2[3] = {1, 2, 1}, C3[4] = {1, 3, 3, 1}, C5[6] = {1, 5, 10, 10, 5, 1};
+  DegreeProducts w{};
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 4; ++k) w.u[i][k] = C2[i] * C3[k] / C5[i + k];
+  for (int j = 0; j < 4; ++j)
+    for (int l = 0; l < 3; ++l) w.v[j][l] = C3[j] * C2[l] / C5[j + l];
+  return w;
+}
+constexpr DegreeProducts kDegree = degreeProducts();
+
+// The 12 control vectors of Bu / 3 ... times 3: 3 (b[i+1,j] - b[i,j]) at 3 * j + i, and of Bv:
+// 3 (b[k,l+1] - b[k,l]) at 4 * l + k.
+void derivativeNets(std::span<const glm::dvec3> bezier, glm::dvec3 du[12], glm::dvec3 dv[12]) {
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 3; ++i) du[3 * j + i] = 3.0 * (bezier[4 * j + i + 1] - bezier[4 * j + i]);
+  for (int l = 0; l < 3; ++l)
+    for (int k = 0; k < 4; ++k) dv[4 * l + k] = 3.0 * (bezier[4 * (l + 1) + k] - bezier[4 * l + k]);
+}
+
+}  // namespace
+
 std::array<glm::dvec3, 36> normalPatch(std::span<const glm::dvec3> bezier) {
   requireSize(bezier, 16, "bicubic Bézier");
-  static constexpr double C2[3] = {1, 2, 1}, C3[4] = {1, 3, 3, 1}, C5[6] = {1, 5, 10, 10, 5, 1};
   std::array<glm::dvec3, 36> n;
   n.fill(glm::dvec3(0.0));
   // Bu = Σ 3 (b[i+1,j] - b[i,j]) B2_i(u) B3_j(v); Bv = Σ 3 (b[k,l+1] - b[k,l]) B3_k(u) B2_l(v).
+  glm::dvec3 du[12], dv[12];
+  derivativeNets(bezier, du, dv);
   for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const glm::dvec3 du = 3.0 * (bezier[4 * j + i + 1] - bezier[4 * j + i]);
+    for (int i = 0; i < 3; ++i)
       for (int l = 0; l < 3; ++l)
         for (int k = 0; k < 4; ++k) {
-          const glm::dvec3 dv = 3.0 * (bezier[4 * (l + 1) + k] - bezier[4 * l + k]);
-          const int p = i + k, q = j + l;
-          const double w = (C2[i] * C3[k] / C5[p]) * (C3[j] * C2[l] / C5[q]);
-          n[6 * q + p] += w * glm::cross(du, dv);
+          const double w = kDegree.u[i][k] * kDegree.v[j][l];
+          n[6 * (j + l) + i + k] += w * glm::cross(du[3 * j + i], dv[4 * l + k]);
         }
-    }
   return n;
 }
 
@@ -312,18 +404,17 @@ ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier, ConeSearch 
   const std::array<glm::dvec3, 36> n = normalPatch(bezier);
   // Error bound of each coefficient: kRelativeMargin times the sum of |w| |du| |dv| of its
   // terms (the rounding error of the sum is below 100 ulps of that).
-  static constexpr double C2[3] = {1, 2, 1}, C3[4] = {1, 3, 3, 1}, C5[6] = {1, 5, 10, 10, 5, 1};
+  glm::dvec3 du[12], dv[12];
+  derivativeNets(bezier, du, dv);
+  double duLength[12], dvLength[12];
+  for (int e = 0; e < 12; ++e) duLength[e] = glm::length(du[e]), dvLength[e] = glm::length(dv[e]);
   std::array<double, 36> err{};
   for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const double du = 3.0 * glm::length(bezier[4 * j + i + 1] - bezier[4 * j + i]);
+    for (int i = 0; i < 3; ++i)
       for (int l = 0; l < 3; ++l)
-        for (int k = 0; k < 4; ++k) {
-          const double dv = 3.0 * glm::length(bezier[4 * (l + 1) + k] - bezier[4 * l + k]);
-          const int p = i + k, q = j + l;
-          err[6 * q + p] += (C2[i] * C3[k] / C5[p]) * (C3[j] * C2[l] / C5[q]) * du * dv;
-        }
-    }
+        for (int k = 0; k < 4; ++k)
+          err[6 * (j + l) + i + k] +=
+              kDegree.u[i][k] * kDegree.v[j][l] * duLength[3 * j + i] * dvLength[4 * l + k];
   for (double& e : err) e *= kRelativeMargin;
   const DirectionCone cone = boundDirections(n, err, search);
   if (!cone.valid) return invalidCone(cone.reason);

@@ -34,8 +34,8 @@ inline constexpr double kConeAngleMargin = 1e-9;
 /// \brief How a cone's axis search finds the widest direction from a candidate axis
 /// (cone_of_normals.cpp, widestFiltered): both give bit-identical cones.
 enum class ConeSearch {
-  /// atan2 only for the directions whose pseudo-angle is within 1e-9 of the largest
-  /// (those without an error term: TCONE, Gregory TCONE); NCONE falls back to Exhaustive.
+  /// atan2 (and asin of a direction's uncertainty) only for the directions whose
+  /// pseudo-angle is within 1e-9 of the largest: TCONE, Gregory TCONE and NCONE.
   Filtered,
   Exhaustive,  ///< atan2 of every direction (the definition; kept for tests and benchmarks)
 };

@@ -5,15 +5,14 @@
 #include "osd_cull/bound/frustum.h"
 #include "osd_cull/bound/tangent_plane.h"
 #include "osd_cull/error.h"
+#include "osd_cull/parallel.h"
 
 #include <osd_cull/shared/cull_layout.h>
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <string>
-#include <thread>
 
 namespace osd_cull::bound {
 
@@ -48,7 +47,7 @@ const char* toString(BackPatchMethod method) {
 
 std::vector<ConeOfNormals> buildPatchCones(const PatchSet& patches, BackPatchMethod method,
                                            ConeSearch search, unsigned threads) {
-  std::vector<ConeOfNormals> cones(patches.patchCount());
+  std::vector<ConeOfNormals> cones = hugePageVector<ConeOfNormals>(patches.patchCount());
   if (method == BackPatchMethod::None) return cones;
   auto build = [&](uint32_t begin, uint32_t end) {
     for (uint32_t p = begin; p < end; ++p) {
@@ -61,32 +60,8 @@ std::vector<ConeOfNormals> buildPatchCones(const PatchSet& patches, BackPatchMet
         cones[p] = buildConeOfNormals(points, search);
     }
   };
-  const uint32_t n = patches.patchCount();
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min(threads, 16u);
-  if (n < kParallelConePatches || threads <= 1) {
-    build(0, n);
-    return cones;
-  }
-  // Each patch's cone depends on its own points only: equal chunks, one per thread.
-  std::vector<std::exception_ptr> errors(threads);
-  std::vector<std::thread> workers;
-  for (unsigned t = 1; t < threads; ++t)
-    workers.emplace_back([&, t] {
-      try {
-        build(uint32_t(uint64_t{n} * t / threads), uint32_t(uint64_t{n} * (t + 1) / threads));
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    });
-  try {
-    build(0, uint32_t(uint64_t{n} / threads));
-  } catch (...) {
-    errors[0] = std::current_exception();
-  }
-  for (std::thread& w : workers) w.join();
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+  // Each patch's cone depends on its own points only.
+  parallelChunks(patches.patchCount(), kParallelConePatches, threads, build);
   return cones;
 }
 
@@ -149,9 +124,9 @@ uint32_t backPatchVerdict(const PatchSet& patches, uint32_t patch, const CullVie
   const QuadTessLevels& levels = tests.drawnShapes[patch].levels;
   double maxOuter = 0.0;
   for (int e = 0; e < 4; ++e)
-    maxOuter = std::max(maxOuter, std::max(1.0, std::ceil(levels.lo[e])) +
-                                      (levels.hi[e] > 0.0 ? std::max(1.0, std::ceil(levels.hi[e]))
-                                                          : 0.0));
+    maxOuter =
+        std::max(maxOuter, std::max(1.0, std::ceil(levels.lo[e])) +
+                               (levels.hi[e] > 0.0 ? std::max(1.0, std::ceil(levels.hi[e])) : 0.0));
   if (!tests.drawnEnumerate && !(maxOuter <= double(tests.drawnListLevel))) return v;
   return drawnTrianglesFaceAway(patches.controlPoints(patch), tests.drawnShapes[patch].levels,
                                 *view.eye, tests.snapPerDistance)

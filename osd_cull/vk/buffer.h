@@ -37,6 +37,9 @@ class Buffer {
   explicit operator bool() const { return static_cast<bool>(buffer_); }
   /// \brief Host pointer to the buffer's bytes, or nullptr if its memory is not mapped.
   std::byte* mapped() const { return allocation_.mapped(); }
+  /// \brief Whether the memory is mapped and host-coherent (host writes need no flush): on
+  /// unified-memory devices (lavapipe) device-local buffers are too.
+  bool hostCoherent() const { return allocation_.hostCoherent(); }
   /// \brief The mapped bytes as an array of T (size()/sizeof(T) elements).
   /// \throws osd_cull::Error when the buffer is not host-visible.
   template <class T>

@@ -48,6 +48,11 @@ std::byte* Allocation::mapped() const {
   return b && b->mapped ? b->mapped + offset_ : nullptr;
 }
 
+bool Allocation::hostCoherent() const {
+  auto* b = static_cast<MemoryAllocator::Block*>(block_);
+  return b && b->mapped && b->coherent;
+}
+
 MemoryAllocator::MemoryAllocator(VkPhysicalDevice physicalDevice, VkDevice device,
                                  VkDeviceSize blockSize, bool deviceAddress)
     : device_(device), blockSize_(blockSize), deviceAddress_(deviceAddress) {
@@ -109,6 +114,8 @@ MemoryAllocator::Block& MemoryAllocator::newBlock(uint32_t typeIndex, ResourceKi
     void* p = nullptr;
     OSD_CULL_VK(vkMapMemory(device_, memory, 0, VK_WHOLE_SIZE, 0, &p));
     block->mapped = static_cast<std::byte*>(p);
+    block->coherent = (properties_.memoryTypes[typeIndex].propertyFlags &
+                       VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
   }
   block->freeRanges.emplace(0, size);
   blocks_.push_back(std::move(block));

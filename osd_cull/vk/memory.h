@@ -44,6 +44,9 @@ class Allocation {
   VkDeviceSize size() const { return size_; }
   /// \brief Host pointer to the start of this range, or nullptr if not host-visible.
   std::byte* mapped() const;
+  /// \brief Whether host writes through mapped() are visible to the device without a flush
+  /// (host-visible and HOST_COHERENT memory).
+  bool hostCoherent() const;
   explicit operator bool() const { return allocator_ != nullptr; }
 
  private:
@@ -92,6 +95,7 @@ class MemoryAllocator {
     VkDeviceSize size = 0;
     bool dedicated = false;
     std::byte* mapped = nullptr;
+    bool coherent = false;                            // mapped and HOST_COHERENT
     std::map<VkDeviceSize, VkDeviceSize> freeRanges;  // offset -> size
     size_t live = 0;
   };

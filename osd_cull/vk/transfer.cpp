@@ -33,6 +33,18 @@ void uploadGenerated(Context& context, const Buffer& dst, VkDeviceSize bytes,
   }
 }
 
+void initializeGenerated(Context& context, const Buffer& dst, VkDeviceSize bytes,
+                         const std::function<void(std::span<std::byte>, VkDeviceSize)>& fill) {
+  if (!dst.hostCoherent()) return uploadGenerated(context, dst, bytes, fill);
+  if (bytes > dst.size())
+    throw Error("vulkan::initializeGenerated: " + std::to_string(bytes) +
+                " bytes do not fit a buffer of " + std::to_string(dst.size()) + " bytes");
+  for (VkDeviceSize done = 0; done < bytes; done += kUploadChunkBytes) {
+    const VkDeviceSize n = std::min(kUploadChunkBytes, bytes - done);
+    fill(std::span<std::byte>(dst.mapped() + done, static_cast<size_t>(n)), done);
+  }
+}
+
 void uploadBytes(Context& context, const Buffer& dst, std::span<const std::byte> bytes,
                  VkDeviceSize dstOffset) {
   uploadGenerated(

@@ -30,6 +30,14 @@ void uploadGenerated(Context& context, const Buffer& dst, VkDeviceSize bytes,
                      const std::function<void(std::span<std::byte>, VkDeviceSize)>& fill,
                      VkDeviceSize dstOffset = 0);
 
+/// \brief uploadGenerated for a buffer that no submitted work uses yet (just created): where
+/// its memory is mapped and host-coherent (unified-memory devices, lavapipe) `fill` writes
+/// straight into it, in the same pieces and without a staging copy or a submission; elsewhere
+/// it is uploadGenerated.
+/// \throws osd_cull::Error when the range does not fit.
+void initializeGenerated(Context& context, const Buffer& dst, VkDeviceSize bytes,
+                         const std::function<void(std::span<std::byte>, VkDeviceSize)>& fill);
+
 /// \brief Copies `bytes` into `dst` at `dstOffset`.
 /// \throws osd_cull::Error when the range does not fit.
 void uploadBytes(Context& context, const Buffer& dst, std::span<const std::byte> bytes,

@@ -198,7 +198,8 @@ void printCullSetup(session::MeshSession& meshSession, const CullChoice& cull,
   }
 }
 
-// One frame's line(s) on stdout and its JSON object (one layout per kind of frame).
+// One frame's line on stdout and its JSON object (one layout per kind of frame): a
+// one-pass culled frame appends what it culled (and its cluster tests) to the same line.
 nlohmann::json printFrame(uint32_t f, const session::SessionFrame& frame) {
   if (frame.kind == session::FrameKind::TwoPass) {
     std::printf("%s\n", cullFrameLine(f, frame.stats).c_str());
@@ -207,14 +208,14 @@ nlohmann::json printFrame(uint32_t f, const session::SessionFrame& frame) {
   const frame::FrameStats& stats = frame.onePass;
   std::printf(
       "frame %u: %.2f ms (gpu %.2f ms), %u patches, %u draws, TES invocations %llu, "
-      "fragment invocations %llu\n",
+      "fragment invocations %llu",
       f, stats.wallMs, stats.gpuMs, stats.patchesDrawn, stats.drawCalls,
       static_cast<unsigned long long>(stats.statistics.tessEvaluationInvocations),
       static_cast<unsigned long long>(stats.statistics.fragmentShaderInvocations));
   nlohmann::json j = plainFrameJson(f, stats);
   if (frame.kind == session::FrameKind::OnePass) {
     const frame::CullFrameStats& c = frame.stats;
-    std::printf("  culled %u of %u: frustum %u, back-patch %u\n", c.patchesTotal - c.survivors,
+    std::printf("; culled %u of %u: frustum %u, back-patch %u", c.patchesTotal - c.survivors,
                 c.patchesTotal, c.culledFrustum, c.culledBackPatch);
     j["patches"] = c.patchesTotal;
     j["drawn"] = c.survivors;
@@ -223,7 +224,7 @@ nlohmann::json printFrame(uint32_t f, const session::SessionFrame& frame) {
         {"frustum", c.culledFrustum}, {"backPatch", c.culledBackPatch}, {"occlusion", 0}};
     if (c.clusters.clusters > 0) {  // --clusters
       const frame::ClusterCounts& k = c.clusters;
-      std::printf("  clusters %u: culled %u, accepted %u, undecided %u; per-patch invocations %u\n",
+      std::printf("; clusters %u: culled %u, accepted %u, undecided %u, per-patch invocations %u",
                   k.clusters, k.culled, k.accepted, k.undecided, k.perPatchInvocations);
       j["clusters"] = {{"tests", k.clusters},
                        {"culled", k.culled},
@@ -232,6 +233,7 @@ nlohmann::json printFrame(uint32_t f, const session::SessionFrame& frame) {
                        {"perPatchInvocations", k.perPatchInvocations}};
     }
   }
+  std::printf("\n");
   return j;
 }
 

@@ -7,6 +7,7 @@
 #include "osd_cull/frame/draw/draw_chunks.h"
 #include "osd_cull/frame/draw/tess_levels_pass.h"
 #include "osd_cull/frame/shader_variants.h"
+#include "osd_cull/parallel.h"
 #include "osd_cull/vk/commands.h"
 #include "osd_cull/vk/context.h"
 #include "osd_cull/vk/limits.h"
@@ -157,11 +158,14 @@ using LevelSource = CullPass::LevelSource;
 // needs exact levels, and the lean kernel serves the uniform levels where nothing can be
 // listed and the computed ones (CullPass::kernelFor).
 constexpr std::pair<KernelPart, LevelSource> kDrawnKernels[] = {
-    {KernelPart::Deferring, LevelSource::Uniform}, {KernelPart::Deferring, LevelSource::Exact},
-    {KernelPart::Listed, LevelSource::Uniform},    {KernelPart::Listed, LevelSource::Exact},
+    {KernelPart::Deferring, LevelSource::Uniform},
+    {KernelPart::Deferring, LevelSource::Exact},
+    {KernelPart::Listed, LevelSource::Uniform},
+    {KernelPart::Listed, LevelSource::Exact},
     {KernelPart::ListedGregory, LevelSource::Uniform},
     {KernelPart::ListedGregory, LevelSource::Exact},
-    {KernelPart::Lean, LevelSource::Uniform},      {KernelPart::Lean, LevelSource::Curves}};
+    {KernelPart::Lean, LevelSource::Uniform},
+    {KernelPart::Lean, LevelSource::Curves}};
 
 // The kernel source of one configuration: generated declarations, then the stage files,
 // then the main (shaders/cull/cull_main.glsl explains the macros).
@@ -190,8 +194,7 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   // docs/results/cull-kernel-floor.md). The lean kernel, for views where no patch can be
   // listed (CullPass::record chooses it, leanKernelApplies()), defers nothing.
   const bool drawn = drawnTriangles && has(CullStage::BackPatch);
-  const bool listed =
-      drawn && (part == KernelPart::Listed || part == KernelPart::ListedGregory);
+  const bool listed = drawn && (part == KernelPart::Listed || part == KernelPart::ListedGregory);
   const bool deferring = drawn && part == KernelPart::Deferring;
   text += std::string("#define CULL_DRAWN_ENUMERATE ") + (listed ? "1" : "0") + "\n";
   text += std::string("#define CULL_DRAWN_LISTED ") + (listed ? "1" : "0") + "\n";
@@ -199,8 +202,7 @@ std::string composeKernel(const std::vector<const CullMethod*>& stages, uint32_t
   if (listed)
     text += std::string("#define CULL_DRAWN_LISTED_GREGORY ") +
             (part == KernelPart::ListedGregory ? "1" : "0") + "\n";
-  if (drawn)
-    text += "#define CULL_LEVELS " + std::to_string(static_cast<uint32_t>(levels)) + "\n";
+  if (drawn) text += "#define CULL_LEVELS " + std::to_string(static_cast<uint32_t>(levels)) + "\n";
   if (listed || deferring)
     text += "#define CULL_DRAWN_LIST_LEVEL " +
             std::to_string(drawnEnumerate ? 64u : bound::kDrawnListLowLevel) + "\n";
@@ -435,23 +437,49 @@ void CullPass::checkLimits(uint32_t n) const {
 
 void CullPass::uploadHostCones(vulkan::Context& context) {
   constexpr size_t kFloatsPerCone = 4 * sh::kConeVec4s;
-  std::vector<float> packed(kFloatsPerCone, 0.0f);
-  if (backPatchEnabled()) {
-    const CullMethod* backPatch = stages_[settings_.frustum ? 1 : 0];
-    cones_ = bound::buildPatchCones(host_, backPatch->reference);
-    packed.assign(std::max<size_t>(1, cones_.size()) * kFloatsPerCone, 0.0f);
-    for (size_t p = 0; p < cones_.size(); ++p) {
-      const bound::DerivativeBounds d =
-          host_.type(uint32_t(p)) == PatchType::Bezier
-              ? bound::bezierDerivativeBounds(host_.controlPoints(uint32_t(p)))
-              : bound::DerivativeBounds{};
-      packCone(cones_[p], d, &packed[kFloatsPerCone * p]);
-    }
+  constexpr size_t kConeBytes = kFloatsPerCone * sizeof(float);
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  if (displaced()) {
+    const std::vector<float> packed = packDisplacedPatches(displaced_);
+    conesBuffer_ = vulkan::Buffer(context, packed.size() * sizeof(float), storage);
+    vulkan::upload<float>(context, conesBuffer_, packed);
+    return;
   }
-  if (displaced()) packed = packDisplacedPatches(displaced_);
-  conesBuffer_ =
-      vulkan::Buffer(context, packed.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  vulkan::upload<float>(context, conesBuffer_, packed);
+  if (!backPatchEnabled()) {  // the binding exists in every kernel's set: a placeholder
+    conesBuffer_ = vulkan::Buffer(context, kConeBytes, storage);
+    vulkan::upload<float>(context, conesBuffer_, std::vector<float>(kFloatsPerCone, 0.0f));
+    return;
+  }
+  const CullMethod* backPatch = stages_[settings_.frustum ? 1 : 0];
+  cones_ = bound::buildPatchCones(host_, backPatch->reference);
+  // Packed straight into the buffer (unified memory) or the staging memory, over the host's
+  // threads: at a million patches a full-size host copy first would cost more than the
+  // packing (first touches of fresh memory cost about 3 ms per MB on the machine measured,
+  // docs/results/cull-kernel-floor.md).
+  static_assert(vulkan::kUploadChunkBytes % kConeBytes == 0, "whole cones per staging piece");
+  const size_t count = std::max<size_t>(1, cones_.size());
+  conesBuffer_ = vulkan::Buffer(context, count * kConeBytes, storage);
+  vulkan::initializeGenerated(
+      context, conesBuffer_, count * kConeBytes,
+      [&](std::span<std::byte> chunk, VkDeviceSize offset) {
+        const uint32_t first = uint32_t(offset / kConeBytes);
+        float* out = reinterpret_cast<float*>(chunk.data());
+        const uint32_t inChunk = uint32_t(chunk.size() / kConeBytes);
+        if (cones_.empty()) {
+          std::fill_n(out, kFloatsPerCone, 0.0f);
+          return;
+        }
+        parallelChunks(inChunk, bound::kParallelConePatches, 0, [&](uint32_t begin, uint32_t end) {
+          for (uint32_t i = begin; i < end; ++i) {
+            const uint32_t p = first + i;
+            const bound::DerivativeBounds d =
+                host_.type(p) == PatchType::Bezier
+                    ? bound::bezierDerivativeBounds(host_.controlPoints(p))
+                    : bound::DerivativeBounds{};
+            packCone(cones_[p], d, out + kFloatsPerCone * i);
+          }
+        });
+      });
 }
 
 void CullPass::buildClusters(vulkan::Context& context) {
@@ -543,7 +571,8 @@ struct CullPipelines {
     vulkan::UniquePipeline& p = kernels[text];
     if (!p)
       p = vulkan::createComputePipeline(
-          context, layout.get(), vulkan::compileGlsl(text, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
+          context, layout.get(),
+          vulkan::compileGlsl(text, kCullKernelName, VK_SHADER_STAGE_COMPUTE_BIT));
     return p.get();
   }
 
@@ -554,9 +583,10 @@ struct CullPipelines {
 
 namespace {
 
-std::shared_ptr<const CullPipelines> sharedPipelines(
-    vulkan::Context& context, const std::string& kernel,
-    const std::vector<const CullMethod*>& stages, bool clusters) {
+std::shared_ptr<const CullPipelines> sharedPipelines(vulkan::Context& context,
+                                                     const std::string& kernel,
+                                                     const std::vector<const CullMethod*>& stages,
+                                                     bool clusters) {
   static std::mutex mutex;
   static std::map<std::pair<VkDevice, std::string>, std::weak_ptr<const CullPipelines>> cache;
   const std::lock_guard<std::mutex> lock(mutex);
