@@ -4,9 +4,9 @@
 // camera inside the scene, with all cull stages in one kernel, for several meshes and
 // several views sharing them.
 #include "osd_cull/frame/cull_frame.h"
-#include "osd_cull/scene/demo_shapes.h"
 #include "osd_cull/frame/verify/visibility_oracle.h"
 #include "osd_cull/scene/default_scene.h"
+#include "osd_cull/scene/demo_shapes.h"
 #include "support/cull_test_meshes.h"
 #include "support/test_data.h"
 #include "support/vk_test_context.h"
@@ -187,6 +187,39 @@ TEST_F(CullFrameTest, BigGuyWithAllStagesKeepsTheImage) {
       180, 180, allStages(options(CullDrawMode::Filtered, FirstFrame::AllVisible, false)), 5, 12.0);
   EXPECT_GT(total.culledBackPatch, 0u);
   EXPECT_GT(total.culledOcclusion, 0u);
+}
+
+// The cull kernel runs the occlusion test before it hands a patch to the listed-triangle
+// pass (shaders/cull/cull_main.glsl): a hidden patch is culled by occlusion and never listed,
+// and every patch the listing culls was tested and found not hidden. Same image.
+TEST_F(CullFrameTest, HiddenPatchesAreCulledByOcclusionBeforeAnyTriangleIsListed) {
+  OSD_CULL_REQUIRE_DATA();
+  useBigGuy(1);
+  ASSERT_TRUE(validity_.enabled) << validity_.reason;
+  frame::CullFrameOptions o = options(CullDrawMode::Filtered, FirstFrame::AllVisible, false);
+  o.cull = {true, "ncone", "hiz", validity_};
+  o.render.tessellation.uniformLevel = 1;  // the listed test decides where the bound keeps
+  const auto total = expectSameImages(180, 180, o, 3, 12.0);
+  EXPECT_GT(total.culledBackPatch, 0u);
+  EXPECT_GT(total.culledOcclusion, 0u);
+  frame::RenderTarget target(context(), 180, 180);
+  const frame::CullMesh meshes[] = {mesh()};
+  frame::CullFrame cull(context(), *renderer_, target, meshes, o);
+  for (int f = 0; f < 3; ++f) cull.render(camera(180, 180, 12.0 * f), occluders_);
+  uint32_t listedCulls = 0, hiddenCandidates = 0;
+  for (const uint32_t v : cull.cullPass(0)->results(cull.instanceInPass(0))) {
+    const bound::CullCode c{v};
+    // Culled by the listing: its occlusion verdict was computed first, and said visible.
+    if (c.stage() == shader::kStageBackPatch && c.occlusion() != 0xFFu) {
+      ++listedCulls;
+      EXPECT_NE(c.occlusion(), 0u) << bound::describe(c);
+    }
+    // Kept by the bound, hidden: culled by occlusion without a listing.
+    hiddenCandidates +=
+        c.stage() == shader::kStageOcclusion && c.backPatch() == shader::kVerdictDrawnTriangles;
+  }
+  EXPECT_GT(listedCulls, 0u);
+  EXPECT_GT(hiddenCandidates, 0u);
 }
 
 TEST_F(CullFrameTest, TessFactorZeroFramesEqualTheUnculledImageOverAMovingCamera) {
