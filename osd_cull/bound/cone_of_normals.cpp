@@ -75,12 +75,13 @@ struct DirectionCone {
 // exhaustive loop. (Before session 14 only vectors without slack were filtered, so NCONE,
 // whose 36 coefficients all carry an error bound, took 360 atan2 and 36 asin per patch.)
 struct Directions {
-  std::vector<glm::dvec3> units;
-  std::vector<double> x, y, z;   // the units again, structure of arrays (the key loop)
+  std::vector<double> x, y, z;   // the unit directions, structure of arrays (the key loop)
   std::vector<double> sinSlack;  // e_i / |v_i|, 0 for an exact vector
   std::vector<double> cosSlack;  // sqrt(1 - sinSlack²)
   std::vector<double> slack;     // asin(sinSlack), NaN until needed (filtered search)
   std::vector<double> s2, d, key;
+  size_t size() const { return x.size(); }
+  glm::dvec3 unit(size_t i) const { return {x[i], y[i], z[i]}; }
 };
 
 double slackOf(Directions& dir, size_t i) {
@@ -102,7 +103,7 @@ inline void termsOf(double ax, double ay, double az, double x, double y, double 
 
 double widestExhaustive(const glm::dvec3& axis, Directions& dir, size_t* farthest) {
   double worst = 0.0;
-  for (size_t i = 0; i < dir.units.size(); ++i) {
+  for (size_t i = 0; i < dir.size(); ++i) {
     double s2, d;
     termsOf(axis.x, axis.y, axis.z, dir.x[i], dir.y[i], dir.z[i], &s2, &d);
     const double a = std::atan2(std::sqrt(s2), d) + slackOf(dir, i);
@@ -142,7 +143,7 @@ constexpr double kPseudoAngleFilter = 1e-9;
 }
 
 double widestFiltered(const glm::dvec3& axis, Directions& dir, size_t* farthest) {
-  const size_t n = dir.units.size();
+  const size_t n = dir.size();
   const double top = directionKeys(axis.x, axis.y, axis.z, dir.x.data(), dir.y.data(), dir.z.data(),
                                    dir.cosSlack.data(), dir.sinSlack.data(), dir.s2.data(),
                                    dir.d.data(), dir.key.data(), n);
@@ -167,7 +168,9 @@ DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<con
                               ConeSearch search) {
   // Scratch buffers of this thread, reused from call to call (no allocation per patch).
   thread_local Directions dir;
-  dir.units.clear();
+  dir.x.clear();
+  dir.y.clear();
+  dir.z.clear();
   dir.sinSlack.clear();
   for (size_t i = 0; i < vectors.size(); ++i) {
     const double len = glm::length(vectors[i]);
@@ -176,20 +179,18 @@ DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<con
     // One division: the unit is within an ulp or two of vectors[i] / len, far inside the
     // angle margin; both searches read the same units.
     const double inverse = 1.0 / len;
-    dir.units.push_back(vectors[i] * inverse);
+    const glm::dvec3 unit = vectors[i] * inverse;
+    dir.x.push_back(unit.x);
+    dir.y.push_back(unit.y);
+    dir.z.push_back(unit.z);
     dir.sinSlack.push_back(errors[i] == 0.0 ? 0.0 : errors[i] * inverse);
   }
-  if (dir.units.empty()) return {};
-  const size_t n = dir.units.size();
+  if (dir.size() == 0) return {};
+  const size_t n = dir.size();
   dir.cosSlack.resize(n);
   for (size_t i = 0; i < n; ++i)
     dir.cosSlack[i] = std::sqrt(1.0 - dir.sinSlack[i] * dir.sinSlack[i]);
   dir.slack.assign(n, std::numeric_limits<double>::quiet_NaN());
-  dir.x.resize(n);
-  dir.y.resize(n);
-  dir.z.resize(n);
-  for (size_t i = 0; i < n; ++i)
-    dir.x[i] = dir.units[i].x, dir.y[i] = dir.units[i].y, dir.z[i] = dir.units[i].z;
   dir.s2.resize(n);
   dir.d.resize(n);
   dir.key.resize(n);
@@ -197,9 +198,8 @@ DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<con
   auto widest = [&](const glm::dvec3& axis, size_t* farthest) {
     return filtered ? widestFiltered(axis, dir, farthest) : widestExhaustive(axis, dir, farthest);
   };
-  const std::vector<glm::dvec3>& units = dir.units;
   glm::dvec3 sum(0.0);
-  for (const glm::dvec3& u : units) sum += u;
+  for (size_t i = 0; i < n; ++i) sum += dir.unit(i);
   if (!(glm::length(sum) > 0.0)) return {glm::dvec3(0.0), 0.0, false, BackPatchVerdict::WideCone};
   glm::dvec3 axis = glm::normalize(sum);
   size_t far = 0;
@@ -212,7 +212,7 @@ DirectionCone boundDirections(std::span<const glm::dvec3> vectors, std::span<con
   // normalize(axis) is axis itself but for an ulp now and then: search again only then.
   if (const glm::dvec3 start = glm::normalize(centre); start != axis) f = 0, widest(start, &f);
   for (int k = 1; k <= 8; ++k) {
-    centre += (units[f] - centre) / static_cast<double>(k + 1);
+    centre += (dir.unit(f) - centre) / static_cast<double>(k + 1);
     if (!(glm::length(centre) > 0.0)) break;
     const glm::dvec3 candidate = glm::normalize(centre);
     f = 0;
@@ -370,7 +370,7 @@ constexpr DegreeProducts degreeProducts() {
 }
 constexpr DegreeProducts kDegree = degreeProducts();
 
-// The 12 control vectors of Bu / 3 ... times 3: 3 (b[i+1,j] - b[i,j]) at 3 * j + i, and of Bv:
+// The 12 control vectors of Bu, 3 (b[i+1,j] - b[i,j]) at 3 * j + i, and the 12 of Bv,
 // 3 (b[k,l+1] - b[k,l]) at 4 * l + k.
 void derivativeNets(std::span<const glm::dvec3> bezier, glm::dvec3 du[12], glm::dvec3 dv[12]) {
   for (int j = 0; j < 4; ++j)
@@ -379,15 +379,11 @@ void derivativeNets(std::span<const glm::dvec3> bezier, glm::dvec3 du[12], glm::
     for (int k = 0; k < 4; ++k) dv[4 * l + k] = 3.0 * (bezier[4 * (l + 1) + k] - bezier[4 * l + k]);
 }
 
-}  // namespace
-
-std::array<glm::dvec3, 36> normalPatch(std::span<const glm::dvec3> bezier) {
-  requireSize(bezier, 16, "bicubic Bézier");
+// The normal patch from the derivative nets (derivativeNets).
+// Bu = Σ 3 (b[i+1,j] - b[i,j]) B2_i(u) B3_j(v); Bv = Σ 3 (b[k,l+1] - b[k,l]) B3_k(u) B2_l(v).
+std::array<glm::dvec3, 36> normalPatchOf(const glm::dvec3 du[12], const glm::dvec3 dv[12]) {
   std::array<glm::dvec3, 36> n;
   n.fill(glm::dvec3(0.0));
-  // Bu = Σ 3 (b[i+1,j] - b[i,j]) B2_i(u) B3_j(v); Bv = Σ 3 (b[k,l+1] - b[k,l]) B3_k(u) B2_l(v).
-  glm::dvec3 du[12], dv[12];
-  derivativeNets(bezier, du, dv);
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 3; ++i)
       for (int l = 0; l < 3; ++l)
@@ -398,14 +394,23 @@ std::array<glm::dvec3, 36> normalPatch(std::span<const glm::dvec3> bezier) {
   return n;
 }
 
+}  // namespace
+
+std::array<glm::dvec3, 36> normalPatch(std::span<const glm::dvec3> bezier) {
+  requireSize(bezier, 16, "bicubic Bézier");
+  glm::dvec3 du[12], dv[12];
+  derivativeNets(bezier, du, dv);
+  return normalPatchOf(du, dv);
+}
+
 ConeOfNormals buildConeOfNormals(std::span<const glm::dvec3> bezier, ConeSearch search) {
   requireSize(bezier, 16, "bicubic Bézier");
   if (!allFinite(bezier)) return invalidCone(BackPatchVerdict::NonFinite);
-  const std::array<glm::dvec3, 36> n = normalPatch(bezier);
-  // Error bound of each coefficient: kRelativeMargin times the sum of |w| |du| |dv| of its
-  // terms (the rounding error of the sum is below 100 ulps of that).
   glm::dvec3 du[12], dv[12];
   derivativeNets(bezier, du, dv);
+  const std::array<glm::dvec3, 36> n = normalPatchOf(du, dv);
+  // Error bound of each coefficient: kRelativeMargin times the sum of |w| |du| |dv| of its
+  // terms (the rounding error of the sum is below 100 ulps of that).
   double duLength[12], dvLength[12];
   for (int e = 0; e < 12; ++e) duLength[e] = glm::length(du[e]), dvLength[e] = glm::length(dv[e]);
   std::array<double, 36> err{};
