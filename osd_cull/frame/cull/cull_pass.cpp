@@ -445,30 +445,25 @@ void CullPass::uploadHostCones(vulkan::Context& context) {
     vulkan::upload<float>(context, conesBuffer_, packed);
     return;
   }
-  if (!backPatchEnabled()) {  // the binding exists in every kernel's set: a placeholder
+  if (backPatchEnabled())
+    cones_ = bound::buildPatchCones(host_, stages_[settings_.frustum ? 1 : 0]->reference);
+  if (cones_.empty()) {  // the binding exists in every kernel's set: a placeholder
     conesBuffer_ = vulkan::Buffer(context, kConeBytes, storage);
     vulkan::upload<float>(context, conesBuffer_, std::vector<float>(kFloatsPerCone, 0.0f));
     return;
   }
-  const CullMethod* backPatch = stages_[settings_.frustum ? 1 : 0];
-  cones_ = bound::buildPatchCones(host_, backPatch->reference);
   // Packed straight into the buffer (unified memory) or the staging memory, over the host's
   // threads: at a million patches a full-size host copy first would cost more than the
   // packing (first touches of fresh memory cost about 3 ms per MB on the machine measured,
   // docs/results/cull-kernel-floor.md).
   static_assert(vulkan::kUploadChunkBytes % kConeBytes == 0, "whole cones per staging piece");
-  const size_t count = std::max<size_t>(1, cones_.size());
-  conesBuffer_ = vulkan::Buffer(context, count * kConeBytes, storage);
+  conesBuffer_ = vulkan::Buffer(context, cones_.size() * kConeBytes, storage);
   vulkan::initializeGenerated(
-      context, conesBuffer_, count * kConeBytes,
+      context, conesBuffer_, cones_.size() * kConeBytes,
       [&](std::span<std::byte> chunk, VkDeviceSize offset) {
         const uint32_t first = uint32_t(offset / kConeBytes);
         float* out = reinterpret_cast<float*>(chunk.data());
         const uint32_t inChunk = uint32_t(chunk.size() / kConeBytes);
-        if (cones_.empty()) {
-          std::fill_n(out, kFloatsPerCone, 0.0f);
-          return;
-        }
         parallelChunks(inChunk, bound::kParallelConePatches, 0, [&](uint32_t begin, uint32_t end) {
           for (uint32_t i = begin; i < end; ++i) {
             const uint32_t p = first + i;
